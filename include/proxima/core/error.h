@@ -1,0 +1,18 @@
+// Errors. Bad user input (a file, a flag, a scene) throws InputError with a one-line
+// message naming the file or flag; the command line turns it into exit code 2.
+// Programmer errors are asserts. Per-pixel code never throws.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace proxima {
+
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+[[noreturn]] inline void fail_input(const std::string& message) { throw InputError(message); }
+
+}  // namespace proxima

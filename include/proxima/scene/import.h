@@ -1,0 +1,19 @@
+// Import of mesh files through assimp (OBJ, glTF 2.0 / GLB, PLY and whatever else assimp
+// reads). Material mapping (glTF metallic/roughness, OBJ Ks/Ns → s, g) is in docs/formats.md.
+#pragma once
+
+#include <filesystem>
+
+#include "proxima/scene/scene.h"
+
+namespace proxima {
+
+// One object per assimp mesh, node transforms applied. Throws InputError naming the file
+// for a missing, unreadable or malformed file, or one with no triangles.
+Scene import_mesh_file(const std::filesystem::path& path);
+
+// Writes a scene's geometry (rest pose) as Wavefront OBJ + MTL beside it (for round trips
+// and for handing scenes to other tools). Written atomically.
+void write_obj(const std::filesystem::path& path, const Scene& scene);
+
+}  // namespace proxima

@@ -1,0 +1,31 @@
+// Procedural mesh generators. All are deterministic, centered at the origin unless stated,
+// with outward-facing counter-clockwise triangles, unit vertex normals and uvs.
+#pragma once
+
+#include "proxima/scene/mesh.h"
+
+namespace proxima {
+
+// UV sphere: `segments` around Y, `rings` from pole to pole. 2·segments·(rings−1) triangles.
+Mesh make_sphere(float radius, int segments, int rings);
+
+// Cylinder along +Y from y = 0 to y = height; `segments` around, `rings` bands along
+// the side; optional caps. Side: 2·segments·rings triangles; each cap: segments.
+Mesh make_cylinder(float radius, float height, int segments, int rings, bool capped);
+
+// Torus around Y: major radius R, minor radius r. 2·major_segments·minor_segments triangles.
+Mesh make_torus(float major_radius, float minor_radius, int major_segments, int minor_segments);
+
+// Axis-aligned box centered at the origin with the given full size; faces outward,
+// each face split into subdivisions² quads.
+Mesh make_box(vec3 size, int subdivisions = 1);
+
+// Rectangle in the XZ plane centered at the origin, normal +Y, subdivided into n × m quads.
+Mesh make_plane(float size_x, float size_z, int n = 1, int m = 1);
+
+// The Utah teapot from Newell's 32 bicubic Bézier patches, each tessellated into
+// `tessellation`² quads (2 triangles each; degenerate ones at the poles dropped), resting
+// on y = 0 and scaled to height 1.
+Mesh make_teapot(int tessellation);
+
+}  // namespace proxima

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Installs the Debian packages proxima builds with, only those that are missing.
+# Idempotent; works as root, or through sudo when not root and sudo is available.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libglm-dev libembree-dev libtbb-dev libassimp-dev
+  libstb-dev libtinyexr-dev nlohmann-json3-dev libcli11-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed'; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+if [ "$(id -u)" -eq 0 ]; then
+  sudo=()
+elif command -v sudo >/dev/null 2>&1; then
+  sudo=(sudo)
+else
+  echo "install-deps: missing packages (${missing[*]}) and not root; install them or run as root" >&2
+  exit 2
+fi
+
+echo "install-deps: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get update -qq
+"${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
