@@ -140,7 +140,9 @@ TEST(RayScene, BatchedQueriesEqualSingleOnes) {
   std::vector<Ray> batch(5000);
   for (Ray& r : batch) {
     r.origin = vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, 1.0f);
-    r.dir = unit_dir(rng);
+    // Half aimed into the scene, half anywhere.
+    vec3 target(2.0f * rng.next_float() - 1.0f, 2.0f * rng.next_float() - 1.0f, -2.0f * rng.next_float());
+    r.dir = rng.next_float() < 0.5f ? target - r.origin : unit_dir(rng);
     r.tmax = rng.next_float() < 0.5f ? kInf : 3.0f * rng.next_float();
   }
   std::vector<Hit> hits(batch.size());
