@@ -48,6 +48,9 @@ RTCRay to_rtc(const Ray& ray) {
   return r;
 }
 
+// Batched queries run rtcIntersect1/rtcOccluded1 per ray so they return bit for bit what
+// the single-ray calls return. (Measured: rtcIntersect16 on 4×4 primary-ray packets is
+// ≈1.7× faster, but its t and (u, v) differ in the last bits from rtcIntersect1.)
 // Rays per parallel chunk: large enough to amortize scheduling, small enough to balance.
 constexpr size_t kChunk = 1024;
 
