@@ -33,16 +33,15 @@ struct SurfacePoint {
   const Material* material;
 };
 
-// The hit seen along `dir`: both normals flipped to face back along the ray.
+// The hit seen along `dir`: the geometric normal flipped to face back along the ray, the
+// shading normal flipped into its hemisphere (vertex normals may disagree with the winding).
 SurfacePoint surface_point(const Scene& scene, const Hit& hit, vec3 dir) {
   SurfacePoint sp;
   sp.p = triangle_point(scene, hit.triangle, hit.u, hit.v);
-  sp.n = shading_normal(scene, hit.triangle, hit.u, hit.v);
   sp.ng = triangle_normal(scene, hit.triangle);
-  if (glm::dot(sp.ng, dir) > 0.0f) {
-    sp.n = -sp.n;
-    sp.ng = -sp.ng;
-  }
+  if (glm::dot(sp.ng, dir) > 0.0f) sp.ng = -sp.ng;
+  sp.n = shading_normal(scene, hit.triangle, hit.u, hit.v);
+  if (glm::dot(sp.n, sp.ng) < 0.0f) sp.n = -sp.n;
   sp.material = &scene.materials[scene.triangle_material[hit.triangle]];
   return sp;
 }

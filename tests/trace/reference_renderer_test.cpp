@@ -75,7 +75,7 @@ TEST(ReferenceItemBuffer, AgreesWithAnalyticProjectionOfAQuad) {
   EXPECT_GT(hits, 500);
 }
 
-TEST(ReferenceItemBuffer, NormalFacesTheCameraFromBehind) {
+TEST(ReferenceItemBuffer, NormalFacesTheCamera) {
   Scene s;
   add_object(s, quad_mesh(vec3(-1, -1, 0), vec3(2, 0, 0), vec3(0, 2, 0)), "quad", add_diffuse(s, vec3(0.5f)));
   RayScene rays(s);
@@ -83,6 +83,11 @@ TEST(ReferenceItemBuffer, NormalFacesTheCameraFromBehind) {
   ItemBuffer ib = trace_item_buffer(s, rays, cam);
   EXPECT_EQ(ib.normal.at(4, 4, 2), -1.0f);
   EXPECT_NEAR(ib.depth.at(4, 4), 2.0f, 1e-5f);
+  // Vertex normals that contradict the winding are flipped too.
+  for (vec3& n : s.normals) n = -n;
+  EXPECT_EQ(trace_item_buffer(s, rays, cam).normal.at(4, 4, 2), -1.0f);
+  Camera front = look_at(vec3(0, 0, 2), vec3(0), vec3(0, 1, 0), 40.0f, 8, 8);
+  EXPECT_EQ(trace_item_buffer(s, rays, front).normal.at(4, 4, 2), 1.0f);
 }
 
 // Large diffuse floor y = 0, point light above, optional occluder square at y = 1.
