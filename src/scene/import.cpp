@@ -191,12 +191,7 @@ Mesh convert_mesh(const aiMesh& ai_mesh, const mat4& transform) {
     if (face.mNumIndices == 3)
       mesh.triangles.emplace_back(face.mIndices[0], face.mIndices[1], face.mIndices[2]);
   }
-  if (transform != mat4(1.0f)) {
-    transform_mesh(mesh, transform);
-    // A mirroring transform turns counter-clockwise triangles clockwise.
-    if (glm::determinant(mat3(transform)) < 0.0f)
-      for (uvec3& t : mesh.triangles) std::swap(t.y, t.z);
-  }
+  if (transform != mat4(1.0f)) transform_mesh(mesh, transform);  // also fixes mirrored winding
   return mesh;
 }
 

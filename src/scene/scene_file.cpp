@@ -223,13 +223,6 @@ RigidAnimation read_animation(const Node& n, vec3 default_pivot) {
   return anim;
 }
 
-void apply_transform(Mesh& mesh, const mat4& m) {
-  transform_mesh(mesh, m);
-  // A mirroring scale turns counter-clockwise triangles clockwise.
-  if (glm::determinant(mat3(m)) < 0.0f)
-    for (uvec3& t : mesh.triangles) std::swap(t.y, t.z);
-}
-
 // The triangles and vertices of one object of `scene`, re-indexed from 0.
 Mesh extract_object(const Scene& scene, const Object& o) {
   Mesh mesh;
@@ -407,7 +400,7 @@ class SceneReader {
     } else {  // teapot
       mesh = make_teapot(n.get_int("tessellation", 1, kMaxTessellation, 8));
     }
-    apply_transform(mesh, transform.matrix());
+    transform_mesh(mesh, transform.matrix());
     const uint32_t mat = n.has("material") ? material(n["material"]) : default_material();
     add_object(scene_, mesh, name, mat, animation);
   }
@@ -463,7 +456,7 @@ class SceneReader {
 
     for (const Object& o : imported.objects) {
       Mesh mesh = extract_object(imported, o);
-      apply_transform(mesh, transform);
+      transform_mesh(mesh, transform);
       const std::string object_name = imported.objects.size() == 1 ? name : name + "/" + o.name;
       const uint32_t id =
           add_object(scene_, mesh, object_name, scene_material(imported.triangle_material[o.first_triangle]), animation);
