@@ -10,7 +10,12 @@
 //   inverted by write_obj as  Ks = (s, s, s), Ns = 1001^(1 − g) − 1 (Ns in [0, 1000]).
 #include "proxima/scene/import.h"
 
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
 #include <algorithm>
+#include <assimp/Importer.hpp>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -19,11 +24,6 @@
 #include <optional>
 #include <set>
 #include <system_error>
-
-#include <assimp/Importer.hpp>
-#include <assimp/material.h>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 
 #include "proxima/core/atomic_file.h"
 #include "proxima/core/error.h"
@@ -331,7 +331,8 @@ void write_obj(const fs::path& path, const Scene& scene) {
     const Object& object = scene.objects[o];
     obj += "o " + obj_token(object.name, "object" + std::to_string(o)) + "\n";
     uint32_t current = UINT32_MAX;
-    for (uint32_t t = object.first_triangle; t < object.first_triangle + object.triangle_count; ++t) {
+    for (uint32_t t = object.first_triangle; t < object.first_triangle + object.triangle_count;
+         ++t) {
       const uint32_t material = scene.triangle_material[t];
       if (material != current && material < material_names.size()) {
         obj += "usemtl " + material_names[material] + "\n";

@@ -24,7 +24,8 @@ Scene load_unsanitized(const std::string& name_or_path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) {
     std::string names;
-    for (const BuiltinSceneInfo& b : builtin_scenes()) names += (names.empty() ? "" : ", ") + b.name;
+    for (const BuiltinSceneInfo& b : builtin_scenes())
+      names += (names.empty() ? "" : ", ") + b.name;
     fail_input("no such scene or file: " + name_or_path + " (built-in scenes: " + names + ")");
   }
   std::string ext = path.extension().string();

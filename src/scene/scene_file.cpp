@@ -5,14 +5,13 @@
 #include "proxima/scene/scene_file.h"
 
 #include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
 #include <initializer_list>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 #include <string_view>
-
-#include <glm/gtc/matrix_transform.hpp>
-#include <nlohmann/json.hpp>
 
 #include "proxima/core/error.h"
 #include "proxima/core/image_io.h"
@@ -94,7 +93,8 @@ class Node {
   }
   std::vector<Node> items(size_t n) const {
     std::vector<Node> out = items();
-    if (out.size() != n) fail("must have " + std::to_string(n) + " elements, not " + std::to_string(out.size()));
+    if (out.size() != n)
+      fail("must have " + std::to_string(n) + " elements, not " + std::to_string(out.size()));
     return out;
   }
 
@@ -215,7 +215,8 @@ RigidAnimation read_animation(const Node& n, vec3 default_pivot) {
   for (const Node& k : keys) {
     k.expect_keys({"time", "translate", "rotate_deg"});
     RigidKey key;
-    key.time = read_key_time(k, anim.keys.empty() ? 0.0f : anim.keys.back().time, anim.keys.empty());
+    key.time =
+        read_key_time(k, anim.keys.empty() ? 0.0f : anim.keys.back().time, anim.keys.empty());
     key.translation = k.get("translate", &Node::vector3, vec3(0.0f));
     key.rotation = rotation_xyz_deg(k.get("rotate_deg", &Node::vector3, vec3(0.0f)));
     anim.keys.push_back(key);
@@ -340,7 +341,6 @@ class SceneReader {
       return all;
     };
     std::vector<std::string_view> allowed;
-    Mesh mesh;
     if (type == "mesh") {
       allowed = keys({"file", "material_overrides"});
     } else if (type == "sphere") {
@@ -371,6 +371,7 @@ class SceneReader {
       read_mesh_object(n, name, transform.matrix(), animation);
       return;
     }
+    Mesh mesh;
     if (type == "sphere") {
       mesh = make_sphere(n["radius"].positive(), n.get_int("segments", 3, kMaxSegments, 32),
                          n.get_int("rings", 2, kMaxSegments, 16));
@@ -433,22 +434,21 @@ class SceneReader {
         if (!found) value.fail("no material named '" + key + "' in " + file_node.string());
       }
     }
-    // Texture ids of the imported scene → ids in this scene (shared by file name).
-    std::vector<int> texture_remap;
-    for (Texture& t : imported.textures) {
-      int id = -1;
-      for (size_t i = 0; i < scene_.textures.size() && id < 0; ++i)
-        if (scene_.textures[i].name == t.name) id = int(i);
-      if (id < 0) {
-        id = int(scene_.textures.size());
-        scene_.textures.push_back(std::move(t));
-      }
-      texture_remap.push_back(id);
-    }
+    // The file's materials (and their textures, shared by file name) enter the scene on
+    // first use, so overridden ones leave nothing behind.
     auto scene_material = [&](uint32_t m) {
       if (!remap[m]) {
         Material copy = imported.materials[m];
-        if (copy.diffuse_texture >= 0) copy.diffuse_texture = texture_remap[size_t(copy.diffuse_texture)];
+        if (copy.diffuse_texture >= 0) {
+          const Texture& t = imported.textures[size_t(copy.diffuse_texture)];
+          copy.diffuse_texture = -1;
+          for (size_t i = 0; i < scene_.textures.size() && copy.diffuse_texture < 0; ++i)
+            if (scene_.textures[i].name == t.name) copy.diffuse_texture = int(i);
+          if (copy.diffuse_texture < 0) {
+            copy.diffuse_texture = int(scene_.textures.size());
+            scene_.textures.push_back(t);
+          }
+        }
         remap[m] = add_material(scene_, copy);
       }
       return *remap[m];
@@ -458,8 +458,8 @@ class SceneReader {
       Mesh mesh = extract_object(imported, o);
       transform_mesh(mesh, transform);
       const std::string object_name = imported.objects.size() == 1 ? name : name + "/" + o.name;
-      const uint32_t id =
-          add_object(scene_, mesh, object_name, scene_material(imported.triangle_material[o.first_triangle]), animation);
+      const uint32_t first_material = scene_material(imported.triangle_material[o.first_triangle]);
+      const uint32_t id = add_object(scene_, mesh, object_name, first_material, animation);
       // An imported object may mix materials; add_object gave it one.
       const Object& added = scene_.objects[id];
       for (uint32_t t = 0; t < o.triangle_count; ++t)
@@ -469,7 +469,8 @@ class SceneReader {
   }
 
   void read_camera(const Node& n) {
-    n.expect_keys({"name", "position", "target", "up", "vfov_deg", "near", "far", "width", "height"});
+    n.expect_keys(
+        {"name", "position", "target", "up", "vfov_deg", "near", "far", "width", "height"});
     NamedCamera c;
     c.name = n.get("name", &Node::string, "camera" + std::to_string(scene_.cameras.size()));
     const vec3 position = n["position"].vector3();
@@ -504,7 +505,8 @@ class SceneReader {
     for (const Node& k : keys) {
       k.expect_keys({"time", "position", "target", "vfov_deg"});
       CameraKey key;
-      key.time = read_key_time(k, path.keys.empty() ? 0.0f : path.keys.back().time, path.keys.empty());
+      key.time =
+          read_key_time(k, path.keys.empty() ? 0.0f : path.keys.back().time, path.keys.empty());
       key.position = k["position"].vector3();
       key.target = k["target"].vector3();
       key.vfov_deg = k.get("vfov_deg", &Node::fov, key.vfov_deg);
@@ -540,7 +542,8 @@ class SceneReader {
       if (image.width() != image.height() ||
           (f > 0 && image.width() != scene_.environment.cube[0].width()))
         faces[f].fail("face is " + std::to_string(image.width()) + "x" +
-                      std::to_string(image.height()) + "; faces must be square and all the same size");
+                      std::to_string(image.height()) +
+                      "; faces must be square and all the same size");
       scene_.environment.cube[f] = std::move(image);
     }
   }
@@ -556,7 +559,8 @@ class SceneReader {
       ImageF rgb(exr.width(), exr.height(), 3);
       for (int y = 0; y < exr.height(); ++y)
         for (int x = 0; x < exr.width(); ++x)
-          for (int c = 0; c < 3; ++c) rgb.at(x, y, c) = exr.at(x, y, std::min(c, exr.channels() - 1));
+          for (int c = 0; c < 3; ++c)
+            rgb.at(x, y, c) = exr.at(x, y, std::min(c, exr.channels() - 1));
       return rgb;
     } catch (const InputError& e) {
       n.fail(e.what());
