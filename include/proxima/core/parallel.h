@@ -18,7 +18,7 @@ struct Tile {
 // Calls fn once per tile of a width × height image, in parallel.
 void parallel_for_tiles(int width, int height, int tile_size, const std::function<void(const Tile&)>& fn);
 
-// Calls fn(begin, end) over [0, n) in chunks of at most `grain`, in parallel.
+// Calls fn(begin, end) over [0, n) in the fixed chunks [i·grain, (i+1)·grain), in parallel.
 void parallel_for(size_t n, size_t grain, const std::function<void(size_t, size_t)>& fn);
 
 // Limits the worker threads for its lifetime (tbb::global_control); threads ≤ 0 = all cores.

@@ -1,0 +1,188 @@
+#include "proxima/core/image_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#define STB_IMAGE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STBI_FAILURE_USERMSG
+#include <stb/stb_image.h>
+#include <stb/stb_image_write.h>
+#include <tinyexr.h>
+
+#include "proxima/core/atomic_file.h"
+#include "proxima/core/error.h"
+
+namespace proxima {
+
+namespace fs = std::filesystem;
+
+float srgb_to_linear(float s) {
+  return s <= 0.04045f ? s / 12.92f : std::pow((s + 0.055f) / 1.055f, 2.4f);
+}
+
+float linear_to_srgb(float l) {
+  return l <= 0.0031308f ? 12.92f * l : 1.055f * std::pow(l, 1.0f / 2.4f) - 0.055f;
+}
+
+namespace {
+
+uint8_t to_byte(float v) {
+  if (!(v > 0.0f)) return 0;  // also maps NaN to 0
+  return uint8_t(std::lround(std::min(v, 1.0f) * 255.0f));
+}
+
+void check_channels(const fs::path& path, int channels, int lo, int hi) {
+  if (channels < lo || channels > hi)
+    fail_input(path.string() + ": cannot store an image with " + std::to_string(channels) + " channels");
+}
+
+}  // namespace
+
+void write_png(const fs::path& path, const ImageU8& image) {
+  check_channels(path, image.channels(), 1, 4);
+  if (image.empty()) fail_input(path.string() + ": cannot write an empty image");
+  write_atomically(path, [&](const fs::path& tmp) {
+    int ok = stbi_write_png(tmp.c_str(), image.width(), image.height(), image.channels(),
+                            image.data().data(), image.width() * image.channels());
+    if (!ok) fail_input(path.string() + ": cannot write PNG");
+  });
+}
+
+void write_png_linear(const fs::path& path, const ImageF& linear) {
+  int c = linear.channels();
+  check_channels(path, c, 1, 4);
+  ImageU8 out(linear.width(), linear.height(), c);
+  auto src = linear.data();
+  auto dst = out.data();
+  bool has_alpha = c == 4;
+  for (size_t i = 0; i < src.size(); ++i) {
+    bool alpha = has_alpha && (i % 4 == 3);
+    dst[i] = to_byte(alpha ? src[i] : linear_to_srgb(src[i]));
+  }
+  write_png(path, out);
+}
+
+ImageF read_image_linear(const fs::path& path, int channels) {
+  check_channels(path, channels, 3, 4);
+  int w = 0, h = 0, n = 0;
+  stbi_uc* pixels = stbi_load(path.c_str(), &w, &h, &n, channels);
+  if (!pixels) fail_input(path.string() + ": cannot read image: " + stbi_failure_reason());
+  ImageF img(w, h, channels);
+  auto dst = img.data();
+  for (size_t i = 0; i < dst.size(); ++i) {
+    float v = float(pixels[i]) / 255.0f;
+    dst[i] = (channels == 4 && i % 4 == 3) ? v : srgb_to_linear(v);
+  }
+  stbi_image_free(pixels);
+  return img;
+}
+
+void write_exr(const fs::path& path, const ImageF& image) {
+  int c = image.channels();
+  check_channels(path, c, 1, 4);
+  if (image.empty()) fail_input(path.string() + ": cannot write an empty image");
+  // tinyexr wants planar channels, named in alphabetical order (A, B, G, R).
+  static const char* kNames1[] = {"Y"};
+  static const char* kNames3[] = {"B", "G", "R"};
+  static const char* kNames4[] = {"A", "B", "G", "R"};
+  static const char* kNames2[] = {"U", "V"};  // 2-channel buffers (e.g. barycentrics)
+  const char** names = c == 1 ? kNames1 : c == 2 ? kNames2 : c == 3 ? kNames3 : kNames4;
+  // Source channel of each stored (alphabetical) channel.
+  int source[4];
+  if (c == 1) source[0] = 0;
+  if (c == 2) { source[0] = 0; source[1] = 1; }
+  if (c == 3) { source[0] = 2; source[1] = 1; source[2] = 0; }
+  if (c == 4) { source[0] = 3; source[1] = 2; source[2] = 1; source[3] = 0; }
+
+  size_t n = image.pixel_count();
+  std::vector<std::vector<float>> planes(static_cast<size_t>(c), std::vector<float>(n));
+  auto src = image.data();
+  for (int k = 0; k < c; ++k)
+    for (size_t i = 0; i < n; ++i) planes[size_t(k)][i] = src[i * size_t(c) + size_t(source[k])];
+  std::vector<float*> plane_ptrs;
+  for (auto& p : planes) plane_ptrs.push_back(p.data());
+
+  EXRHeader header;
+  InitEXRHeader(&header);
+  EXRImage exr;
+  InitEXRImage(&exr);
+  exr.num_channels = c;
+  exr.images = reinterpret_cast<unsigned char**>(plane_ptrs.data());
+  exr.width = image.width();
+  exr.height = image.height();
+  std::vector<EXRChannelInfo> infos(static_cast<size_t>(c));
+  std::vector<int> types(size_t(c), TINYEXR_PIXELTYPE_FLOAT);
+  for (int k = 0; k < c; ++k) {
+    std::snprintf(infos[size_t(k)].name, sizeof(infos[size_t(k)].name), "%s", names[k]);
+  }
+  header.num_channels = c;
+  header.channels = infos.data();
+  header.pixel_types = types.data();
+  header.requested_pixel_types = types.data();
+  header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
+
+  write_atomically(path, [&](const fs::path& tmp) {
+    const char* err = nullptr;
+    int ret = SaveEXRImageToFile(&exr, &header, tmp.c_str(), &err);
+    if (ret != TINYEXR_SUCCESS) {
+      std::string msg = err ? err : "unknown error";
+      if (err) FreeEXRErrorMessage(err);
+      fail_input(path.string() + ": cannot write EXR: " + msg);
+    }
+  });
+}
+
+ImageF read_exr(const fs::path& path) {
+  EXRVersion version;
+  if (ParseEXRVersionFromFile(&version, path.c_str()) != TINYEXR_SUCCESS)
+    fail_input(path.string() + ": not an EXR file");
+  EXRHeader header;
+  InitEXRHeader(&header);
+  const char* err = nullptr;
+  if (ParseEXRHeaderFromFile(&header, &version, path.c_str(), &err) != TINYEXR_SUCCESS) {
+    std::string msg = err ? err : "bad header";
+    if (err) FreeEXRErrorMessage(err);
+    fail_input(path.string() + ": cannot read EXR: " + msg);
+  }
+  for (int k = 0; k < header.num_channels; ++k) header.requested_pixel_types[k] = TINYEXR_PIXELTYPE_FLOAT;
+  EXRImage exr;
+  InitEXRImage(&exr);
+  if (LoadEXRImageFromFile(&exr, &header, path.c_str(), &err) != TINYEXR_SUCCESS) {
+    std::string msg = err ? err : "bad data";
+    if (err) FreeEXRErrorMessage(err);
+    FreeEXRHeader(&header);
+    fail_input(path.string() + ": cannot read EXR: " + msg);
+  }
+  int c = exr.num_channels;
+  if (c < 1 || c > 4 || !exr.images) {
+    FreeEXRImage(&exr);
+    FreeEXRHeader(&header);
+    fail_input(path.string() + ": unsupported EXR layout (tiled or " + std::to_string(c) + " channels)");
+  }
+  // Stored alphabetically; put R G B A (or U V / Y) back in interleaved order.
+  auto rank = [](const std::string& name) {
+    static const char* order[] = {"R", "G", "B", "A", "U", "V", "Y"};
+    for (int i = 0; i < 7; ++i)
+      if (name == order[i]) return i;
+    return 7;
+  };
+  std::vector<int> perm(static_cast<size_t>(c));
+  for (int k = 0; k < c; ++k) perm[size_t(k)] = k;
+  std::sort(perm.begin(), perm.end(), [&](int a, int b) {
+    return rank(header.channels[a].name) < rank(header.channels[b].name);
+  });
+  ImageF img(exr.width, exr.height, c);
+  auto dst = img.data();
+  size_t n = img.pixel_count();
+  for (int k = 0; k < c; ++k) {
+    const float* plane = reinterpret_cast<const float*>(exr.images[perm[size_t(k)]]);
+    for (size_t i = 0; i < n; ++i) dst[i * size_t(c) + size_t(k)] = plane[i];
+  }
+  FreeEXRImage(&exr);
+  FreeEXRHeader(&header);
+  return img;
+}
+
+}  // namespace proxima

@@ -1,0 +1,57 @@
+#include "proxima/core/image_io.h"
+
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "proxima/core/error.h"
+#include "proxima/core/math.h"
+#include "test_util.h"
+
+namespace proxima {
+namespace {
+
+TEST(ImageIo, PngRoundTripThroughSrgb) {
+  TempDir dir;
+  ImageF img(5, 3, 3);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x)
+      for (int c = 0; c < 3; ++c) img.at(x, y, c) = float(x + y * 5 + c) / 20.0f;
+  write_png_linear(dir.path / "a.png", img);
+  ImageF back = read_image_linear(dir.path / "a.png");
+  ASSERT_EQ(back.width(), 5);
+  ASSERT_EQ(back.height(), 3);
+  for (size_t i = 0; i < img.data().size(); ++i) EXPECT_NEAR(back.data()[i], img.data()[i], 0.01f);
+  // Row 0 is the top row: the brightest pixel is bottom right.
+  EXPECT_GT(back.at(4, 2, 0), back.at(4, 0, 0));
+}
+
+TEST(ImageIo, ExrRoundTripIsExactIncludingInfinity) {
+  TempDir dir;
+  for (int channels : {1, 2, 3, 4}) {
+    ImageF img(7, 4, channels);
+    for (size_t i = 0; i < img.data().size(); ++i) img.data()[i] = float(i) * 0.37f - 3.0f;
+    img.at(2, 1, 0) = kInf;
+    auto path = dir.path / ("d" + std::to_string(channels) + ".exr");
+    write_exr(path, img);
+    ImageF back = read_exr(path);
+    ASSERT_EQ(back.channels(), channels);
+    EXPECT_TRUE(back == img);
+  }
+}
+
+TEST(ImageIo, MissingDirectoryFailsWithoutLeavingFiles) {
+  TempDir dir;
+  ImageF img(2, 2, 3, 0.5f);
+  EXPECT_THROW(write_png_linear(dir.path / "nope" / "a.png", img), InputError);
+  EXPECT_THROW(read_image_linear(dir.path / "missing.png"), InputError);
+  EXPECT_THROW(read_exr(dir.path / "missing.exr"), InputError);
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path));
+}
+
+TEST(ImageIo, SrgbTransferInverts) {
+  for (float v = 0.0f; v <= 1.0f; v += 0.01f) EXPECT_NEAR(srgb_to_linear(linear_to_srgb(v)), v, 1e-5f);
+}
+
+}  // namespace
+}  // namespace proxima
