@@ -1,0 +1,67 @@
+// The proxima command line: one binary, one file per subcommand. Each file registers its
+// subcommand on the root CLI11 app and returns the action to run when it was chosen.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "proxima/core/camera.h"
+#include "proxima/eval/results.h"
+#include "proxima/scene/scene.h"
+
+namespace proxima::cli {
+
+struct Command {
+  CLI::App* app;
+  std::function<int()> run;  // exit code; throws InputError for bad input
+};
+
+// Flags most commands share (DESIGN.md): --scene, --width, --height, --threads, --seed, --out.
+struct CommonOptions {
+  std::string scene;
+  int width = 512;
+  int height = 512;
+  int threads = 0;  // 0 = all cores
+  uint64_t seed = 1;
+  std::string out;
+};
+
+void add_scene_flag(CLI::App* app, CommonOptions& o, const std::string& default_scene);
+void add_size_flags(CLI::App* app, CommonOptions& o);
+void add_threads_flag(CLI::App* app, CommonOptions& o);
+void add_seed_flag(CLI::App* app, CommonOptions& o);
+void add_out_flag(CLI::App* app, CommonOptions& o, bool required);
+
+// Which camera of a scene a command renders from: --camera N|NAME, or --path P --frame F.
+struct CameraChoice {
+  std::string camera;  // index or name; empty = the scene's first camera
+  std::string path;    // camera path index or name; empty = none
+  int frame = 0;
+};
+void add_camera_flags(CLI::App* app, CameraChoice& choice);
+// Resolves the choice on a scene at the given resolution; throws InputError naming the flag.
+Camera pick_camera(const Scene& scene, const CameraChoice& choice, int width, int height);
+
+// Creates the output directory (InputError naming --out if impossible).
+std::filesystem::path prepare_out_dir(const std::string& out);
+
+// The argv this process was started with (for results.json).
+const std::vector<std::string>& command_line();
+void set_command_line(int argc, char** argv);
+
+// Writes results.json into `out_dir` and prints its tables as Markdown on stdout.
+void publish_results(const std::filesystem::path& out_dir, const Results& results);
+
+// Registration, one per subcommand file.
+Command register_scenes(CLI::App& root);
+Command register_info(CLI::App& root);
+Command register_render(CLI::App& root);
+Command register_bench(CLI::App& root);
+Command register_demo(CLI::App& root);
+
+}  // namespace proxima::cli

@@ -1,0 +1,152 @@
+// The command line end to end: exit codes, error messages naming the flag/file, no
+// partial outputs, determinism across --threads, results.json contents.
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "proxima/core/image_io.h"
+#include "test_util.h"
+
+namespace proxima {
+namespace {
+
+struct RunResult {
+  int exit_code;
+  std::string output;  // stdout + stderr
+};
+
+RunResult run_cli(const std::string& args) {
+  std::string cmd = std::string(PROXIMA_CLI_PATH) + " " + args + " 2>&1 </dev/null";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return {-1, "popen failed"};
+  std::string output;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) output.append(buf.data(), n);
+  int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+void write_file(const std::filesystem::path& p, const std::string& text) {
+  std::ofstream(p) << text;
+}
+
+TEST(Cli, HelpOnEverySubcommand) {
+  for (const char* sub : {"scenes", "info", "render", "bench", "bench trace", "demo"}) {
+    RunResult r = run_cli(std::string(sub) + " --help");
+    EXPECT_EQ(r.exit_code, 0) << sub;
+    EXPECT_NE(r.output.find("Usage"), std::string::npos) << sub << ": " << r.output;
+  }
+}
+
+TEST(Cli, ScenesListsTheBuiltins) {
+  RunResult r = run_cli("scenes");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* name : {"cornell", "room-reflector", "living-room", "bathroom"})
+    EXPECT_NE(r.output.find(name), std::string::npos) << name;
+}
+
+TEST(Cli, UnknownFlagExitsWithTwoNamingTheFlag) {
+  RunResult r = run_cli("render --out /tmp/x --bogus-flag 3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("--bogus-flag"), std::string::npos) << r.output;
+}
+
+TEST(Cli, UnknownSceneExitsWithTwoAndWritesNothing) {
+  TempDir dir;
+  auto out = dir.path / "out";
+  RunResult r = run_cli("render --scene no-such-scene --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("no-such-scene"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(Cli, BadResolutionExitsWithTwoNamingTheFlag) {
+  TempDir dir;
+  for (const char* size : {"--width 0", "--height -5", "--width 100000"}) {
+    RunResult r = run_cli(std::string("render --scene cornell ") + size + " --out " + (dir.path / "o").string());
+    EXPECT_EQ(r.exit_code, 2) << size << ": " << r.output;
+    EXPECT_NE(r.output.find("--width"), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << "one line: " << r.output;
+  }
+  RunResult r = run_cli("render --scene cornell --width abc --out " + (dir.path / "o").string());
+  EXPECT_EQ(r.exit_code, 2);
+}
+
+TEST(Cli, MissingAndMalformedFilesExitWithTwoNamingTheFile) {
+  TempDir dir;
+  auto bad_json = dir.path / "broken.json";
+  write_file(bad_json, "{ \"objects\": [ ");
+  auto bad_obj = dir.path / "broken.obj";
+  write_file(bad_obj, "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
+  for (const auto& file : {dir.path / "missing.obj", bad_json, bad_obj}) {
+    RunResult r = run_cli("info " + file.string());
+    EXPECT_EQ(r.exit_code, 2) << file << ": " << r.output;
+    EXPECT_NE(r.output.find(file.filename().string()), std::string::npos) << r.output;
+  }
+}
+
+TEST(Cli, InfoCountsDroppedDegenerateTriangles) {
+  TempDir dir;
+  auto obj = dir.path / "degenerate.obj";
+  write_file(obj,
+             "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\n"
+             "f 1 2 3\n"   // fine
+             "f 1 2 4\n"   // collinear: zero area
+             "f 1 1 3\n");  // repeated vertex
+  RunResult r = run_cli("info " + obj.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("triangles:           1\n"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("dropped degenerate:  2"), std::string::npos) << r.output;
+}
+
+TEST(Cli, RenderIsIdenticalForOneAndTwoThreads) {
+  TempDir dir;
+  std::string common = "render --scene cornell --width 48 --height 40 --spp 2 --glossy-rays 4 --seed 9 ";
+  RunResult a = run_cli(common + "--threads 1 --out " + (dir.path / "t1").string());
+  RunResult b = run_cli(common + "--threads 2 --out " + (dir.path / "t2").string());
+  ASSERT_EQ(a.exit_code, 0) << a.output;
+  ASSERT_EQ(b.exit_code, 0) << b.output;
+  for (const char* f : {"color.exr", "depth.exr", "normal.exr", "id.exr"}) {
+    ImageF ia = read_exr(dir.path / "t1" / f);
+    ImageF ib = read_exr(dir.path / "t2" / f);
+    EXPECT_TRUE(ia == ib) << f;
+  }
+  ImageF depth = read_exr(dir.path / "t1" / "depth.exr");
+  EXPECT_EQ(depth.width(), 48);
+  EXPECT_EQ(depth.height(), 40);
+  EXPECT_TRUE(std::filesystem::exists(dir.path / "t1" / "color.png"));
+}
+
+TEST(Cli, BenchTraceWritesTheNamedMetrics) {
+  TempDir dir;
+  RunResult r = run_cli("bench trace --scene cornell --width 64 --height 64 --reps 1 --out " + dir.path.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(dir.path / "results.json");
+  nlohmann::json j = nlohmann::json::parse(in);
+  for (const char* m : {"bvh_build_ms", "primary_mrays_s", "reflection_mrays_s", "primary_mrays_s_1t"}) {
+    ASSERT_TRUE(j["metrics"].contains(m)) << m;
+    EXPECT_GT(j["metrics"][m].get<double>(), 0.0) << m;
+  }
+  EXPECT_EQ(j["command"][1], "bench");
+  EXPECT_TRUE(j.contains("commit"));
+  EXPECT_TRUE(j.contains("build"));
+}
+
+TEST(Cli, CameraAndPathFlagsAreValidated) {
+  TempDir dir;
+  RunResult r = run_cli("render --scene cornell --camera 99 --width 16 --height 16 --out " + dir.path.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("--camera"), std::string::npos) << r.output;
+  r = run_cli("render --scene cornell --path nope --width 16 --height 16 --out " + dir.path.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("--path"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace proxima
