@@ -493,7 +493,7 @@ Scene make_bathroom() {
 
   // Toilet by the right wall (+X): glazed bowl and tank.
   put(s, make_sphere(1.0f, 64, 32), "toilet_bowl", porcelain, place({1.5f, 0.25f, -0.95f}, 0, {0.2f, 0.25f, 0.26f}));
-  put_box(s, "toilet_tank", porcelain, {0.42f, 0.4f, 0.18f}, {1.5f, 0.45f, -1.38f}, 0, 8);
+  put_box(s, "toilet_tank", porcelain, {0.42f, 0.85f, 0.18f}, {1.5f, 0.0f, -1.38f}, 0, 8);
   put(s, make_cylinder(0.02f, 0.03f, 32, 2, true), "flush_button", chrome, place({1.5f, 0.85f, -1.38f}));
 
   // Towel rail on the right wall with towels, a heated ladder rail beside the door.
@@ -542,7 +542,17 @@ Scene make_bathroom() {
       key_at(10.0f, {0.6f, 1.5f, -0.4f}, {0.4f, 1.4f, -1.5f}, 55.0f),
   };
   s.camera_paths.push_back(walk);
-  s.camera_paths.push_back(orbit_path("orbit", {0.0f, 0.0f, 0.0f}, 0.8f, 1.5f, 0.8f, 10.0f, 65.0f));
+  // Standing by the door and turning from the tub over the mirror to the toilet and rail.
+  CameraPath pan;
+  pan.name = "pan";
+  pan.frames = 100;
+  pan.keys = {
+      key_at(0.0f, {0.2f, 1.6f, 1.1f}, {-1.6f, 0.6f, -0.6f}, 60.0f),
+      key_at(4.0f, {0.3f, 1.6f, 1.0f}, {0.4f, 1.4f, -1.5f}, 60.0f),
+      key_at(7.0f, {0.4f, 1.6f, 0.9f}, {1.5f, 0.4f, -0.9f}, 60.0f),
+      key_at(10.0f, {0.3f, 1.6f, 0.6f}, {1.6f, 1.0f, 1.4f}, 60.0f),
+  };
+  s.camera_paths.push_back(pan);
   return s;
 }
 
