@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -75,8 +76,8 @@ uint32_t put_box(Scene& scene, const std::string& name, uint32_t mat, vec3 size,
 }
 
 // Six inward-facing walls of the box [lo, hi], each split into quads about `cell` meters
-// wide, named "<prefix>floor", "<prefix>ceiling", "<prefix>wall_{back,front,left,right}"
-// (back = −Z, left = −X). Materials in that order: floor, ceiling, back, front, left, right.
+// wide, named "floor", "ceiling", "wall_back", "wall_front", "wall_left", "wall_right"
+// (back = −Z, left = −X), with mats[] in that order. Floor uvs run 0..floor_uv_scale.
 void put_room(Scene& scene, vec3 lo, vec3 hi, float cell, const uint32_t mats[6],
               float floor_uv_scale = 1.0f) {
   vec3 d = hi - lo;
@@ -113,8 +114,8 @@ uint32_t add_checker(Scene& scene, const std::string& name, vec3 a, vec3 b, int 
   return uint32_t(scene.textures.size() - 1);
 }
 
-// A closed camera loop around `center` at `radius` and `height`, one key per second,
-// last key = first key.
+// A camera loop around `center` at `radius` and `height` (relative to center), looking at
+// center + (0, target_height, 0); one key per second, the last key back at the start.
 CameraPath orbit_path(const std::string& name, vec3 center, float radius, float height,
                       float target_height, float seconds, float vfov_deg) {
   CameraPath path;
