@@ -8,6 +8,7 @@
 
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
+#include "proxima/scene/builtin_scenes.h"
 #include "proxima/scene/shading.h"
 #include "trace/test_geometry.h"
 
@@ -272,6 +273,14 @@ void expect_mirror_reflects_wall(const Scene& s, float wall_x, int dominant) {
 
 TEST(ReferenceRender, HandBuiltCornellMirrorSphereReflectsTheSideWalls) {
   Scene s = hand_cornell();
+  expect_mirror_reflects_wall(s, 1.0f, 1);   // green
+  expect_mirror_reflects_wall(s, -1.0f, 0);  // red
+}
+
+// The built-in scene: same box and sphere, plus a glossy block, an area light and its
+// emissive quad (the search skips pixels whose reflection the block hides).
+TEST(ReferenceRender, CornellMirrorSphereReflectsTheSideWalls) {
+  Scene s = make_builtin_scene("cornell");
   expect_mirror_reflects_wall(s, 1.0f, 1);   // green
   expect_mirror_reflects_wall(s, -1.0f, 0);  // red
 }
