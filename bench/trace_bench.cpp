@@ -1,8 +1,8 @@
 // trace/ micro-benchmarks: BVH build and refit, primary, mirror-reflection and shadow rays
 // per second (items_per_second = rays/s of wall time), and a reference render (pixels/s).
-// Argument = threads (ThreadLimit).
-// Scene: 16×16 UV spheres (≈4k triangles each) on a floor, ≈1M triangles, generated here
-// so the numbers do not move when the built-in scenes change.
+// Arguments: scene (0 = sphere field, 1 = built-in living-room), threads (ThreadLimit).
+// The sphere field (16×16 UV spheres of ≈4k triangles on a floor, ≈1M triangles) is
+// generated here so its numbers do not move when the built-in scenes change.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -10,6 +10,7 @@
 
 #include "proxima/core/camera.h"
 #include "proxima/core/parallel.h"
+#include "proxima/scene/builtin_scenes.h"
 #include "proxima/scene/shading.h"
 #include "proxima/trace/ray_scene.h"
 #include "proxima/trace/reference_renderer.h"
@@ -59,8 +60,19 @@ const Scene& sphere_field() {
   return scene;
 }
 
-Camera bench_camera(int size) {
-  return look_at(vec3(0, 6, 12), vec3(0, 0, 0), vec3(0, 1, 0), 60.0f, size, size);
+const Scene& living_room() {
+  static const Scene scene = make_builtin_scene("living-room");
+  return scene;
+}
+
+const Scene& bench_scene(int64_t index) { return index == 0 ? sphere_field() : living_room(); }
+
+Camera bench_camera(int64_t scene, int size) {
+  if (scene == 0) return look_at(vec3(0, 6, 12), vec3(0, 0, 0), vec3(0, 1, 0), 60.0f, size, size);
+  Camera cam = living_room().cameras.at(0).camera;
+  cam.width = size;
+  cam.height = size;
+  return cam;
 }
 
 std::vector<Ray> primary_rays(const Camera& cam) {
@@ -68,6 +80,13 @@ std::vector<Ray> primary_rays(const Camera& cam) {
   for (int y = 0; y < cam.height; ++y)
     for (int x = 0; x < cam.width; ++x) rays.push_back(ray_through(cam, vec2(float(x) + 0.5f, float(y) + 0.5f)));
   return rays;
+}
+
+// A point on the scene's first light.
+vec3 light_position(const Scene& scene) {
+  if (!scene.point_lights.empty()) return scene.point_lights[0].position;
+  const AreaLight& a = scene.area_lights.at(0);
+  return a.point(0.5f, 0.5f);
 }
 
 // Mirror rays (or, with `to_light`, shadow segments) from the primary hits.
@@ -81,7 +100,7 @@ std::vector<Ray> secondary_rays(const Scene& scene, const RayScene& rs, const st
     if (glm::dot(n, primary[i].dir) > 0.0f) n = -n;
     vec3 p = primary[i].origin + hits[i].t * primary[i].dir + 1e-4f * n;
     if (to_light)
-      rays.push_back(Ray{p, scene.point_lights[0].position - p, 0.0f, 1.0f});
+      rays.push_back(Ray{p, light_position(scene) - p, 0.0f, 1.0f});
     else
       rays.push_back(Ray{p, reflect(primary[i].dir, shading_normal(scene, hits[i].triangle, hits[i].u, hits[i].v)), 0.0f, kInf});
   }
@@ -89,32 +108,34 @@ std::vector<Ray> secondary_rays(const Scene& scene, const RayScene& rs, const st
 }
 
 void BM_BvhBuild(benchmark::State& state) {
-  ThreadLimit limit(int(state.range(0)));
+  ThreadLimit limit(int(state.range(1)));
+  const Scene& scene = bench_scene(state.range(0));
   double ms = 0.0;
   for (auto _ : state) {
-    RayScene rs(sphere_field());
+    RayScene rs(scene);
     ms = rs.build_ms();
   }
-  state.counters["triangles"] = double(sphere_field().triangles.size());
+  state.counters["triangles"] = double(scene.triangles.size());
   state.counters["build_ms"] = ms;
 }
-BENCHMARK(BM_BvhBuild)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_BvhBuild)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_Refit(benchmark::State& state) {
-  ThreadLimit limit(int(state.range(0)));
-  RayScene rs(sphere_field());
-  Scene moved = sphere_field();
+  ThreadLimit limit(int(state.range(1)));
+  const Scene& scene = bench_scene(state.range(0));
+  RayScene rs(scene);
+  Scene moved = scene;
   rs.update(moved);  // the first update builds the refittable BVH; time the refits
   float dy = 0.0f;
   for (auto _ : state) {
     dy += 0.01f;
     state.PauseTiming();
-    for (size_t i = 0; i < moved.positions.size(); ++i) moved.positions[i].y = sphere_field().positions[i].y + dy;
+    for (size_t i = 0; i < moved.positions.size(); ++i) moved.positions[i].y = scene.positions[i].y + dy;
     state.ResumeTiming();
     rs.update(moved);
   }
 }
-BENCHMARK(BM_Refit)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Refit)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void run_rays(benchmark::State& state, const std::vector<Ray>& rays, const RayScene& rs, bool occlusion) {
   std::vector<Hit> hits(rays.size());
@@ -130,35 +151,38 @@ void run_rays(benchmark::State& state, const std::vector<Ray>& rays, const RaySc
 }
 
 void BM_PrimaryRays(benchmark::State& state) {
-  ThreadLimit limit(int(state.range(0)));
-  RayScene rs(sphere_field());
-  run_rays(state, primary_rays(bench_camera(512)), rs, false);
+  ThreadLimit limit(int(state.range(1)));
+  RayScene rs(bench_scene(state.range(0)));
+  run_rays(state, primary_rays(bench_camera(state.range(0), 512)), rs, false);
 }
-BENCHMARK(BM_PrimaryRays)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_PrimaryRays)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_MirrorRays(benchmark::State& state) {
-  ThreadLimit limit(int(state.range(0)));
-  RayScene rs(sphere_field());
-  run_rays(state, secondary_rays(sphere_field(), rs, primary_rays(bench_camera(512)), false), rs, false);
+  ThreadLimit limit(int(state.range(1)));
+  const Scene& scene = bench_scene(state.range(0));
+  RayScene rs(scene);
+  run_rays(state, secondary_rays(scene, rs, primary_rays(bench_camera(state.range(0), 512)), false), rs, false);
 }
-BENCHMARK(BM_MirrorRays)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_MirrorRays)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_ShadowRays(benchmark::State& state) {
-  ThreadLimit limit(int(state.range(0)));
-  RayScene rs(sphere_field());
-  run_rays(state, secondary_rays(sphere_field(), rs, primary_rays(bench_camera(512)), true), rs, true);
+  ThreadLimit limit(int(state.range(1)));
+  const Scene& scene = bench_scene(state.range(0));
+  RayScene rs(scene);
+  run_rays(state, secondary_rays(scene, rs, primary_rays(bench_camera(state.range(0), 512)), true), rs, true);
 }
-BENCHMARK(BM_ShadowRays)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ShadowRays)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Whole reference render, 256², default options (1 spp, 16 glossy rays, 2 bounces).
 void BM_ReferenceRender(benchmark::State& state) {
-  ThreadLimit limit(int(state.range(0)));
-  RayScene rs(sphere_field());
-  Camera cam = bench_camera(256);
-  for (auto _ : state) benchmark::DoNotOptimize(render_reference(sphere_field(), rs, cam, ReferenceOptions{}));
+  ThreadLimit limit(int(state.range(1)));
+  const Scene& scene = bench_scene(state.range(0));
+  RayScene rs(scene);
+  Camera cam = bench_camera(state.range(0), 256);
+  for (auto _ : state) benchmark::DoNotOptimize(render_reference(scene, rs, cam, ReferenceOptions{}));
   state.SetItemsProcessed(int64_t(state.iterations()) * cam.width * cam.height);
 }
-BENCHMARK(BM_ReferenceRender)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ReferenceRender)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace proxima
