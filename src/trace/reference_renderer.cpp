@@ -60,13 +60,11 @@ class Tracer {
  public:
   Tracer(const Scene& scene, const RayScene& rays, const ReferenceOptions& options)
       : scene_(scene), rays_(rays), options_(options),
-        epsilon_(kRelativeEpsilon * std::max(scene_bounds(scene).diagonal(), 1e-3f)),
-        lobe_count_(std::max(1, options.glossy_rays)) {}
-
-  int lobe_count() const { return lobe_count_; }
+        epsilon_(kRelativeEpsilon * std::max(scene_bounds(scene).diagonal(), 1e-3f)) {}
 
   // Radiance arriving along `ray` (towards its origin). `bounce` = reflections taken so far.
-  // `lobe` is scratch for lobe_count() samples; only bounce 0 uses it, so recursion is safe.
+  // `lobe` is scratch for options.glossy_rays samples; only bounce 0 fills it, so the
+  // recursion can pass it on.
   vec3 radiance(const Ray& ray, int bounce, Pcg32& rng, std::span<vec2> lobe) const {
     Hit hit = rays_.intersect(ray);
     if (!hit.valid()) return environment_radiance(scene_.environment, ray.dir);
@@ -122,7 +120,7 @@ class Tracer {
       vec3 e = point_light_irradiance(light, sp.p, sp.n);
       if (e != vec3(0.0f) && visible(origin, light.position)) sum += e;
     }
-    int n = std::max(1, options_.area_light_samples);
+    int n = options_.area_light_samples;
     for (const AreaLight& light : scene_.area_lights) {
       vec3 light_sum(0.0f);
       for (int j = 0; j < n; ++j)
@@ -143,7 +141,6 @@ class Tracer {
   const RayScene& rays_;
   const ReferenceOptions& options_;
   float epsilon_;
-  int lobe_count_;
 };
 
 void validate_options(const ReferenceOptions& o) {
@@ -197,7 +194,7 @@ ImageF render_reference(const Scene& scene, const RayScene& rays, const Camera& 
   vec3 forward = camera_forward(camera);
   Tracer tracer(scene, rays, options);
   parallel_for_tiles(w, h, kTileSize, [&](const Tile& tile) {
-    std::vector<vec2> lobe(size_t(tracer.lobe_count()));
+    std::vector<vec2> lobe(size_t(options.glossy_rays));
     for (int y = tile.y0; y < tile.y1; ++y)
       for (int x = tile.x0; x < tile.x1; ++x) {
         uint64_t pixel_index = uint64_t(y) * uint64_t(w) + uint64_t(x);
