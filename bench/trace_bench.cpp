@@ -78,7 +78,8 @@ Camera bench_camera(int64_t scene, int size) {
 std::vector<Ray> primary_rays(const Camera& cam) {
   std::vector<Ray> rays;
   for (int y = 0; y < cam.height; ++y)
-    for (int x = 0; x < cam.width; ++x) rays.push_back(ray_through(cam, vec2(float(x) + 0.5f, float(y) + 0.5f)));
+    for (int x = 0; x < cam.width; ++x)
+      rays.push_back(ray_through(cam, vec2(float(x) + 0.5f, float(y) + 0.5f)));
   return rays;
 }
 
@@ -90,7 +91,8 @@ vec3 light_position(const Scene& scene) {
 }
 
 // Mirror rays (or, with `to_light`, shadow segments) from the primary hits.
-std::vector<Ray> secondary_rays(const Scene& scene, const RayScene& rs, const std::vector<Ray>& primary, bool to_light) {
+std::vector<Ray> secondary_rays(const Scene& scene, const RayScene& rs, const std::vector<Ray>& primary,
+                                bool to_light) {
   std::vector<Hit> hits(primary.size());
   rs.intersect(primary, hits);
   std::vector<Ray> rays;
@@ -102,7 +104,9 @@ std::vector<Ray> secondary_rays(const Scene& scene, const RayScene& rs, const st
     if (to_light)
       rays.push_back(Ray{p, light_position(scene) - p, 0.0f, 1.0f});
     else
-      rays.push_back(Ray{p, reflect(primary[i].dir, shading_normal(scene, hits[i].triangle, hits[i].u, hits[i].v)), 0.0f, kInf});
+      rays.push_back(
+          Ray{p, reflect(primary[i].dir, shading_normal(scene, hits[i].triangle, hits[i].u, hits[i].v)), 0.0f,
+              kInf});
   }
   return rays;
 }
@@ -161,7 +165,8 @@ void BM_MirrorRays(benchmark::State& state) {
   ThreadLimit limit(int(state.range(1)));
   const Scene& scene = bench_scene(state.range(0));
   RayScene rs(scene);
-  run_rays(state, secondary_rays(scene, rs, primary_rays(bench_camera(state.range(0), 512)), false), rs, false);
+  run_rays(state, secondary_rays(scene, rs, primary_rays(bench_camera(state.range(0), 512)), false), rs,
+           false);
 }
 BENCHMARK(BM_MirrorRays)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -25,8 +25,7 @@ vec3 sample_cone(vec3 axis, float half_angle, float u1, float u2) {
   float b = axis.x * axis.y * a;
   vec3 t1{1.0f + sign * axis.x * axis.x * a, sign * b, -sign * axis.x};
   vec3 t2{b, sign + axis.y * axis.y * a, -axis.y};
-  return glm::normalize(sin_theta * std::cos(phi) * t1 + sin_theta * std::sin(phi) * t2 +
-                        cos_theta * axis);
+  return glm::normalize(sin_theta * std::cos(phi) * t1 + sin_theta * std::sin(phi) * t2 + cos_theta * axis);
 }
 
 vec3 glossy_lobe_direction(vec3 mirror, vec3 n_facing, float half_angle, vec2 u) {
@@ -38,8 +37,7 @@ vec3 glossy_lobe_direction(vec3 mirror, vec3 n_facing, float half_angle, vec2 u)
 vec2 stratum_sample(int i, int j, int n, float xi1, float xi2) {
   float inv = 1.0f / float(n);
   // min keeps the point inside [0, 1) when (i + ξ)/n rounds up to 1.
-  return {std::min((float(i) + xi1) * inv, 0x1.fffffep-1f),
-          std::min((float(j) + xi2) * inv, 0x1.fffffep-1f)};
+  return {std::min((float(i) + xi1) * inv, 0x1.fffffep-1f), std::min((float(j) + xi2) * inv, 0x1.fffffep-1f)};
 }
 
 void stratified_samples_2d(std::span<vec2> out, Pcg32& rng) {
@@ -56,8 +54,7 @@ void stratified_samples_2d(std::span<vec2> out, Pcg32& rng) {
   }
   // N-rooks: x strata in order, y strata shuffled (Fisher–Yates), each jittered.
   for (int k = 0; k < count; ++k) out[size_t(k)].y = float(k);
-  for (int k = count - 1; k > 0; --k)
-    std::swap(out[size_t(k)].y, out[rng.next_below(uint32_t(k + 1))].y);
+  for (int k = count - 1; k > 0; --k) std::swap(out[size_t(k)].y, out[rng.next_below(uint32_t(k + 1))].y);
   for (int k = 0; k < count; ++k) {
     float xi1 = rng.next_float();
     float xi2 = rng.next_float();
@@ -86,8 +83,7 @@ vec3 area_light_sample_irradiance(const AreaLight& light, vec3 light_point, vec3
 
 vec3 combine_shading(const ShadingTerms& t) {
   return t.emission + t.ambient * t.albedo +
-         (1.0f - t.specular) * t.albedo * (1.0f / kPi) * t.direct_irradiance +
-         t.specular * t.reflected;
+         (1.0f - t.specular) * t.albedo * (1.0f / kPi) * t.direct_irradiance + t.specular * t.reflected;
 }
 
 }  // namespace proxima

@@ -88,13 +88,14 @@ struct RayScene::Impl {
     if (triangle_count > 0) {
       geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
       rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
-      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                              3 * sizeof(float), vertex_count);
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                              vertex_count);
       auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
           geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), triangle_count));
       check(device, "allocating buffers");
       write_vertices(s.positions);
-      for (size_t i = 0; i < triangle_count; ++i) std::memcpy(idx + 3 * i, &s.triangles[i], 3 * sizeof(uint32_t));
+      for (size_t i = 0; i < triangle_count; ++i)
+        std::memcpy(idx + 3 * i, &s.triangles[i], 3 * sizeof(uint32_t));
       rtcCommitGeometry(geometry);
       rtcAttachGeometryByID(scene, geometry, 0);
       rtcReleaseGeometry(geometry);  // the scene keeps it alive

@@ -59,7 +59,9 @@ Ray primary_ray(const Camera& camera, vec3 forward, vec2 pixel) {
 class Tracer {
  public:
   Tracer(const Scene& scene, const RayScene& rays, const ReferenceOptions& options)
-      : scene_(scene), rays_(rays), options_(options),
+      : scene_(scene),
+        rays_(rays),
+        options_(options),
         epsilon_(kRelativeEpsilon * std::max(scene_bounds(scene).diagonal(), 1e-3f)) {}
 
   // Radiance arriving along `ray` (towards its origin). `bounce` = reflections taken so far.
@@ -148,8 +150,7 @@ void validate_options(const ReferenceOptions& o) {
     if (!ok) fail_input("reference renderer: " + what);
   };
   require(o.supersample >= 1 && o.supersample <= 64, "supersample must be in [1, 64]");
-  require(o.area_light_samples >= 1 && o.area_light_samples <= 256,
-          "area light samples must be in [1, 256]");
+  require(o.area_light_samples >= 1 && o.area_light_samples <= 256, "area light samples must be in [1, 256]");
   require(o.glossy_rays >= 1 && o.glossy_rays <= 4096, "glossy rays must be in [1, 4096]");
   require(o.max_bounces >= 0 && o.max_bounces <= 64, "max bounces must be in [0, 64]");
 }

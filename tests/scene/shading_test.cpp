@@ -71,7 +71,9 @@ void expect_stratified(int count) {
       ++ys[size_t(p.y * float(count))];
     }
   }
-  auto once = [](const std::vector<int>& v) { return std::all_of(v.begin(), v.end(), [](int c) { return c == 1; }); };
+  auto once = [](const std::vector<int>& v) {
+    return std::all_of(v.begin(), v.end(), [](int c) { return c == 1; });
+  };
   if (grid) {
     EXPECT_TRUE(once(cells)) << count;
   } else {
@@ -103,7 +105,8 @@ TEST(Shading, PointLightInverseSquareAndCosine) {
 double corner_irradiance(double a, double b, double h, double radiance) {
   double x = a / h, y = b / h;
   double f = (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) +
-              y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y))) / (2.0 * M_PI);
+              y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y))) /
+             (2.0 * M_PI);
   return M_PI * radiance * f;
 }
 
@@ -119,9 +122,11 @@ TEST(Shading, AreaLightSamplesConvergeToClosedForm) {
       vec2 ab = stratum_sample(i, j, n, rng.next_float(), rng.next_float());
       sum += area_light_sample_irradiance(light, light.point(ab.x, ab.y), vec3(0), vec3(0, 1, 0)).x;
     }
-  EXPECT_NEAR(sum / (n * n), corner_irradiance(2.0, 1.0, 1.5, 3.0), 1e-3 * corner_irradiance(2.0, 1.0, 1.5, 3.0));
+  EXPECT_NEAR(sum / (n * n), corner_irradiance(2.0, 1.0, 1.5, 3.0),
+              1e-3 * corner_irradiance(2.0, 1.0, 1.5, 3.0));
   // One-sided: a point above the light receives nothing.
-  EXPECT_EQ(area_light_sample_irradiance(light, light.point(0.5f, 0.5f), vec3(1, 3, 0.5f), vec3(0, -1, 0)), vec3(0));
+  EXPECT_EQ(area_light_sample_irradiance(light, light.point(0.5f, 0.5f), vec3(1, 3, 0.5f), vec3(0, -1, 0)),
+            vec3(0));
 }
 
 TEST(Shading, CombineFollowsTheDocumentedFormula) {

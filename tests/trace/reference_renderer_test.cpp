@@ -19,7 +19,9 @@ using test::add_diffuse;
 using test::quad_mesh;
 using test::sphere_mesh;
 
-vec3 pixel_rgb(const ImageF& img, int x, int y) { return vec3(img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2)); }
+vec3 pixel_rgb(const ImageF& img, int x, int y) {
+  return vec3(img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2));
+}
 
 // Ray/sphere entry distance along unit d, or nullopt.
 std::optional<float> hit_sphere(vec3 o, vec3 d, vec3 c, float r) {
@@ -34,7 +36,8 @@ std::optional<float> hit_sphere(vec3 o, vec3 d, vec3 c, float r) {
 TEST(ReferenceItemBuffer, AgreesWithAnalyticProjectionOfAQuad) {
   // Quad in the plane z = 0: x ∈ [−1, 1], y ∈ [−0.5, 0.5], seen obliquely.
   Scene s;
-  add_object(s, quad_mesh(vec3(-1, -0.5f, 0), vec3(2, 0, 0), vec3(0, 1, 0)), "quad", add_diffuse(s, vec3(0.5f)));
+  add_object(s, quad_mesh(vec3(-1, -0.5f, 0), vec3(2, 0, 0), vec3(0, 1, 0)), "quad",
+             add_diffuse(s, vec3(0.5f)));
   RayScene rays(s);
   const vec3 eye(0.4f, 0.3f, 2.5f), target(0.1f, 0.0f, 0.0f);
   Camera cam = look_at(eye, target, vec3(0, 1, 0), 50.0f, 64, 48);
@@ -49,7 +52,8 @@ TEST(ReferenceItemBuffer, AgreesWithAnalyticProjectionOfAQuad) {
   int hits = 0;
   for (int y = 0; y < 48; ++y)
     for (int x = 0; x < 64; ++x) {
-      vec3 d = glm::normalize(f + (float(x) + 0.5f - 32.0f) / focal * r - (float(y) + 0.5f - 24.0f) / focal * u);
+      vec3 d =
+          glm::normalize(f + (float(x) + 0.5f - 32.0f) / focal * r - (float(y) + 0.5f - 24.0f) / focal * u);
       float t = -eye.z / d.z;
       vec3 p = eye + t * d;
       float margin = std::min(1.0f - std::abs(p.x), 0.5f - std::abs(p.y));
@@ -65,7 +69,8 @@ TEST(ReferenceItemBuffer, AgreesWithAnalyticProjectionOfAQuad) {
         ASSERT_TRUE(proj);
         EXPECT_NEAR(proj->pixel.x, float(x) + 0.5f, 1e-3f);
         EXPECT_NEAR(proj->pixel.y, float(y) + 0.5f, 1e-3f);
-        vec3 q = triangle_point(s, ib.triangle.at(x, y), ib.barycentric.at(x, y, 0), ib.barycentric.at(x, y, 1));
+        vec3 q =
+            triangle_point(s, ib.triangle.at(x, y), ib.barycentric.at(x, y, 0), ib.barycentric.at(x, y, 1));
         EXPECT_NEAR(glm::distance(q, p), 0.0f, 1e-5f);
       } else {
         EXPECT_EQ(ib.triangle.at(x, y), kNoTriangle);
@@ -94,7 +99,8 @@ TEST(ReferenceItemBuffer, NormalFacesTheCamera) {
 // Large diffuse floor y = 0, point light above, optional occluder square at y = 1.
 Scene lit_floor(vec3 albedo, bool occluder) {
   Scene s;
-  add_object(s, quad_mesh(vec3(-10, 0, 10), vec3(20, 0, 0), vec3(0, 0, -20)), "floor", add_diffuse(s, albedo));
+  add_object(s, quad_mesh(vec3(-10, 0, 10), vec3(20, 0, 0), vec3(0, 0, -20)), "floor",
+             add_diffuse(s, albedo));
   if (occluder)
     add_object(s, quad_mesh(vec3(-0.2f, 1, 0.2f), vec3(0.4f, 0, 0), vec3(0, 0, -0.4f)), "occluder", 0);
   s.point_lights.push_back(PointLight{vec3(0.3f, 2.0f, -0.2f), vec3(10, 20, 5)});
@@ -172,7 +178,8 @@ TEST(ReferenceRender, EmissionIsVisible) {
 
 TEST(ReferenceRender, BitIdenticalForOneAndTwoThreads) {
   Scene s = lit_floor(vec3(0.6f), true);
-  add_object(s, sphere_mesh(vec3(0.5f, 0.5f, 0), 0.5f, 32, 16), "sphere", add_diffuse(s, vec3(0.3f), 0.6f, 0.4f));
+  add_object(s, sphere_mesh(vec3(0.5f, 0.5f, 0), 0.5f, 32, 16), "sphere",
+             add_diffuse(s, vec3(0.3f), 0.6f, 0.4f));
   s.area_lights.push_back(AreaLight{vec3(-1, 2.5f, -1), vec3(0, 0, 1), vec3(1, 0, 0), vec3(4)});
   s.environment.color = vec3(0.1f, 0.2f, 0.3f);
   RayScene rays(s);
@@ -245,7 +252,8 @@ void expect_mirror_reflects_wall(const Scene& s, float wall_x, int dominant) {
       if (margin <= best_margin) continue;
       // Nothing else in the scene may stand between the sphere and the wall.
       Hit hit = rays.intersect(Ray{p + 1e-3f * n, r, 0.0f, kInf});
-      if (!hit.valid() || std::abs(triangle_point(s, hit.triangle, hit.u, hit.v).x - wall_x) > 1e-3f) continue;
+      if (!hit.valid() || std::abs(triangle_point(s, hit.triangle, hit.u, hit.v).x - wall_x) > 1e-3f)
+        continue;
       best_margin = margin;
       bx = x, by = y, best_p = p, best_r = r;
     }
@@ -268,7 +276,8 @@ void expect_mirror_reflects_wall(const Scene& s, float wall_x, int dominant) {
   const Material& m = s.materials[s.triangle_material[hit.triangle]];
   ASSERT_EQ(m.specular, 1.0f);
   vec3 expected = m.emission + s.ambient * m.diffuse + seen;
-  for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], expected[c], 0.05f * expected[c] + 1e-3f) << bx << "," << by;
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(got[c], expected[c], 0.05f * expected[c] + 1e-3f) << bx << "," << by;
 }
 
 TEST(ReferenceRender, HandBuiltCornellMirrorSphereReflectsTheSideWalls) {

@@ -63,11 +63,11 @@ vec3 area_light_sample_irradiance(const AreaLight& light, vec3 light_point, vec3
 // What a shading point needs besides ray casting.
 struct ShadingTerms {
   vec3 emission{0.0f};
-  vec3 ambient{0.0f};          // Scene::ambient
-  vec3 albedo{0.0f};           // surface_diffuse() at the point
-  float specular = 0.0f;       // s in [0, 1]
+  vec3 ambient{0.0f};            // Scene::ambient
+  vec3 albedo{0.0f};             // surface_diffuse() at the point
+  float specular = 0.0f;         // s in [0, 1]
   vec3 direct_irradiance{0.0f};  // Σ over lights of the (shadowed) irradiance E
-  vec3 reflected{0.0f};        // mean radiance over the lobe (or mirror) rays
+  vec3 reflected{0.0f};          // mean radiance over the lobe (or mirror) rays
 };
 
 // L = emission + ambient·albedo + (1 − s)·albedo/π·direct_irradiance + s·reflected.
