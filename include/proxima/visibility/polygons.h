@@ -12,6 +12,8 @@
 
 namespace proxima::visibility {
 
+using glm::dvec2;
+
 inline constexpr uint32_t kNone = 0xFFFFFFFFu;  // no polygon / face / cell / edge
 
 // A plane dot(normal, x) + offset = 0; normal unit. Positive side = the side normal points to.
