@@ -24,8 +24,10 @@ Mesh make_box(vec3 size, int subdivisions = 1);
 Mesh make_plane(float size_x, float size_z, int n = 1, int m = 1);
 
 // The Utah teapot from Newell's 32 bicubic Bézier patches, each tessellated into
-// `tessellation`² quads (2 triangles each; degenerate ones at the poles dropped), resting
-// on y = 0 and scaled to height 1.
+// `tessellation`² quads (2 triangles each; the 8 patches whose first row is a pole — lid
+// knob and bottom — give one triangle per pole quad): 64·n² − 8·n triangles. Resting on
+// y = 0 and scaled to height 1, axis along +Y through x = z = 0, spout toward +X. Not
+// closed (the lid sits in the opening with a gap; handle and spout pierce the body).
 Mesh make_teapot(int tessellation);
 
 }  // namespace proxima
