@@ -18,9 +18,12 @@ void write_atomically(const fs::path& path, const std::function<void(const fs::p
   if (!dir.empty() && !fs::is_directory(dir, ec))
     fail_input(path.string() + ": directory " + dir.string() + " does not exist");
   // The temporary keeps the target's extension: some writers choose the format by it.
+  std::string name = ".";
+  name += path.stem().string();
+  name += ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
+  name += path.extension().string();
   fs::path tmp = path;
-  tmp.replace_filename("." + path.stem().string() + ".tmp" + std::to_string(::getpid()) + "_" +
-                       std::to_string(counter++) + path.extension().string());
+  tmp.replace_filename(name);
   try {
     write(tmp);
     fs::rename(tmp, path, ec);

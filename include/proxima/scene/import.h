@@ -8,12 +8,17 @@
 
 namespace proxima {
 
-// One object per assimp mesh, node transforms applied. Throws InputError naming the file
-// for a missing, unreadable or malformed file, or one with no triangles.
+// One object per assimp mesh (named after the mesh, else its node), node transforms
+// applied, smooth normals generated where missing. Diffuse textures load relative to the
+// file; missing or embedded ones are skipped with a warning on stderr. Not sanitized
+// (load_scene does that). Throws InputError naming the file for a missing, unreadable or
+// malformed file, or one with no triangles.
 Scene import_mesh_file(const std::filesystem::path& path);
 
 // Writes a scene's geometry (rest pose) as Wavefront OBJ + MTL beside it (for round trips
-// and for handing scenes to other tools). Written atomically.
+// and for handing scenes to other tools), textures as <stem>_texture<i>.png. Each file is
+// written atomically; import_mesh_file of the result gives back the triangles in order and
+// the materials' s, g, diffuse and emission.
 void write_obj(const std::filesystem::path& path, const Scene& scene);
 
 }  // namespace proxima

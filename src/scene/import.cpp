@@ -1,0 +1,354 @@
+// Mesh-file import through assimp and Wavefront OBJ export.
+// assimp stays inside this file (STYLE.md: libraries wrapped in one file each). Its
+// default logger is the NullLogger, so nothing reaches stdout; its errors come back
+// through Importer::GetErrorString() and are turned into InputError here.
+//
+// Material mapping (docs/formats.md):
+//   glTF metallic/roughness:  s = metallic, g = roughness.
+//   OBJ / MTL Ks, Ns:         s = max(Ks.r, Ks.g, Ks.b),
+//                             g = clamp(1 − log(Ns + 1) / log(1001), 0, 1),
+//   inverted by write_obj as  Ks = (s, s, s), Ns = 1001^(1 − g) − 1 (Ns in [0, 1000]).
+#include "proxima/scene/import.h"
+
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <assimp/Importer.hpp>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <optional>
+#include <set>
+#include <system_error>
+
+#include "proxima/core/atomic_file.h"
+#include "proxima/core/error.h"
+#include "proxima/core/image_io.h"
+
+namespace proxima {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Shininess range of the OBJ mapping: Ns in [0, kMaxNs] ↔ g in [1, 0].
+constexpr double kMaxNs = 1000.0;
+
+float gloss_from_shininess(float ns) {
+  const double g = 1.0 - std::log(std::max(0.0, double(ns)) + 1.0) / std::log(kMaxNs + 1.0);
+  return float(std::clamp(g, 0.0, 1.0));
+}
+
+double shininess_from_gloss(float g) {
+  return std::pow(kMaxNs + 1.0, 1.0 - double(std::clamp(g, 0.0f, 1.0f))) - 1.0;
+}
+
+mat4 to_glm(const aiMatrix4x4& m) {
+  // aiMatrix4x4 is row-major (a1..a4 is the first row); glm is column-major.
+  mat4 r;
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 4; ++col) r[col][row] = m[row][col];
+  return r;
+}
+
+vec3 material_color(const aiMaterial& mat, const char* key, unsigned type, unsigned index,
+                    vec3 fallback) {
+  aiColor3D c;
+  if (mat.Get(key, type, index, c) != aiReturn_SUCCESS) return fallback;
+  return {c.r, c.g, c.b};
+}
+
+std::optional<float> material_float(const aiMaterial& mat, const char* key, unsigned type,
+                                    unsigned index) {
+  float f = 0.0f;
+  if (mat.Get(key, type, index, f) != aiReturn_SUCCESS) return std::nullopt;
+  return f;
+}
+
+void warn(const fs::path& file, const std::string& message) {
+  std::fprintf(stderr, "warning: %s: %s\n", file.string().c_str(), message.c_str());
+}
+
+// Converts assimp's materials on first use and loads their textures (once per file).
+class MaterialConverter {
+ public:
+  MaterialConverter(const fs::path& file, const aiScene& ai, Scene& scene)
+      : file_(file), ai_(ai), scene_(scene) {}
+
+  uint32_t get(unsigned ai_index) {
+    auto it = ids_.find(ai_index);
+    if (it != ids_.end()) return it->second;
+    const uint32_t id = add_material(scene_, convert(*ai_.mMaterials[ai_index], ai_index));
+    ids_.emplace(ai_index, id);
+    return id;
+  }
+
+ private:
+  Material convert(const aiMaterial& ai_mat, unsigned ai_index) {
+    Material m;
+    m.name = ai_mat.GetName().C_Str();
+    if (m.name.empty()) m.name = "material" + std::to_string(ai_index);
+
+    // glTF puts its base color in both keys; other formats only in the diffuse one.
+    m.diffuse = material_color(ai_mat, AI_MATKEY_COLOR_DIFFUSE,
+                               material_color(ai_mat, AI_MATKEY_BASE_COLOR, m.diffuse));
+    m.emission = material_color(ai_mat, AI_MATKEY_COLOR_EMISSIVE, m.emission);
+
+    // glTF's importer also fills shininess from roughness, so the PBR keys win when present.
+    const auto metallic = material_float(ai_mat, AI_MATKEY_METALLIC_FACTOR);
+    const auto roughness = material_float(ai_mat, AI_MATKEY_ROUGHNESS_FACTOR);
+    if (metallic || roughness) {
+      m.specular = metallic.value_or(0.0f);
+      m.gloss = roughness.value_or(1.0f);
+    } else {
+      const vec3 ks = material_color(ai_mat, AI_MATKEY_COLOR_SPECULAR, vec3(0.0f));
+      m.specular = std::max({ks.x, ks.y, ks.z});
+      m.gloss = gloss_from_shininess(material_float(ai_mat, AI_MATKEY_SHININESS).value_or(0.0f));
+    }
+
+    if (!is_finite(m.diffuse) || !is_finite(m.emission) || !std::isfinite(m.specular) ||
+        !std::isfinite(m.gloss))
+      fail_input(file_.string() + ": material '" + m.name + "' has a non-finite value");
+    m.specular = std::clamp(m.specular, 0.0f, 1.0f);
+    m.gloss = std::clamp(m.gloss, 0.0f, 1.0f);
+    m.diffuse_texture = texture(ai_mat, m.name);
+    return m;
+  }
+
+  int texture(const aiMaterial& ai_mat, const std::string& material_name) {
+    aiString ai_path;
+    if (ai_mat.GetTexture(aiTextureType_DIFFUSE, 0, &ai_path) != aiReturn_SUCCESS &&
+        ai_mat.GetTexture(aiTextureType_BASE_COLOR, 0, &ai_path) != aiReturn_SUCCESS)
+      return -1;
+    std::string rel = ai_path.C_Str();
+    if (rel.empty()) return -1;
+    if (rel[0] == '*' || ai_.GetEmbeddedTexture(rel.c_str()) != nullptr) {
+      warn(file_, "material '" + material_name + "': embedded texture skipped");
+      return -1;
+    }
+    std::replace(rel.begin(), rel.end(), '\\', '/');  // files written on Windows
+    const fs::path tex_path = file_.parent_path() / rel;
+    const std::string key = tex_path.lexically_normal().string();
+    if (auto it = textures_.find(key); it != textures_.end()) return it->second;
+
+    // Models often ship without their pictures; the material color still renders.
+    std::error_code ec;
+    if (!fs::is_regular_file(tex_path, ec)) {
+      warn(file_, "material '" + material_name + "': texture " + tex_path.string() +
+                      " not found, using the diffuse color");
+      textures_.emplace(key, -1);
+      return -1;
+    }
+    Texture t;
+    t.name = key;
+    try {
+      t.image = read_image_linear(tex_path, 3);
+    } catch (const InputError& e) {
+      fail_input(file_.string() + ": material '" + material_name + "': " + e.what());
+    }
+    const int id = int(scene_.textures.size());
+    scene_.textures.push_back(std::move(t));
+    textures_.emplace(key, id);
+    return id;
+  }
+
+  const fs::path& file_;
+  const aiScene& ai_;
+  Scene& scene_;
+  std::map<unsigned, uint32_t> ids_;
+  std::map<std::string, int> textures_;  // normalized path → texture id (−1: missing)
+};
+
+Mesh convert_mesh(const aiMesh& ai_mesh, const mat4& transform) {
+  Mesh mesh;
+  mesh.positions.reserve(ai_mesh.mNumVertices);
+  for (unsigned i = 0; i < ai_mesh.mNumVertices; ++i) {
+    const aiVector3D& p = ai_mesh.mVertices[i];
+    mesh.positions.emplace_back(p.x, p.y, p.z);
+  }
+  if (ai_mesh.HasNormals()) {
+    mesh.normals.reserve(ai_mesh.mNumVertices);
+    for (unsigned i = 0; i < ai_mesh.mNumVertices; ++i) {
+      const aiVector3D& n = ai_mesh.mNormals[i];
+      mesh.normals.emplace_back(n.x, n.y, n.z);
+    }
+  }
+  if (ai_mesh.HasTextureCoords(0)) {
+    mesh.uvs.reserve(ai_mesh.mNumVertices);
+    for (unsigned i = 0; i < ai_mesh.mNumVertices; ++i) {
+      const aiVector3D& t = ai_mesh.mTextureCoords[0][i];
+      mesh.uvs.emplace_back(t.x, t.y);
+    }
+  }
+  // After Triangulate + SortByPType a triangle mesh holds only 3-index faces; the size
+  // check keeps a malformed face from reading past its index array.
+  mesh.triangles.reserve(ai_mesh.mNumFaces);
+  for (unsigned f = 0; f < ai_mesh.mNumFaces; ++f) {
+    const aiFace& face = ai_mesh.mFaces[f];
+    if (face.mNumIndices == 3)
+      mesh.triangles.emplace_back(face.mIndices[0], face.mIndices[1], face.mIndices[2]);
+  }
+  if (transform != mat4(1.0f)) transform_mesh(mesh, transform);  // also fixes mirrored winding
+  return mesh;
+}
+
+void add_node(const fs::path& file, const aiScene& ai, const aiNode& node, const mat4& parent,
+              MaterialConverter& materials, Scene& scene) {
+  const mat4 world = parent * to_glm(node.mTransformation);
+  for (unsigned k = 0; k < node.mNumMeshes; ++k) {
+    const aiMesh& ai_mesh = *ai.mMeshes[node.mMeshes[k]];
+    if (!(ai_mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+    Mesh mesh = convert_mesh(ai_mesh, world);
+    if (mesh.triangles.empty()) continue;
+    std::string name = ai_mesh.mName.C_Str();
+    if (name.empty()) name = node.mName.C_Str();
+    if (name.empty()) name = file.stem().string() + "_" + std::to_string(scene.objects.size());
+    add_object(scene, mesh, name, materials.get(ai_mesh.mMaterialIndex));
+  }
+  for (unsigned c = 0; c < node.mNumChildren; ++c)
+    add_node(file, ai, *node.mChildren[c], world, materials, scene);
+}
+
+// ---- OBJ writing ------------------------------------------------------------
+
+// Shortest decimal text that reads back as the same float.
+void put(std::string& out, double v) {
+  char buf[32];
+  auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, ec == std::errc() ? end : buf);
+}
+void put(std::string& out, float v) {
+  char buf[32];
+  auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, ec == std::errc() ? end : buf);
+}
+void put(std::string& out, vec3 v) {
+  put(out, v.x);
+  out += ' ';
+  put(out, v.y);
+  out += ' ';
+  put(out, v.z);
+}
+
+// OBJ names end at whitespace for many readers; keep them to one token.
+std::string obj_token(const std::string& name, const std::string& fallback) {
+  std::string t = name.empty() ? fallback : name;
+  for (char& c : t)
+    if (std::isspace(static_cast<unsigned char>(c)) || c == '#') c = '_';
+  return t;
+}
+
+}  // namespace
+
+Scene import_mesh_file(const fs::path& path) {
+  const std::string file = path.string();
+  std::error_code ec;
+  if (!fs::exists(path, ec)) fail_input(file + ": no such file");
+  if (!fs::is_regular_file(path, ec)) fail_input(file + ": not a regular file");
+
+  Assimp::Importer importer;
+  // SortByPType puts lines and points into meshes of their own, which add_node skips.
+  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                         aiProcess_GenSmoothNormals | aiProcess_SortByPType |
+                         aiProcess_ValidateDataStructure;
+  const aiScene* ai = nullptr;
+  try {
+    ai = importer.ReadFile(file, flags);
+  } catch (const std::exception& e) {  // assimp catches its own errors, but not every one
+    fail_input(file + ": " + e.what());
+  }
+  if (ai == nullptr) fail_input(file + ": " + importer.GetErrorString());
+  if ((ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || ai->mRootNode == nullptr)
+    fail_input(file + ": no triangles");
+
+  Scene scene;
+  scene.name = path.stem().string();
+  MaterialConverter materials(path, *ai, scene);
+  add_node(path, *ai, *ai->mRootNode, mat4(1.0f), materials, scene);
+  if (scene.triangles.empty()) fail_input(file + ": no triangles");
+  return scene;
+}
+
+void write_obj(const fs::path& path, const Scene& scene) {
+  const fs::path mtl_path = fs::path(path).replace_extension(".mtl");
+  const std::string stem = path.stem().string();
+
+  // Materials; textures become PNG files beside the OBJ so the result is self-contained.
+  std::vector<std::string> material_names;
+  std::set<std::string> used_names;
+  std::string mtl = "# proxima material library: Ks = (s, s, s), Ns = 1001^(1 - g) - 1\n";
+  for (size_t i = 0; i < scene.materials.size(); ++i) {
+    const Material& m = scene.materials[i];
+    std::string name = obj_token(m.name, "material" + std::to_string(i));
+    if (!used_names.insert(name).second) {
+      name += "_" + std::to_string(i);
+      used_names.insert(name);
+    }
+    material_names.push_back(name);
+    mtl += "\nnewmtl " + name + "\nKd ";
+    put(mtl, m.diffuse);
+    mtl += "\nKs ";
+    put(mtl, vec3(m.specular));
+    mtl += "\nNs ";
+    put(mtl, shininess_from_gloss(m.gloss));
+    mtl += "\nKe ";
+    put(mtl, m.emission);
+    mtl += "\nillum 2\n";
+    if (m.diffuse_texture >= 0 && size_t(m.diffuse_texture) < scene.textures.size()) {
+      const std::string tex = stem + "_texture" + std::to_string(m.diffuse_texture) + ".png";
+      write_png_linear(path.parent_path() / tex, scene.textures[size_t(m.diffuse_texture)].image);
+      mtl += "map_Kd " + tex + "\n";
+    }
+  }
+  write_text_file(mtl_path, mtl);
+
+  const bool has_normals = scene.normals.size() == scene.positions.size();
+  const bool has_uvs = scene.uvs.size() == scene.positions.size();
+  std::string obj = "# written by proxima\nmtllib " + mtl_path.filename().string() + "\n";
+  for (const vec3& p : scene.positions) {
+    obj += "v ";
+    put(obj, p);
+    obj += '\n';
+  }
+  if (has_normals)
+    for (const vec3& n : scene.normals) {
+      obj += "vn ";
+      put(obj, n);
+      obj += '\n';
+    }
+  if (has_uvs)
+    for (const vec2& t : scene.uvs) {
+      obj += "vt ";
+      put(obj, t.x);
+      obj += ' ';
+      put(obj, t.y);
+      obj += '\n';
+    }
+  for (size_t o = 0; o < scene.objects.size(); ++o) {
+    const Object& object = scene.objects[o];
+    obj += "o " + obj_token(object.name, "object" + std::to_string(o)) + "\n";
+    uint32_t current = UINT32_MAX;
+    for (uint32_t t = object.first_triangle; t < object.first_triangle + object.triangle_count;
+         ++t) {
+      const uint32_t material = scene.triangle_material[t];
+      if (material != current && material < material_names.size()) {
+        obj += "usemtl " + material_names[material] + "\n";
+        current = material;
+      }
+      obj += 'f';
+      for (int k = 0; k < 3; ++k) {
+        const std::string i = std::to_string(scene.triangles[t][k] + 1);  // OBJ is 1-based
+        obj += ' ' + i;
+        if (has_uvs || has_normals) obj += '/' + (has_uvs ? i : std::string());
+        if (has_normals) obj += '/' + i;
+      }
+      obj += '\n';
+    }
+  }
+  write_text_file(path, obj);
+}
+
+}  // namespace proxima

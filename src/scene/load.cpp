@@ -1,0 +1,50 @@
+// `--scene NAME|FILE`: built-in name, then .json scene file, then any mesh file.
+#include "proxima/scene/load.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <system_error>
+
+#include "proxima/core/error.h"
+#include "proxima/scene/builtin_scenes.h"
+#include "proxima/scene/import.h"
+#include "proxima/scene/scene_file.h"
+
+namespace proxima {
+namespace {
+
+namespace fs = std::filesystem;
+
+Scene load_unsanitized(const std::string& name_or_path) {
+  // A built-in name wins over a file of the same name in the working directory.
+  if (is_builtin_scene(name_or_path)) return make_builtin_scene(name_or_path);
+
+  const fs::path path(name_or_path);
+  std::error_code ec;
+  if (!fs::exists(path, ec)) {
+    std::string names;
+    for (const BuiltinSceneInfo& b : builtin_scenes())
+      names += (names.empty() ? "" : ", ") + b.name;
+    fail_input("no such scene or file: " + name_or_path + " (built-in scenes: " + names + ")");
+  }
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return ext == ".json" ? load_scene_file(path) : import_mesh_file(path);
+}
+
+}  // namespace
+
+Scene load_scene(const std::string& name_or_path) {
+  try {
+    Scene scene = load_unsanitized(name_or_path);
+    sanitize_scene(scene, name_or_path);
+    return scene;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // Permissions, broken links and the like: still bad input, not an internal failure.
+    fail_input(name_or_path + ": " + e.what());
+  }
+}
+
+}  // namespace proxima

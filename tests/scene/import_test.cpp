@@ -1,0 +1,282 @@
+#include "proxima/scene/import.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+#include "proxima/core/error.h"
+#include "proxima/core/image_io.h"
+#include "test_util.h"
+
+namespace proxima {
+namespace {
+
+namespace fs = std::filesystem;
+
+void write_file(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+// The InputError message `fn` throws, or "" when it does not throw.
+template <typename F>
+std::string error_of(F fn) {
+  try {
+    fn();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string base64(const std::string& bytes) {
+  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    uint32_t v = uint32_t(uint8_t(bytes[i])) << 16;
+    if (i + 1 < bytes.size()) v |= uint32_t(uint8_t(bytes[i + 1])) << 8;
+    if (i + 2 < bytes.size()) v |= uint32_t(uint8_t(bytes[i + 2]));
+    out += k[(v >> 18) & 63];
+    out += k[(v >> 12) & 63];
+    out += i + 1 < bytes.size() ? k[(v >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? k[v & 63] : '=';
+  }
+  return out;
+}
+
+template <typename T>
+void append_bytes(std::string& out, const T& value) {
+  out.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+// One triangle (0,0,0) (1,0,0) (0,1,0) as glTF 2.0 with an embedded base64 buffer, under a
+// node with the given JSON fields, and one metallic/roughness material.
+std::string tiny_gltf(const std::string& node_fields) {
+  std::string buffer;
+  for (float f : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) append_bytes(buffer, f);
+  for (uint16_t i : {0, 1, 2}) append_bytes(buffer, i);
+  buffer.append(2, '\0');  // pad to 4 bytes
+  return R"({
+    "asset": {"version": "2.0"},
+    "scene": 0, "scenes": [{"nodes": [0]}],
+    "nodes": [{"name": "tri_node", "mesh": 0)" + node_fields + R"(}],
+    "meshes": [{"name": "tri", "primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
+    "materials": [{"name": "metal",
+                   "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.5, 0.2, 1],
+                                            "metallicFactor": 0.75, "roughnessFactor": 0.25},
+                   "emissiveFactor": [0.1, 0.2, 0.3]}],
+    "buffers": [{"byteLength": 44, "uri": "data:application/octet-stream;base64,)" +
+         base64(buffer) + R"("}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36},
+                    {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                   "min": [0, 0, 0], "max": [1, 1, 0]},
+                  {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]
+  })";
+}
+
+vec3 corner(const Scene& s, uint32_t triangle, int k) { return s.positions[s.triangles[triangle][k]]; }
+
+TEST(ImportTest, ObjRoundTripKeepsGeometryAndMaterials) {
+  TempDir dir;
+  Scene scene;
+  Material shiny;
+  shiny.name = "shiny metal";  // a space: written as one OBJ token
+  shiny.diffuse = vec3(0.2f, 0.4f, 0.6f);
+  shiny.specular = 0.7f;
+  shiny.gloss = 0.15f;
+  Material lamp;
+  lamp.name = "lamp";
+  lamp.gloss = 1.0f;
+  lamp.emission = vec3(2.0f, 1.5f, 1.0f);
+  const uint32_t m0 = add_material(scene, shiny);
+  const uint32_t m1 = add_material(scene, lamp);
+
+  Mesh quad;
+  quad.positions = {{-1, 0, -1}, {1, 0, -1}, {1, 0, 1}, {-1, 0, 1}};
+  quad.triangles = {{0, 2, 1}, {0, 3, 2}};
+  Mesh tetra;
+  tetra.positions = {{0.125f, 1, 0.3f}, {1.5f, 1, 0.25f}, {0.5f, 2.75f, 0.5f}, {0.5f, 1.25f, 1.5f}};
+  tetra.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  add_object(scene, quad, "floor", m0);
+  add_object(scene, tetra, "tetra", m1);
+
+  const fs::path obj = dir.path / "round.obj";
+  write_obj(obj, scene);
+  ASSERT_TRUE(fs::exists(dir.path / "round.mtl"));
+  const Scene back = import_mesh_file(obj);
+
+  ASSERT_EQ(back.triangles.size(), scene.triangles.size());
+  ASSERT_EQ(back.objects.size(), 2u);
+  EXPECT_EQ(back.objects[0].name, "floor");
+  EXPECT_EQ(back.objects[1].name, "tetra");
+  for (uint32_t t = 0; t < scene.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const vec3 d = glm::abs(corner(back, t, k) - corner(scene, t, k));
+      EXPECT_LE(std::max({d.x, d.y, d.z}), 1e-5f) << "triangle " << t << " corner " << k;
+    }
+  for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
+    const Material& want = scene.materials[scene.triangle_material[t]];
+    const Material& got = back.materials[back.triangle_material[t]];
+    EXPECT_NEAR(got.specular, want.specular, 1e-4f);
+    EXPECT_NEAR(got.gloss, want.gloss, 1e-4f);
+    EXPECT_NEAR(glm::distance(got.diffuse, want.diffuse), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::distance(got.emission, want.emission), 0.0f, 1e-5f);
+  }
+  EXPECT_EQ(back.materials[back.triangle_material[0]].name, "shiny_metal");
+}
+
+TEST(ImportTest, HandWrittenObjWithMtlAndTexture) {
+  TempDir dir;
+  ImageF tex(2, 2, 3, 0.5f);
+  write_png_linear(dir.path / "wood.png", tex);
+  write_file(dir.path / "box.mtl", R"(# two materials
+newmtl glossy
+Kd 0.8 0.1 0.1
+Ks 0.5 0.25 0.1
+Ns 1000
+Ke 0 0 0
+newmtl rough
+Kd 1 1 1
+Ks 0 0 0
+Ns 0
+map_Kd wood.png
+)");
+  write_file(dir.path / "box.obj", R"(mtllib box.mtl
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+v 0 0 1
+vt 0 0
+vt 1 0
+vt 1 1
+vt 0 1
+o quad
+usemtl glossy
+f 1/1 2/2 3/3 4/4
+o tri
+usemtl rough
+f 1/1 2/2 5/3
+)");
+  const Scene s = import_mesh_file(dir.path / "box.obj");
+  ASSERT_EQ(s.objects.size(), 2u);
+  EXPECT_EQ(s.triangles.size(), 3u);  // the quad is triangulated
+  EXPECT_EQ(s.objects[0].triangle_count, 2u);
+
+  const Material& glossy = s.materials[s.triangle_material[0]];
+  EXPECT_EQ(glossy.name, "glossy");
+  EXPECT_FLOAT_EQ(glossy.specular, 0.5f);  // max component of Ks
+  EXPECT_NEAR(glossy.gloss, 0.0f, 1e-6f);  // Ns = 1000: the sharpest lobe
+  EXPECT_EQ(glossy.diffuse_texture, -1);
+
+  const Material& rough = s.materials[s.triangle_material[2]];
+  EXPECT_EQ(rough.specular, 0.0f);
+  EXPECT_NEAR(rough.gloss, 1.0f, 1e-6f);  // Ns = 0: the widest lobe
+  ASSERT_GE(rough.diffuse_texture, 0);
+  EXPECT_EQ(s.textures[size_t(rough.diffuse_texture)].image.width(), 2);
+}
+
+TEST(ImportTest, ObjWithMissingTextureFallsBackToColor) {
+  TempDir dir;
+  write_file(dir.path / "m.mtl", "newmtl a\nKd 0.3 0.3 0.3\nmap_Kd nowhere.png\n");
+  write_file(dir.path / "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
+  const Scene s = import_mesh_file(dir.path / "m.obj");
+  EXPECT_EQ(s.materials[s.triangle_material[0]].diffuse_texture, -1);
+  EXPECT_TRUE(s.textures.empty());
+}
+
+TEST(ImportTest, GltfMetallicRoughnessAndNodeTransform) {
+  TempDir dir;
+  write_file(dir.path / "tri.gltf", tiny_gltf(R"(, "translation": [0, 0, -2])"));
+  const Scene s = import_mesh_file(dir.path / "tri.gltf");
+  ASSERT_EQ(s.triangles.size(), 1u);
+  ASSERT_EQ(s.objects.size(), 1u);
+  EXPECT_EQ(s.objects[0].name, "tri");
+  for (int k = 0; k < 3; ++k) EXPECT_FLOAT_EQ(corner(s, 0, k).z, -2.0f);
+
+  const Material& m = s.materials[s.triangle_material[0]];
+  EXPECT_EQ(m.name, "metal");
+  EXPECT_FLOAT_EQ(m.specular, 0.75f);
+  EXPECT_FLOAT_EQ(m.gloss, 0.25f);
+  EXPECT_NEAR(glm::distance(m.diffuse, vec3(0.9f, 0.5f, 0.2f)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::distance(m.emission, vec3(0.1f, 0.2f, 0.3f)), 0.0f, 1e-6f);
+}
+
+TEST(ImportTest, GltfMirroringNodeKeepsOutwardWinding) {
+  TempDir dir;
+  write_file(dir.path / "mirror.gltf", tiny_gltf(R"(, "scale": [-1, 1, 1])"));
+  const Scene s = import_mesh_file(dir.path / "mirror.gltf");
+  ASSERT_EQ(s.triangles.size(), 1u);
+  // The source triangle faces +Z; mirroring in X must not turn it to face −Z.
+  const vec3 n = glm::cross(corner(s, 0, 1) - corner(s, 0, 0), corner(s, 0, 2) - corner(s, 0, 0));
+  EXPECT_GT(n.z, 0.0f);
+  EXPECT_EQ(scene_bounds(s).min.x, -1.0f);
+}
+
+TEST(ImportTest, AsciiPly) {
+  TempDir dir;
+  write_file(dir.path / "quad.ply", R"(ply
+format ascii 1.0
+element vertex 5
+property float x
+property float y
+property float z
+element face 2
+property list uchar int vertex_indices
+end_header
+0 0 0
+1 0 0
+1 1 0
+0 1 0
+0 0 1
+4 0 1 2 3
+3 0 4 1
+)");
+  const Scene s = import_mesh_file(dir.path / "quad.ply");
+  EXPECT_EQ(s.triangles.size(), 3u);
+  EXPECT_EQ(s.normals.size(), s.positions.size());  // generated: PLY had none
+}
+
+TEST(ImportTest, MissingFileNamesIt) {
+  TempDir dir;
+  const std::string msg = error_of([&] { import_mesh_file(dir.path / "absent.obj"); });
+  EXPECT_NE(msg.find("absent.obj"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("no such file"), std::string::npos) << msg;
+}
+
+TEST(ImportTest, MalformedObjNamesFile) {
+  TempDir dir;
+  write_file(dir.path / "bad.obj", "v 0 0 0\nf 1 2 3\n");  // faces index missing vertices
+  const std::string msg = error_of([&] { import_mesh_file(dir.path / "bad.obj"); });
+  EXPECT_NE(msg.find("bad.obj"), std::string::npos) << msg;
+}
+
+TEST(ImportTest, MalformedGltfNamesFile) {
+  TempDir dir;
+  write_file(dir.path / "bad.gltf", R"({"asset": {"version": "2.0"}, "meshes": [)");
+  const std::string msg = error_of([&] { import_mesh_file(dir.path / "bad.gltf"); });
+  EXPECT_NE(msg.find("bad.gltf"), std::string::npos) << msg;
+}
+
+TEST(ImportTest, LinesOnlyHaveNoTriangles) {
+  TempDir dir;
+  write_file(dir.path / "lines.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nl 1 2 3\n");
+  const std::string msg = error_of([&] { import_mesh_file(dir.path / "lines.obj"); });
+  EXPECT_NE(msg.find("lines.obj: no triangles"), std::string::npos) << msg;
+}
+
+TEST(ImportTest, WriteObjIntoMissingDirectoryLeavesNothing) {
+  TempDir dir;
+  Scene scene;
+  Mesh tri;
+  tri.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  tri.triangles = {{0, 1, 2}};
+  add_object(scene, tri, "t", add_material(scene, Material{}));
+  EXPECT_THROW(write_obj(dir.path / "no" / "such" / "dir.obj", scene), InputError);
+  EXPECT_FALSE(fs::exists(dir.path / "no"));
+}
+
+}  // namespace
+}  // namespace proxima
