@@ -1,7 +1,9 @@
 // Rasterizer benchmark and id-buffer agreement (raster_bench.h).
 #include "proxima/raster/raster_bench.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "proxima/core/parallel.h"
@@ -68,6 +70,30 @@ std::optional<RayHit> intersect(const Scene& scene, uint32_t triangle, const Cam
   return RayHit{u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0, depth};
 }
 
+// Screen distance (pixels) from (px, py) to the boundary of the triangle's projection;
+// nullopt when a vertex is not in front of the camera.
+std::optional<double> edge_distance(const Scene& scene, uint32_t triangle, const Camera& camera,
+                                    double px, double py) {
+  const glm::dmat3 to_camera(glm::mat3_cast(glm::conjugate(camera.orientation)));
+  const double f = focal_length_px(camera);
+  const uvec3 idx = scene.triangles[triangle];
+  glm::dvec2 s[3];
+  for (int i = 0; i < 3; ++i) {
+    const dvec3 c = to_camera * (dvec3(scene.positions[idx[i]]) - dvec3(camera.position));
+    if (!(-c.z > 0.0)) return std::nullopt;
+    s[i] = {0.5 * camera.width + f * c.x / -c.z, 0.5 * camera.height - f * c.y / -c.z};
+  }
+  double d = std::numeric_limits<double>::infinity();
+  const glm::dvec2 q(px, py);
+  for (int i = 0; i < 3; ++i) {
+    const glm::dvec2 a = s[i], ab = s[(i + 1) % 3] - a;
+    const double len2 = glm::dot(ab, ab);
+    const double t = len2 > 0.0 ? std::clamp(glm::dot(q - a, ab) / len2, 0.0, 1.0) : 0.0;
+    d = std::min(d, glm::length(q - (a + t * ab)));
+  }
+  return d;
+}
+
 dvec3 pixel_dir(const Camera& camera, double px, double py) {
   const double f = focal_length_px(camera);
   const dvec3 d((px - 0.5 * camera.width) / f, (0.5 * camera.height - py) / f, -1.0);
@@ -88,9 +114,11 @@ IdAgreement compare_id_buffers(const Scene& scene, const Camera& camera, const I
         continue;
       }
       const double cx = x + 0.5, cy = y + 0.5;
-      // Near an edge: inside-ness changes within edge_px of the center.
+      // Near an edge: the center is within edge_px of the projected boundary (or, for a
+      // triangle reaching behind the camera, inside-ness changes within edge_px).
       auto near_edge = [&](uint32_t t) {
         if (t == kNoTriangle) return false;
+        if (const auto d = edge_distance(scene, t, camera, cx, cy)) return *d <= edge_px;
         std::optional<bool> first;
         for (const auto& [dx, dy] : {std::pair{0.0, 0.0}, {-1.0, -1.0}, {1.0, -1.0}, {-1.0, 1.0}, {1.0, 1.0}}) {
           const auto hit = intersect(scene, t, camera, pixel_dir(camera, cx + dx * edge_px, cy + dy * edge_px));

@@ -29,7 +29,7 @@ constexpr uint64_t kChunkTriangles = 4096;
 constexpr uint64_t kChunkVertices = 16384;
 
 // Guard band, pixels beyond each viewport side. With kMaxImageSide = 16384 every snapped
-// position stays inside (−2^15, 2^15) pixels, the 24.8 range of raster_frame.h.
+// position stays inside (−2^15, 2^15) pixels, the 20.12 range of raster_frame.h.
 constexpr float kGuardBandPx = 8000.0f;
 static_assert(kMaxImageSide + 8000 < (1 << 15));
 
@@ -89,7 +89,7 @@ ClipSpace make_clip_space(const Camera& camera) {
   return cs;
 }
 
-// 24.8 snapping of a continuous pixel coordinate (round to nearest even), in double.
+// 20.12 snapping of a continuous pixel coordinate (round to nearest even), in double.
 // Shared by the vertex stage and the clipper so a vertex snaps identically in every
 // triangle using it.
 inline int32_t snap(double clip, double w) { return int32_t(std::lrint((clip / w) * kSubpixel)); }
@@ -110,7 +110,7 @@ bool emit_setup(SetupVertex a, SetupVertex b, SetupVertex c, uint32_t triangle, 
   if (area2 == 0 || (cull_back && area2 > 0)) return false;
   if (area2 < 0) std::swap(b, c);
 
-  // Pixels whose centers (256·x + 128) lie in the bbox.
+  // Pixels whose centers (kSubpixel·x + kSubpixel/2) lie in the bbox.
   const int32_t min_x = std::min({a.x, b.x, c.x}), max_x = std::max({a.x, b.x, c.x});
   const int32_t min_y = std::min({a.y, b.y, c.y}), max_y = std::max({a.y, b.y, c.y});
   Setup s;
@@ -151,7 +151,7 @@ bool emit_setup(SetupVertex a, SetupVertex b, SetupVertex c, uint32_t triangle, 
 
 // Homogeneous clip-space polygon vertex with the scene triangle's barycentrics. Double:
 // a vertex cut at the near plane has a small W, and X/W would amplify float cancellation
-// in X beyond the 1/256-pixel grid.
+// in X beyond the 1/4096-pixel grid.
 struct PolyVertex {
   double X, Y, W, u, v;
 };

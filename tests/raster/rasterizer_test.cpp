@@ -197,12 +197,12 @@ TEST(Rasterizer, PerspectiveCorrectOnASlantedPlane) {
       const float hit_t = -ray.origin.y / ray.dir.y;
       const vec3 hit = ray.origin + hit_t * ray.dir;
       const float depth = glm::dot(hit - camera.position, camera_forward(camera));
-      // Snapping moves vertices by up to 1/512 pixel, which at a grazing angle moves the
-      // plane by ∂depth/∂pixel / 512 ≈ depth² / (512 f): a few 1e-4 of the depth below 20.
+      // Snapping moves vertices by up to 1/8192 pixel, which at a grazing angle moves the
+      // plane by ∂depth/∂pixel / 8192 ≈ depth² / (8192 f): small below depth 20.
       if (depth > 20.0f) continue;
-      EXPECT_NEAR(img.depth.at(x, y), depth, 5e-4f * depth);
+      EXPECT_NEAR(img.depth.at(x, y), depth, 1e-4f * depth);
       const vec3 p = triangle_point(scene, t, img.barycentric.at(x, y, 0), img.barycentric.at(x, y, 1));
-      EXPECT_NEAR(glm::distance(p, hit), 0.0f, 5e-4f * depth);
+      EXPECT_NEAR(glm::distance(p, hit), 0.0f, 1e-4f * depth);
       ++checked;
     }
   EXPECT_GT(checked, 3000u);
@@ -263,13 +263,13 @@ TEST(Rasterizer, NearPlaneClippingKeepsTheVisiblePart) {
         continue;
       }
       ASSERT_NE(img.triangle.at(x, y), kNoTriangle) << x << "," << y;
-      // Snapping moves vertices by ≤ 1/512 pixel in x and in y: allow the depth change
-      // over 1/64 pixel along each axis (the forward difference underestimates the slope
+      // Snapping moves vertices by ≤ 1/8192 pixel in x and in y: allow the depth change
+      // over 1/1024 pixel along each axis (the forward difference underestimates the slope
       // where depth grows hyperbolically towards the horizon).
       const float slope = std::abs(ray_depth(x + 0.5f, y + 1.5f) - depth) +
                           std::abs(ray_depth(x + 1.5f, y + 0.5f) - depth);
       if (slope == kInf) continue;
-      EXPECT_NEAR(img.depth.at(x, y), depth, 1e-4f * depth + slope / 64.0f) << x << "," << y;
+      EXPECT_NEAR(img.depth.at(x, y), depth, 1e-4f * depth + slope / 1024.0f) << x << "," << y;
       ++checked;
     }
   EXPECT_GT(checked, 3000u);

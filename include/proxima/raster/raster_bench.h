@@ -38,7 +38,8 @@ std::vector<RasterTiming> bench_raster(const Scene& scene, const Camera& camera,
 // with every disagreement classified by re-intersecting the pixel ray (double precision)
 // with both triangles:
 //  - edge: the pixel center lies within `edge_px` pixels of an edge of either triangle
-//    (fixed-point snapping moves edges by up to 1/512 pixel; ties on edges are arbitrary);
+//    (fixed-point snapping moves vertices by up to 1/8192 pixel, and Embree's float
+//    ray/triangle test is not exact either: ties on edges are arbitrary);
 //  - depth: the pixel ray hits both triangles at depths within depth_epsilon·depth;
 //  - other: anything else (a real disagreement).
 struct IdAgreement {

@@ -5,7 +5,8 @@
 //    X/W, Y/W = continuous pixel coordinates (DESIGN.md: pixel centers at +0.5, row 0 on
 //    top); triangles are clipped homogeneously against the near and far planes, and
 //    against a guard band of kRasterGuardBandPx pixels around the viewport for the sides;
-//  - screen coordinates are snapped to 24.8 fixed point (1/256 pixel); coverage is
+//  - screen coordinates are snapped to fixed point with 12 fractional bits (1/4096
+//    pixel, raster_frame.h); coverage is
 //    decided by exact integer edge functions at pixel centers (x + 0.5, y + 0.5) with the
 //    top-left fill rule, so triangles sharing an edge cover each pixel center once;
 //  - depth and barycentrics are interpolated perspective-correctly (1/W, u/W, v/W are

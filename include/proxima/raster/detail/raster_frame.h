@@ -2,9 +2,11 @@
 // (src/raster/rasterizer.cpp) builds, and the per-tile coverage loop, a template so that
 // the fragment test is inlined. Not a public interface.
 //
-// Fixed point: screen positions are 24.8 (1/256 pixel, kSubpixelBits). The guard band
-// keeps |x|, |y| < 2^15 pixels, so positions fit in 24 bits, edge deltas in 25 bits and
-// edge function values E = dx·(py − ya) − dy·(px − xa) (units 1/256² px²) in 50 bits: int64.
+// Fixed point "20.12": screen positions in units of 1/4096 pixel (kSubpixelBits = 12),
+// int32. The guard band keeps |x|, |y| < 2^15 pixels, so positions fit in 28 bits, edge
+// deltas in 29 bits and edge function values E = dx·(py − ya) − dy·(px − xa) (units
+// 1/4096² px²) in 59 bits: exact in int64. (8 bits, the hardware norm, left 0.1% of the
+// pixels of a 290k-triangle scene disagreeing with Embree on edges; 12 bits: 0.01%.)
 #pragma once
 
 #include <algorithm>
@@ -18,12 +20,12 @@ namespace proxima {
 namespace raster_detail {
 
 inline constexpr int kTileSize = 64;      // pixels per side of a raster tile
-inline constexpr int kSubpixelBits = 8;   // 24.8 fixed point
+inline constexpr int kSubpixelBits = 12;  // 20.12 fixed point
 inline constexpr int kSubpixel = 1 << kSubpixelBits;
 
 // One screen triangle ready for coverage (a clipped triangle gives several).
 struct Setup {
-  int32_t x[3], y[3];       // 24.8 vertex positions, ordered so the signed area is > 0
+  int32_t x[3], y[3];       // 20.12 vertex positions, ordered so the signed area is > 0
   int32_t x0, y0, x1, y1;   // inclusive range of pixels whose centers the bbox holds,
                             // clamped to the viewport
   uint32_t triangle;
@@ -45,7 +47,7 @@ struct Chunk {
 // A scene vertex in clip space: X/W, Y/W are continuous pixel coordinates, W = −z_cam.
 struct ClipVertex {
   float X, Y, W;
-  int32_t fx, fy;  // 24.8 snapped X/W, Y/W; valid only when no kNeedsClip bit is set
+  int32_t fx, fy;  // 20.12 snapped X/W, Y/W; valid only when no clip bit is set
   uint32_t code;   // outcode bits (rasterizer.cpp)
 };
 
