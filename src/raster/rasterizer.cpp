@@ -15,6 +15,7 @@
 #include "proxima/raster/rasterizer.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <mutex>
 
@@ -103,7 +104,7 @@ struct SetupVertex {
 // Setup of one screen triangle; false when it covers no pixel center's bbox, is
 // degenerate after snapping, or is culled as a back face.
 bool emit_setup(SetupVertex a, SetupVertex b, SetupVertex c, uint32_t triangle, bool cull_back,
-                int width, int height, std::vector<Setup>& out) {
+                bool with_uv, int width, int height, std::vector<Setup>& out) {
   const int64_t area2 = (int64_t(b.x) - a.x) * (int64_t(c.y) - a.y) -
                         (int64_t(b.y) - a.y) * (int64_t(c.x) - a.x);
   // With y down, a counter-clockwise (front) scene triangle has area2 < 0.
@@ -132,19 +133,21 @@ bool emit_setup(SetupVertex a, SetupVertex b, SetupVertex c, uint32_t triangle, 
   const double inv_scale = 1.0 / kSubpixel;
   const double x10 = (b.x - a.x) * inv_scale, y10 = (b.y - a.y) * inv_scale;
   const double x20 = (c.x - a.x) * inv_scale, y20 = (c.y - a.y) * inv_scale;
-  const double det = x10 * y20 - x20 * y10;
+  const double inv_det = 1.0 / (x10 * y20 - x20 * y10);
   const double ox = (s.x0 + 0.5) - a.x * inv_scale, oy = (s.y0 + 0.5) - a.y * inv_scale;
   auto plane = [&](double q0, double q1, double q2, float* p) {
     const double d1 = q1 - q0, d2 = q2 - q0;
-    const double gx = (d1 * y20 - d2 * y10) / det;
-    const double gy = (d2 * x10 - d1 * x20) / det;
+    const double gx = (d1 * y20 - d2 * y10) * inv_det;
+    const double gy = (d2 * x10 - d1 * x20) * inv_det;
     p[0] = float(q0 + gx * ox + gy * oy);
     p[1] = float(gx);
     p[2] = float(gy);
   };
   plane(a.iw, b.iw, c.iw, s.z);
-  plane(double(a.u) * a.iw, double(b.u) * b.iw, double(c.u) * c.iw, s.u);
-  plane(double(a.v) * a.iw, double(b.v) * b.iw, double(c.v) * c.iw, s.v);
+  if (with_uv) {
+    plane(double(a.u) * a.iw, double(b.u) * b.iw, double(c.u) * c.iw, s.u);
+    plane(double(a.v) * a.iw, double(b.v) * b.iw, double(c.v) * c.iw, s.v);
+  }
   out.push_back(s);
   return true;
 }
@@ -239,7 +242,8 @@ void build_chunk(const Frame& frame, const ClipSpace& cs, bool cull_back, uint64
       const SetupVertex a{v[0]->fx, v[0]->fy, 1.0f / v[0]->W, 0.0f, 0.0f};
       const SetupVertex b{v[1]->fx, v[1]->fy, 1.0f / v[1]->W, 1.0f, 0.0f};
       const SetupVertex c{v[2]->fx, v[2]->fy, 1.0f / v[2]->W, 0.0f, 1.0f};
-      if (!emit_setup(a, b, c, triangle, cull_back, frame.width, frame.height, chunk.setups))
+      if (!emit_setup(a, b, c, triangle, cull_back, frame.needs_uv, frame.width, frame.height,
+                      chunk.setups))
         ++chunk.culled;
       continue;
     }
@@ -254,8 +258,8 @@ void build_chunk(const Frame& frame, const ClipSpace& cs, bool cull_back, uint64
                float(poly[i].u), float(poly[i].v)};
     bool emitted = false;
     for (int i = 1; i + 1 < n; ++i)
-      emitted |= emit_setup(sv[0], sv[i], sv[i + 1], triangle, cull_back, frame.width,
-                            frame.height, chunk.setups);
+      emitted |= emit_setup(sv[0], sv[i], sv[i + 1], triangle, cull_back, frame.needs_uv,
+                            frame.width, frame.height, chunk.setups);
     if (!emitted) ++chunk.culled;
   }
 
@@ -446,12 +450,17 @@ void resolve_tile(const Frame& frame, const Tile& tile, const TileBuffer& buffer
   const Scene& scene = *frame.scene;
   const uint32_t outputs = frame.outputs;
   const vec3 eye(frame.camera_position[0], frame.camera_position[1], frame.camera_position[2]);
+  const int span = tile.x1 - tile.x0;
   for (int y = tile.y0; y < tile.y1; ++y) {
+    const size_t row = size_t(y - tile.y0) * kTileSize;
+    if (outputs & kRasterDepth)
+      std::copy_n(&buffer.depth[row], span, &out.depth.at(tile.x0, y));
+    if (outputs & kRasterTriangle)
+      std::copy_n(&buffer.id[row], span, &out.triangle.at(tile.x0, y));
+    if (!(outputs & (kRasterObject | kRasterBarycentric | kRasterNormal | kRasterDiffuse))) continue;
     for (int x = tile.x0; x < tile.x1; ++x) {
-      const size_t i = size_t(y - tile.y0) * kTileSize + size_t(x - tile.x0);
+      const size_t i = row + size_t(x - tile.x0);
       const uint32_t t = buffer.id[i];
-      if (outputs & kRasterDepth) out.depth.at(x, y) = buffer.depth[i];
-      if (outputs & kRasterTriangle) out.triangle.at(x, y) = t;
       if (outputs & kRasterObject) out.object.at(x, y) = t == kNoTriangle ? kNoObject : scene.triangle_object[t];
       if (!(outputs & (kRasterBarycentric | kRasterNormal | kRasterDiffuse))) continue;
       const float u = t == kNoTriangle ? 0.0f : buffer.u[i];
