@@ -37,8 +37,8 @@ void raster_frame(benchmark::State& state, uint32_t outputs) {
     rasterize(lr.scene, lr.camera, options, images, AcceptAllFragments{});
     benchmark::ClobberMemory();
   }
-  state.counters["tris_per_s"] = benchmark::Counter(double(lr.scene.triangles.size()),
-                                                    benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["tris_per_s"] =
+      benchmark::Counter(double(lr.scene.triangles.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void BM_RasterDepthId(benchmark::State& state) { raster_frame(state, kRasterDepthId); }

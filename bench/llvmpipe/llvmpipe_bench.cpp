@@ -43,7 +43,7 @@ using namespace proxima;
 
 struct Args {
   std::string scene = "living-room";  // a built-in scene
-  std::string camera;  // empty = the scene's first camera
+  std::string camera;                 // empty = the scene's first camera
   int width = 1024, height = 1024, threads = 0, repetitions = 7;
 };
 
@@ -59,13 +59,20 @@ Args parse_args(int argc, char** argv) {
       if (*end != '\0' || v <= 0 || v > 16384) die(2, "bad value for " + flag + ": " + value);
       return int(v);
     };
-    if (flag == "--scene") a.scene = value;
-    else if (flag == "--camera") a.camera = value;
-    else if (flag == "--width") a.width = number();
-    else if (flag == "--height") a.height = number();
-    else if (flag == "--threads") a.threads = number();
-    else if (flag == "--repetitions") a.repetitions = number();
-    else die(2, "unknown flag " + flag);
+    if (flag == "--scene")
+      a.scene = value;
+    else if (flag == "--camera")
+      a.camera = value;
+    else if (flag == "--width")
+      a.width = number();
+    else if (flag == "--height")
+      a.height = number();
+    else if (flag == "--threads")
+      a.threads = number();
+    else if (flag == "--repetitions")
+      a.repetitions = number();
+    else
+      die(2, "unknown flag " + flag);
   }
   return a;
 }
@@ -96,9 +103,13 @@ void make_context() {
   // Rendering goes to a framebuffer object, so no config is needed
   // (EGL_KHR_no_config_context, which Mesa's surfaceless platform offers).
   const EGLConfig config = EGL_NO_CONFIG_KHR;
-  const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+  const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                    3,
+                                    EGL_CONTEXT_MINOR_VERSION,
+                                    3,
                                     EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                    EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+                                    EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                    EGL_NONE};
   EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs);
   if (context == EGL_NO_CONTEXT) die(1, "cannot create an OpenGL 3.3 core context");
   if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
@@ -149,8 +160,7 @@ int main(int argc, char** argv) {
   glBindRenderbuffer(GL_RENDERBUFFER, depth);
   glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, args.width, args.height);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    die(1, "incomplete framebuffer");
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) die(1, "incomplete framebuffer");
 
   const GLuint program = glCreateProgram();
   glAttachShader(program, compile(GL_VERTEX_SHADER,
@@ -225,7 +235,6 @@ int main(int argc, char** argv) {
       "\"ms_depth_id\": %.4f, \"ms_samples\": [%s], \"readback_ms\": %.4f, "
       "\"id_agreement_with_proxima_pct\": %.4f}\n",
       renderer, lp_threads ? lp_threads : "null", args.width, args.height, scene.triangles.size(),
-      median(samples), samples_json.c_str(), readback_ms,
-      100.0 * double(agree) / double(ids.size()));
+      median(samples), samples_json.c_str(), readback_ms, 100.0 * double(agree) / double(ids.size()));
   return 0;
 }

@@ -36,9 +36,8 @@ std::vector<RasterTiming> bench_raster(const Scene& scene, const Camera& camera,
     };
     timing.depth_id_ms = median_ms(kRasterDepthId, &timing.depth_id_stats);
     timing.gbuffer_ms = median_ms(kRasterGBuffer, nullptr);
-    timing.tris_per_s = timing.depth_id_ms > 0.0
-                            ? double(scene.triangles.size()) / (timing.depth_id_ms * 1e-3)
-                            : 0.0;
+    timing.tris_per_s =
+        timing.depth_id_ms > 0.0 ? double(scene.triangles.size()) / (timing.depth_id_ms * 1e-3) : 0.0;
     timings.push_back(timing);
   }
   return timings;
@@ -72,8 +71,8 @@ std::optional<RayHit> intersect(const Scene& scene, uint32_t triangle, const Cam
 
 // Screen distance (pixels) from (px, py) to the boundary of the triangle's projection;
 // nullopt when a vertex is not in front of the camera.
-std::optional<double> edge_distance(const Scene& scene, uint32_t triangle, const Camera& camera,
-                                    double px, double py) {
+std::optional<double> edge_distance(const Scene& scene, uint32_t triangle, const Camera& camera, double px,
+                                    double py) {
   const glm::dmat3 to_camera(glm::mat3_cast(glm::conjugate(camera.orientation)));
   const double f = focal_length_px(camera);
   const uvec3 idx = scene.triangles[triangle];
@@ -120,8 +119,10 @@ IdAgreement compare_id_buffers(const Scene& scene, const Camera& camera, const I
         if (t == kNoTriangle) return false;
         if (const auto d = edge_distance(scene, t, camera, cx, cy)) return *d <= edge_px;
         std::optional<bool> first;
-        for (const auto& [dx, dy] : {std::pair{0.0, 0.0}, {-1.0, -1.0}, {1.0, -1.0}, {-1.0, 1.0}, {1.0, 1.0}}) {
-          const auto hit = intersect(scene, t, camera, pixel_dir(camera, cx + dx * edge_px, cy + dy * edge_px));
+        for (const auto& [dx, dy] :
+             {std::pair{0.0, 0.0}, {-1.0, -1.0}, {1.0, -1.0}, {-1.0, 1.0}, {1.0, 1.0}}) {
+          const auto hit =
+              intersect(scene, t, camera, pixel_dir(camera, cx + dx * edge_px, cy + dy * edge_px));
           const bool in = hit && hit->inside;
           if (first && *first != in) return true;
           first = in;

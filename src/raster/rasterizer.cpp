@@ -37,20 +37,19 @@ static_assert(kMaxImageSide + 8000 < (1 << 15));
 // Outcode bits. Viewport bits reject a triangle when all three vertices share one;
 // clip bits send it through homogeneous clipping.
 enum : uint32_t {
-  kOutLeft = 1u << 0,    // X < 0
-  kOutRight = 1u << 1,   // X > width·W
-  kOutTop = 1u << 2,     // Y < 0
-  kOutBottom = 1u << 3,  // Y > height·W
-  kOutNear = 1u << 4,    // W < near   (also a clip plane)
-  kOutFar = 1u << 5,     // W > far    (also a clip plane)
-  kGuardLeft = 1u << 6,  // X < −G·W
-  kGuardRight = 1u << 7, // X > (width + G)·W
+  kOutLeft = 1u << 0,     // X < 0
+  kOutRight = 1u << 1,    // X > width·W
+  kOutTop = 1u << 2,      // Y < 0
+  kOutBottom = 1u << 3,   // Y > height·W
+  kOutNear = 1u << 4,     // W < near   (also a clip plane)
+  kOutFar = 1u << 5,      // W > far    (also a clip plane)
+  kGuardLeft = 1u << 6,   // X < −G·W
+  kGuardRight = 1u << 7,  // X > (width + G)·W
   kGuardTop = 1u << 8,
   kGuardBottom = 1u << 9,
 };
 constexpr uint32_t kRejectMask = kOutLeft | kOutRight | kOutTop | kOutBottom | kOutNear | kOutFar;
-constexpr uint32_t kClipMask =
-    kOutNear | kOutFar | kGuardLeft | kGuardRight | kGuardTop | kGuardBottom;
+constexpr uint32_t kClipMask = kOutNear | kOutFar | kGuardLeft | kGuardRight | kGuardTop | kGuardBottom;
 
 struct ClipSpace {
   // Rows of the world → clip transform: X = f·x_c + (w/2)·W, Y = −f·y_c + (h/2)·W,
@@ -103,10 +102,10 @@ struct SetupVertex {
 
 // Setup of one screen triangle; false when it covers no pixel center's bbox, is
 // degenerate after snapping, or is culled as a back face.
-bool emit_setup(SetupVertex a, SetupVertex b, SetupVertex c, uint32_t triangle, bool cull_back,
-                bool with_uv, int width, int height, std::vector<Setup>& out) {
-  const int64_t area2 = (int64_t(b.x) - a.x) * (int64_t(c.y) - a.y) -
-                        (int64_t(b.y) - a.y) * (int64_t(c.x) - a.x);
+bool emit_setup(SetupVertex a, SetupVertex b, SetupVertex c, uint32_t triangle, bool cull_back, bool with_uv,
+                int width, int height, std::vector<Setup>& out) {
+  const int64_t area2 =
+      (int64_t(b.x) - a.x) * (int64_t(c.y) - a.y) - (int64_t(b.y) - a.y) * (int64_t(c.x) - a.x);
   // With y down, a counter-clockwise (front) scene triangle has area2 < 0.
   if (area2 == 0 || (cull_back && area2 > 0)) return false;
   if (area2 < 0) std::swap(b, c);
@@ -162,12 +161,18 @@ struct PolyVertex {
 // Signed distance to clip plane `bit` (≥ 0 inside).
 double plane_distance(const ClipSpace& cs, uint32_t bit, const PolyVertex& p) {
   switch (bit) {
-    case kOutNear: return p.W - cs.near;
-    case kOutFar: return cs.far - p.W;
-    case kGuardLeft: return p.X + kGuardBandPx * p.W;
-    case kGuardRight: return (double(cs.width) + kGuardBandPx) * p.W - p.X;
-    case kGuardTop: return p.Y + kGuardBandPx * p.W;
-    default: return (double(cs.height) + kGuardBandPx) * p.W - p.Y;  // kGuardBottom
+    case kOutNear:
+      return p.W - cs.near;
+    case kOutFar:
+      return cs.far - p.W;
+    case kGuardLeft:
+      return p.X + kGuardBandPx * p.W;
+    case kGuardRight:
+      return (double(cs.width) + kGuardBandPx) * p.W - p.X;
+    case kGuardTop:
+      return p.Y + kGuardBandPx * p.W;
+    default:
+      return (double(cs.height) + kGuardBandPx) * p.W - p.Y;  // kGuardBottom
   }
 }
 
@@ -189,9 +194,8 @@ int clip_polygon(const ClipSpace& cs, uint32_t planes, PolyVertex* poly, int n) 
         const PolyVertex& out = dp >= 0.0 ? q : p;
         const double d_in = dp >= 0.0 ? dp : dq, d_out = dp >= 0.0 ? dq : dp;
         const double t = d_in / (d_in - d_out);
-        tmp[m++] = {in.X + t * (out.X - in.X), in.Y + t * (out.Y - in.Y),
-                    in.W + t * (out.W - in.W), in.u + t * (out.u - in.u),
-                    in.v + t * (out.v - in.v)};
+        tmp[m++] = {in.X + t * (out.X - in.X), in.Y + t * (out.Y - in.Y), in.W + t * (out.W - in.W),
+                    in.u + t * (out.u - in.u), in.v + t * (out.v - in.v)};
       }
     }
     n = m;
@@ -206,29 +210,28 @@ bool bounds_visible(const ClipSpace& cs, const Bounds3& b) {
   if (b.empty()) return false;
   uint32_t all = ~0u;
   for (int i = 0; i < 8; ++i) {
-    const vec4 p((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
-                 (i & 4) ? b.max.z : b.min.z, 1.0f);
+    const vec4 p((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z, 1.0f);
     all &= cs.outcode(glm::dot(cs.row_x, p), glm::dot(cs.row_y, p), glm::dot(cs.row_w, p));
   }
   return (all & kRejectMask) == 0;
 }
 
 // Triangle setup and binning for draw-list positions [begin, end).
-void build_chunk(const Frame& frame, const ClipSpace& cs, bool cull_back, uint64_t begin,
-                 uint64_t end, Chunk& chunk) {
+void build_chunk(const Frame& frame, const ClipSpace& cs, bool cull_back, uint64_t begin, uint64_t end,
+                 Chunk& chunk) {
   const Scene& scene = *frame.scene;
   chunk.setups.clear();
   chunk.submitted = chunk.culled = chunk.clipped = 0;
   const auto& runs = frame.runs;
   size_t r = size_t(std::upper_bound(runs.begin(), runs.end(), begin,
                                      [](uint64_t pos, const DrawRun& run) { return pos < run.start; }) -
-                    runs.begin()) - 1;
+                    runs.begin()) -
+             1;
   for (uint64_t pos = begin; pos < end; ++pos) {
     while (pos >= runs[r].start + runs[r].count) ++r;
     const uint32_t item = runs[r].first + uint32_t(pos - runs[r].start);
     const uint32_t triangle = frame.id_list ? frame.id_list[item] : item;
-    if (frame.id_list && !scene.objects.empty() &&
-        !frame.object_visible[scene.triangle_object[triangle]])
+    if (frame.id_list && !scene.objects.empty() && !frame.object_visible[scene.triangle_object[triangle]])
       continue;
     ++chunk.submitted;
     const uvec3 idx = scene.triangles[triangle];
@@ -242,8 +245,7 @@ void build_chunk(const Frame& frame, const ClipSpace& cs, bool cull_back, uint64
       const SetupVertex a{v[0]->fx, v[0]->fy, 1.0f / v[0]->W, 0.0f, 0.0f};
       const SetupVertex b{v[1]->fx, v[1]->fy, 1.0f / v[1]->W, 1.0f, 0.0f};
       const SetupVertex c{v[2]->fx, v[2]->fy, 1.0f / v[2]->W, 0.0f, 1.0f};
-      if (!emit_setup(a, b, c, triangle, cull_back, frame.needs_uv, frame.width, frame.height,
-                      chunk.setups))
+      if (!emit_setup(a, b, c, triangle, cull_back, frame.needs_uv, frame.width, frame.height, chunk.setups))
         ++chunk.culled;
       continue;
     }
@@ -258,8 +260,8 @@ void build_chunk(const Frame& frame, const ClipSpace& cs, bool cull_back, uint64
                float(poly[i].u), float(poly[i].v)};
     bool emitted = false;
     for (int i = 1; i + 1 < n; ++i)
-      emitted |= emit_setup(sv[0], sv[i], sv[i + 1], triangle, cull_back, frame.needs_uv,
-                            frame.width, frame.height, chunk.setups);
+      emitted |= emit_setup(sv[0], sv[i], sv[i + 1], triangle, cull_back, frame.needs_uv, frame.width,
+                            frame.height, chunk.setups);
     if (!emitted) ++chunk.culled;
   }
 
@@ -392,7 +394,8 @@ FrameLease prepare_frame(const Scene& scene, const Camera& camera, const RasterO
       const uint64_t begin = c * kChunkVertices, end = std::min(begin + kChunkVertices, vertex_total);
       size_t r = size_t(std::upper_bound(vertex_runs.begin(), vertex_runs.end(), begin,
                                          [](uint64_t pos, const DrawRun& run) { return pos < run.start; }) -
-                        vertex_runs.begin()) - 1;
+                        vertex_runs.begin()) -
+                 1;
       for (uint64_t pos = begin; pos < end; ++pos) {
         while (pos >= vertex_runs[r].start + vertex_runs[r].count) ++r;
         const uint32_t i = vertex_runs[r].first + uint32_t(pos - vertex_runs[r].start);
@@ -453,15 +456,14 @@ void resolve_tile(const Frame& frame, const Tile& tile, const TileBuffer& buffer
   const int span = tile.x1 - tile.x0;
   for (int y = tile.y0; y < tile.y1; ++y) {
     const size_t row = size_t(y - tile.y0) * kTileSize;
-    if (outputs & kRasterDepth)
-      std::copy_n(&buffer.depth[row], span, &out.depth.at(tile.x0, y));
-    if (outputs & kRasterTriangle)
-      std::copy_n(&buffer.id[row], span, &out.triangle.at(tile.x0, y));
+    if (outputs & kRasterDepth) std::copy_n(&buffer.depth[row], span, &out.depth.at(tile.x0, y));
+    if (outputs & kRasterTriangle) std::copy_n(&buffer.id[row], span, &out.triangle.at(tile.x0, y));
     if (!(outputs & (kRasterObject | kRasterBarycentric | kRasterNormal | kRasterDiffuse))) continue;
     for (int x = tile.x0; x < tile.x1; ++x) {
       const size_t i = row + size_t(x - tile.x0);
       const uint32_t t = buffer.id[i];
-      if (outputs & kRasterObject) out.object.at(x, y) = t == kNoTriangle ? kNoObject : scene.triangle_object[t];
+      if (outputs & kRasterObject)
+        out.object.at(x, y) = t == kNoTriangle ? kNoObject : scene.triangle_object[t];
       if (!(outputs & (kRasterBarycentric | kRasterNormal | kRasterDiffuse))) continue;
       const float u = t == kNoTriangle ? 0.0f : buffer.u[i];
       const float v = t == kNoTriangle ? 0.0f : buffer.v[i];

@@ -5,9 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <utility>
-
 #include <glm/gtc/matrix_transform.hpp>
+#include <utility>
 
 #include "proxima/scene/procedural.h"
 

@@ -31,8 +31,8 @@ TEST(RasterBench, BuiltinScenesAgreeWithEmbree) {
       camera.width = camera.height = 512;
       const IdAgreement a = agreement(scene, rays, camera);
       std::printf("[ agreement ] %s/%s: %.4f%% (%zu of %zu differ: %zu edge, %zu depth, %zu other)\n",
-                  info.name.c_str(), named.name.c_str(), a.agreement_pct(), a.pixels - a.agree,
-                  a.pixels, a.edge, a.depth, a.other);
+                  info.name.c_str(), named.name.c_str(), a.agreement_pct(), a.pixels - a.agree, a.pixels,
+                  a.edge, a.depth, a.other);
       EXPECT_GE(a.agreement_pct(), 99.9) << info.name << "/" << named.name;
       EXPECT_EQ(a.other, 0u) << info.name << "/" << named.name;
     }
@@ -58,7 +58,8 @@ TEST(RasterBench, ClippingAgainstNearPlaneAndSidesAgreesWithEmbree) {
     // Depth agrees wherever the ids do (both are −z_cam).
     for (int y = 0; y < camera.height; ++y)
       for (int x = 0; x < camera.width; ++x)
-        if (raster.triangle.at(x, y) == reference.triangle.at(x, y) && raster.triangle.at(x, y) != kNoTriangle) {
+        if (raster.triangle.at(x, y) == reference.triangle.at(x, y) &&
+            raster.triangle.at(x, y) != kNoTriangle) {
           EXPECT_NEAR(raster.depth.at(x, y), reference.depth.at(x, y), 1e-3f * reference.depth.at(x, y));
         }
   }

@@ -64,7 +64,8 @@ Mesh sphere_mesh(vec3 center, float radius, int segments, int rings) {
       m.triangles.push_back({ring(r, s), ring(r + 1, s), ring(r + 1, s + 1)});
       m.triangles.push_back({ring(r, s), ring(r + 1, s + 1), ring(r, s + 1)});
     }
-  for (int s = 0; s < segments; ++s) m.triangles.push_back({south, ring(rings - 1, s + 1), ring(rings - 1, s)});
+  for (int s = 0; s < segments; ++s)
+    m.triangles.push_back({south, ring(rings - 1, s + 1), ring(rings - 1, s)});
   return m;
 }
 
@@ -237,8 +238,8 @@ TEST(Rasterizer, NearPlaneClippingKeepsTheVisiblePart) {
   Mesh m = grid_mesh(8, 100.0f, 0.0f, 0.0f, 3);
   for (vec3& p : m.positions) p = vec3(p.x, -1.0f, p.y);
   const Scene scene = scene_of({m});
-  const Camera camera = look_at(vec3(0, -0.97f, 0), vec3(0.1f, -1.97f, -1), vec3(0, 1, 0), 90.0f, 96,
-                                96, 0.05f, 1000.0f);
+  const Camera camera =
+      look_at(vec3(0, -0.97f, 0), vec3(0.1f, -1.97f, -1), vec3(0, 1, 0), 90.0f, 96, 96, 0.05f, 1000.0f);
   RasterStats stats;
   const RasterImages img = rasterize(scene, camera, {}, &stats);
   EXPECT_GT(stats.triangles_clipped, 0u);
@@ -254,7 +255,7 @@ TEST(Rasterizer, NearPlaneClippingKeepsTheVisiblePart) {
   for (int y = 0; y < 96; ++y)
     for (int x = 0; x < 96; ++x) {
       const float depth = ray_depth(x + 0.5f, y + 0.5f);
-      if (depth == kInf) continue;  // off the floor (borders: ties with the floor's edge)
+      if (depth == kInf) continue;         // off the floor (borders: ties with the floor's edge)
       if (depth < camera.near * 1.001f) {  // in front of the near plane: clipped away
         if (depth < camera.near * 0.999f) {
           EXPECT_EQ(img.triangle.at(x, y), kNoTriangle) << x << "," << y;
@@ -266,8 +267,8 @@ TEST(Rasterizer, NearPlaneClippingKeepsTheVisiblePart) {
       // Snapping moves vertices by ≤ 1/8192 pixel in x and in y: allow the depth change
       // over 1/1024 pixel along each axis (the forward difference underestimates the slope
       // where depth grows hyperbolically towards the horizon).
-      const float slope = std::abs(ray_depth(x + 0.5f, y + 1.5f) - depth) +
-                          std::abs(ray_depth(x + 1.5f, y + 0.5f) - depth);
+      const float slope =
+          std::abs(ray_depth(x + 0.5f, y + 1.5f) - depth) + std::abs(ray_depth(x + 1.5f, y + 0.5f) - depth);
       if (slope == kInf) continue;
       EXPECT_NEAR(img.depth.at(x, y), depth, 1e-4f * depth + slope / 1024.0f) << x << "," << y;
       ++checked;
@@ -340,7 +341,8 @@ TEST(Rasterizer, InvalidCameraThrowsInputError) {
 TEST(Rasterizer, OneAndTwoThreadsAreBitIdentical) {
   std::vector<Mesh> meshes;
   for (int i = 0; i < 6; ++i)
-    meshes.push_back(sphere_mesh(vec3(float(i % 3) - 1.0f, float(i / 3) - 0.5f, -float(i) * 0.3f), 0.7f, 64, 32));
+    meshes.push_back(
+        sphere_mesh(vec3(float(i % 3) - 1.0f, float(i / 3) - 0.5f, -float(i) * 0.3f), 0.7f, 64, 32));
   meshes.push_back(grid_mesh(64, 5.0f, -2.0f, 0.5f, 11));
   const Scene scene = scene_of(meshes);
   const Camera camera = look_at(vec3(0.2f, 0.3f, 4.0f), vec3(0), vec3(0, 1, 0), 60.0f, 300, 200);

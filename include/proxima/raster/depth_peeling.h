@@ -33,9 +33,9 @@ struct BehindLayerTest {
 };
 
 struct DepthPeelOptions {
-  int max_layers = 8;          // layers to peel at most
-  float min_separation = 0.0f; // ε above (relative depth); 0 = exact ordering only
-  RasterOptions raster;        // outputs (depth and triangle are always added), culling …
+  int max_layers = 8;           // layers to peel at most
+  float min_separation = 0.0f;  // ε above (relative depth); 0 = exact ordering only
+  RasterOptions raster;         // outputs (depth and triangle are always added), culling …
 };
 
 // Layers 0, 1, … front to back; stops after max_layers or at the first empty layer (not

@@ -43,8 +43,8 @@ enum RasterOutput : uint32_t {
 };
 inline constexpr uint32_t kRasterDepthId = kRasterDepth | kRasterTriangle;
 // G-buffer preset: everything a deferred shader or an image-based technique needs.
-inline constexpr uint32_t kRasterGBuffer = kRasterDepth | kRasterTriangle | kRasterBarycentric |
-                                           kRasterNormal | kRasterDiffuse | kRasterObject;
+inline constexpr uint32_t kRasterGBuffer =
+    kRasterDepth | kRasterTriangle | kRasterBarycentric | kRasterNormal | kRasterDiffuse | kRasterObject;
 inline constexpr uint32_t kNoObject = 0xFFFFFFFFu;
 
 enum class CullMode {
@@ -56,10 +56,12 @@ enum class CullMode {
 struct RasterOptions {
   uint32_t outputs = kRasterDepthId;  // RasterOutput bits
   CullMode cull = CullMode::None;
-  bool depth_test = true;   // false: every covered fragment goes to the fragment test and,
-                            // if kept, overwrites the pixel (coverage counting)
-  bool direct_light = false;  // kRasterDiffuse: albedo·(ambient + unshadowed Lambert point
-                              // lights) + emission instead of the bare albedo
+  // false: every covered fragment goes to the fragment test and, if kept, overwrites the
+  // pixel (coverage counting).
+  bool depth_test = true;
+  // kRasterDiffuse: albedo·(ambient + unshadowed Lambert point lights) + emission instead
+  // of the bare albedo.
+  bool direct_light = false;
   bool fragment_barycentrics = false;  // fill Fragment::u, v for the fragment test
   // What to draw (at most one non-empty; both empty = the whole scene):
   std::span<const uint32_t> objects;    // object ids, drawn in this order
@@ -71,16 +73,16 @@ struct RasterOptions {
 
 // What a call did (meshoptimizer-style statistics; counts are exact, times wall-clock).
 struct RasterStats {
-  uint64_t objects_drawn = 0;        // objects that survived view-frustum culling
-  uint64_t objects_culled = 0;       // objects whose bounds lie outside the frustum
-  uint64_t triangles_submitted = 0;  // triangles of the drawn objects / the id list
-  uint64_t triangles_culled = 0;     // back faces, degenerate after snapping, or outside
-  uint64_t triangles_clipped = 0;    // triangles that went through homogeneous clipping
-  uint64_t triangles_rasterized = 0; // screen triangles binned (clipping may split one)
-  uint64_t fragments_tested = 0;     // fragments that passed the depth test
-  uint64_t fragments_written = 0;    // fragments the fragment test kept
-  double geometry_ms = 0.0;          // transform, clip, setup, binning
-  double raster_ms = 0.0;            // tiles: coverage, depth, fragment test, resolve
+  uint64_t objects_drawn = 0;         // objects that survived view-frustum culling
+  uint64_t objects_culled = 0;        // objects whose bounds lie outside the frustum
+  uint64_t triangles_submitted = 0;   // triangles of the drawn objects / the id list
+  uint64_t triangles_culled = 0;      // back faces, degenerate after snapping, or outside
+  uint64_t triangles_clipped = 0;     // triangles that went through homogeneous clipping
+  uint64_t triangles_rasterized = 0;  // screen triangles binned (clipping may split one)
+  uint64_t fragments_tested = 0;      // fragments that passed the depth test
+  uint64_t fragments_written = 0;     // fragments the fragment test kept
+  double geometry_ms = 0.0;           // transform, clip, setup, binning
+  double raster_ms = 0.0;             // tiles: coverage, depth, fragment test, resolve
 };
 
 // Images a call fills, one per RasterOutput bit requested (the others are left alone).

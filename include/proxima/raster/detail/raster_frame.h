@@ -25,9 +25,9 @@ inline constexpr int kSubpixel = 1 << kSubpixelBits;
 
 // One screen triangle ready for coverage (a clipped triangle gives several).
 struct Setup {
-  int32_t x[3], y[3];       // 20.12 vertex positions, ordered so the signed area is > 0
-  int32_t x0, y0, x1, y1;   // inclusive range of pixels whose centers the bbox holds,
-                            // clamped to the viewport
+  int32_t x[3], y[3];      // 20.12 vertex positions, ordered so the signed area is > 0
+  int32_t x0, y0, x1, y1;  // inclusive range of pixels whose centers the bbox holds,
+                           // clamped to the viewport
   uint32_t triangle;
   // Planes over pixel offsets (fx, fy) = (x − x0, y − y0):
   //   value = p[0] + p[2]·fy + p[1]·fx   (evaluated in this order)
@@ -99,14 +99,12 @@ struct TileBuffer {
 
 FrameLease prepare_frame(const Scene& scene, const Camera& camera, const RasterOptions& options,
                          RasterImages& out);
-void resolve_tile(const Frame& frame, const Tile& tile, const TileBuffer& buffer,
-                  RasterImages& out);
+void resolve_tile(const Frame& frame, const Tile& tile, const TileBuffer& buffer, RasterImages& out);
 RasterStats finish_frame(const Frame& frame);
 
 // Coverage of one setup inside one tile.
 template <bool kDepthTest, bool kUV, typename Test>
-inline void raster_setup(const Setup& s, const Tile& tile, TileBuffer& buf, Test& test,
-                         TileCounts& counts) {
+inline void raster_setup(const Setup& s, const Tile& tile, TileBuffer& buf, Test& test, TileCounts& counts) {
   const int x0 = std::max(s.x0, tile.x0), x1 = std::min(s.x1, tile.x1 - 1);
   const int y0 = std::max(s.y0, tile.y0), y1 = std::min(s.y1, tile.y1 - 1);
   if (x0 > x1 || y0 > y1) return;
@@ -187,11 +185,15 @@ RasterStats rasterize(const Scene& scene, const Camera& camera, const RasterOpti
   parallel_for_tiles(camera.width, camera.height, raster_detail::kTileSize, [&](const Tile& tile) {
     raster_detail::TileBuffer buffer(frame.needs_uv);
     if (options.depth_test) {
-      if (frame.needs_uv) raster_detail::raster_tile<true, true>(frame, tile, buffer, test);
-      else raster_detail::raster_tile<true, false>(frame, tile, buffer, test);
+      if (frame.needs_uv)
+        raster_detail::raster_tile<true, true>(frame, tile, buffer, test);
+      else
+        raster_detail::raster_tile<true, false>(frame, tile, buffer, test);
     } else {
-      if (frame.needs_uv) raster_detail::raster_tile<false, true>(frame, tile, buffer, test);
-      else raster_detail::raster_tile<false, false>(frame, tile, buffer, test);
+      if (frame.needs_uv)
+        raster_detail::raster_tile<false, true>(frame, tile, buffer, test);
+      else
+        raster_detail::raster_tile<false, false>(frame, tile, buffer, test);
     }
     raster_detail::resolve_tile(frame, tile, buffer, out);
   });
