@@ -449,55 +449,97 @@ FrameLease prepare_frame(const Scene& scene, const Camera& camera, const RasterO
   return frame;
 }
 
+namespace {
+
+// What the resolve needs of one triangle, loaded once per run of pixels showing it.
+struct TriangleAttributes {
+  uint32_t id = kNoTriangle;
+  vec3 p[3]{}, n[3]{};
+  vec2 uv[3]{};
+  vec3 ng{0.0f};  // unit geometric normal turned towards the camera
+  const Material* material = nullptr;
+  const Texture* texture = nullptr;
+
+  void load(const Scene& scene, uint32_t t, vec3 eye) {
+    id = t;
+    const uvec3 idx = scene.triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      p[k] = scene.positions[idx[k]];
+      n[k] = scene.normals[idx[k]];
+      uv[k] = scene.uvs[idx[k]];
+    }
+    // The camera is on one side of the triangle's plane for all its points.
+    ng = triangle_normal(scene, t);
+    if (glm::dot(ng, p[0] - eye) > 0.0f) ng = -ng;
+    material = &scene.materials[scene.triangle_material[t]];
+    texture = material->diffuse_texture >= 0 ? &scene.textures[size_t(material->diffuse_texture)] : nullptr;
+  }
+};
+
+}  // namespace
+
+// Normals follow the reference renderer (trace/): the interpolated vertex normal, turned
+// into the hemisphere of the geometric normal that faces the camera.
 void resolve_tile(const Frame& frame, const Tile& tile, const TileBuffer& buffer, RasterImages& out) {
   const Scene& scene = *frame.scene;
   const uint32_t outputs = frame.outputs;
   const vec3 eye(frame.camera_position[0], frame.camera_position[1], frame.camera_position[2]);
   const int span = tile.x1 - tile.x0;
+  TriangleAttributes tri;
   for (int y = tile.y0; y < tile.y1; ++y) {
     const size_t row = size_t(y - tile.y0) * kTileSize;
     if (outputs & kRasterDepth) std::copy_n(&buffer.depth[row], span, &out.depth.at(tile.x0, y));
     if (outputs & kRasterTriangle) std::copy_n(&buffer.id[row], span, &out.triangle.at(tile.x0, y));
     if (!(outputs & (kRasterObject | kRasterBarycentric | kRasterNormal | kRasterDiffuse))) continue;
-    for (int x = tile.x0; x < tile.x1; ++x) {
-      const size_t i = row + size_t(x - tile.x0);
+    uint32_t* object_row = outputs & kRasterObject ? &out.object.at(tile.x0, y) : nullptr;
+    float* bary_row = outputs & kRasterBarycentric ? &out.barycentric.at(tile.x0, y) : nullptr;
+    float* normal_row = outputs & kRasterNormal ? &out.normal.at(tile.x0, y) : nullptr;
+    float* diffuse_row = outputs & kRasterDiffuse ? &out.diffuse.at(tile.x0, y) : nullptr;
+    for (int k = 0; k < span; ++k) {
+      const size_t i = row + size_t(k);
       const uint32_t t = buffer.id[i];
-      if (outputs & kRasterObject)
-        out.object.at(x, y) = t == kNoTriangle ? kNoObject : scene.triangle_object[t];
-      if (!(outputs & (kRasterBarycentric | kRasterNormal | kRasterDiffuse))) continue;
+      if (object_row) object_row[k] = t == kNoTriangle ? kNoObject : scene.triangle_object[t];
       const float u = t == kNoTriangle ? 0.0f : buffer.u[i];
       const float v = t == kNoTriangle ? 0.0f : buffer.v[i];
-      if (outputs & kRasterBarycentric) {
-        out.barycentric.at(x, y, 0) = u;
-        out.barycentric.at(x, y, 1) = v;
+      if (bary_row) {
+        bary_row[2 * k] = u;
+        bary_row[2 * k + 1] = v;
       }
+      if (!normal_row && !diffuse_row) continue;
       vec3 normal(0.0f), color(0.0f);
-      if (t != kNoTriangle && (outputs & (kRasterNormal | kRasterDiffuse))) {
-        const vec3 p = triangle_point(scene, t, u, v);
-        normal = shading_normal(scene, t, u, v);
-        if (glm::dot(normal, eye - p) < 0.0f) normal = -normal;
-        if (outputs & kRasterDiffuse) {
-          const vec3 albedo = surface_diffuse(scene, t, u, v);
+      if (t != kNoTriangle) {
+        if (tri.id != t) tri.load(scene, t, eye);
+        const float w = 1.0f - u - v;
+        normal = w * tri.n[0] + u * tri.n[1] + v * tri.n[2];
+        const float len = glm::length(normal);
+        normal = len > 0.0f ? normal / len : tri.ng;
+        if (glm::dot(normal, tri.ng) < 0.0f) normal = -normal;
+        if (diffuse_row) {
+          const vec3 albedo =
+              tri.texture ? tri.material->diffuse *
+                                sample_texture(*tri.texture, w * tri.uv[0] + u * tri.uv[1] + v * tri.uv[2])
+                          : tri.material->diffuse;
           color = albedo;
           if (frame.direct_light) {
-            // Unshadowed Lambert: albedo/π · I·cosθ/r² per point light, plus ambient·albedo
-            // and the material's emission.
+            // docs/shading.md without shadows and reflections: emission + ambient·albedo
+            // + (1 − s)·albedo/π·Σ I·max(0, cos θ)/r² over the point lights.
+            const vec3 p = w * tri.p[0] + u * tri.p[1] + v * tri.p[2];
             vec3 irradiance(0.0f);
             for (const PointLight& light : scene.point_lights) {
               const vec3 d = light.position - p;
               const float r2 = glm::dot(d, d);
-              const float cos_theta = glm::dot(normal, d) / std::sqrt(r2);
-              if (cos_theta > 0.0f && r2 > 0.0f) irradiance += light.intensity * (cos_theta / r2);
+              const float cos_theta = r2 > 0.0f ? glm::dot(normal, d) / std::sqrt(r2) : 0.0f;
+              if (cos_theta > 0.0f) irradiance += light.intensity * (cos_theta / r2);
             }
-            color = albedo * (irradiance / kPi + scene.ambient) +
-                    scene.materials[scene.triangle_material[t]].emission;
+            color = tri.material->emission + albedo * scene.ambient +
+                    (1.0f - tri.material->specular) * albedo / kPi * irradiance;
           }
         }
       }
-      if (outputs & kRasterNormal)
-        for (int c = 0; c < 3; ++c) out.normal.at(x, y, c) = normal[c];
-      if (outputs & kRasterDiffuse)
-        for (int c = 0; c < 3; ++c) out.diffuse.at(x, y, c) = color[c];
+      if (normal_row)
+        for (int c = 0; c < 3; ++c) normal_row[3 * k + c] = normal[c];
+      if (diffuse_row)
+        for (int c = 0; c < 3; ++c) diffuse_row[3 * k + c] = color[c];
     }
   }
 }

@@ -65,6 +65,31 @@ TEST(RasterBench, ClippingAgainstNearPlaneAndSidesAgreesWithEmbree) {
   }
 }
 
+TEST(RasterBench, GBufferMatchesTheItemBuffer) {
+  // Where the ids agree, normals and diffuse colors agree with the reference's.
+  const Scene scene = make_builtin_scene("bathroom");
+  const RayScene rays(scene);
+  Camera camera = scene.cameras.front().camera;
+  camera.width = camera.height = 128;
+  const ItemBuffer reference = trace_item_buffer(scene, rays, camera);
+  RasterOptions options;
+  options.outputs = kRasterGBuffer;
+  const RasterImages g = rasterize(scene, camera, options);
+  size_t compared = 0;
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      const uint32_t t = g.triangle.at(x, y);
+      if (t == kNoTriangle || t != reference.triangle.at(x, y)) continue;
+      ++compared;
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(g.normal.at(x, y, c), reference.normal.at(x, y, c), 2e-3f);
+      const vec3 albedo =
+          surface_diffuse(scene, t, reference.barycentric.at(x, y, 0), reference.barycentric.at(x, y, 1));
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(g.diffuse.at(x, y, c), albedo[c], 2e-2f);
+      EXPECT_EQ(g.object.at(x, y), scene.triangle_object[t]);
+    }
+  EXPECT_GT(compared, 15000u);
+}
+
 TEST(RasterBench, ReportsOneTimingPerThreadCount) {
   const Scene scene = make_builtin_scene("cornell");
   Camera camera = scene.cameras.front().camera;

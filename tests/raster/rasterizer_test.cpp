@@ -178,6 +178,22 @@ TEST(Rasterizer, KnownDepthAndBarycentricsOnAQuad) {
   EXPECT_EQ(covered, 64u * 64u);  // the quad fills the 20° view at distance 4
 }
 
+TEST(Rasterizer, DirectLightIsUnshadowedLambert) {
+  // Quad at distance 4 facing the camera, point light 2 m in front of its center: the
+  // pixel at the center receives I·cos 0/r² = I/4, diffuse radiance albedo/π·I/4.
+  Mesh m;
+  m.positions = {{-1, -1, -4}, {1, -1, -4}, {1, 1, -4}, {-1, 1, -4}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  Scene scene = scene_of({m});
+  scene.point_lights.push_back({vec3(0, 0, -2), vec3(8.0f)});
+  const Camera camera = look_at(vec3(0, 0, 0), vec3(0, 0, -1), vec3(0, 1, 0), 20.0f, 64, 64);
+  RasterOptions options;
+  options.outputs = kRasterDiffuse;
+  options.direct_light = true;
+  const RasterImages img = rasterize(scene, camera, options);
+  EXPECT_NEAR(img.diffuse.at(32, 32, 1), 0.8f / kPi * 2.0f, 2e-3f);
+}
+
 TEST(Rasterizer, PerspectiveCorrectOnASlantedPlane) {
   // A floor seen at a grazing angle: depth and barycentrics agree with the ray/plane
   // intersection (perspective-correct interpolation), not with screen-linear ones.

@@ -35,8 +35,8 @@ enum RasterOutput : uint32_t {
   kRasterDepth = 1u << 0,        // ImageF, 1 channel: −z_cam, +inf where empty
   kRasterTriangle = 1u << 1,     // ImageU32, 1 channel: triangle id, kNoTriangle where empty
   kRasterBarycentric = 1u << 2,  // ImageF, 2 channels: Embree (u, v), 0 where empty
-  kRasterNormal = 1u << 3,       // ImageF, 3 channels: unit world shading normal facing the
-                                 // camera, 0 where empty
+  kRasterNormal = 1u << 3,       // ImageF, 3 channels: unit world shading normal on the
+                                 // camera's side (as trace/), 0 where empty
   kRasterDiffuse = 1u << 4,      // ImageF, 3 channels: linear RGB diffuse albedo (texture
                                  // applied), optionally lit (RasterOptions::direct_light)
   kRasterObject = 1u << 5,       // ImageU32, 1 channel: object id, kNoObject where empty
@@ -59,8 +59,9 @@ struct RasterOptions {
   // false: every covered fragment goes to the fragment test and, if kept, overwrites the
   // pixel (coverage counting).
   bool depth_test = true;
-  // kRasterDiffuse: albedo·(ambient + unshadowed Lambert point lights) + emission instead
-  // of the bare albedo.
+  // kRasterDiffuse: the diffuse part of docs/shading.md without shadows or reflections —
+  // emission + ambient·albedo + (1 − s)·albedo/π·Σ I·cos θ/r² over the point lights (area
+  // lights are left to techniques that sample them) — instead of the bare albedo.
   bool direct_light = false;
   bool fragment_barycentrics = false;  // fill Fragment::u, v for the fragment test
   // What to draw (at most one non-empty; both empty = the whole scene):
