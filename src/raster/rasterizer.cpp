@@ -333,9 +333,7 @@ FrameLease prepare_frame(const Scene& scene, const Camera& camera, const RasterO
   f.direct_light = options.direct_light;
   f.needs_uv = options.fragment_barycentrics ||
                (options.outputs & (kRasterBarycentric | kRasterNormal | kRasterDiffuse));
-  f.camera_position[0] = camera.position.x;
-  f.camera_position[1] = camera.position.y;
-  f.camera_position[2] = camera.position.z;
+  f.camera_position = camera.position;
   f.tile_counts.assign(size_t(f.tiles_x) * size_t(f.tiles_y), TileCounts{});
   f.objects_drawn = f.objects_culled = 0;
 
@@ -483,7 +481,7 @@ struct TriangleAttributes {
 void resolve_tile(const Frame& frame, const Tile& tile, const TileBuffer& buffer, RasterImages& out) {
   const Scene& scene = *frame.scene;
   const uint32_t outputs = frame.outputs;
-  const vec3 eye(frame.camera_position[0], frame.camera_position[1], frame.camera_position[2]);
+  const vec3 eye = frame.camera_position;
   const int span = tile.x1 - tile.x0;
   TriangleAttributes tri;
   for (int y = tile.y0; y < tile.y1; ++y) {

@@ -69,7 +69,7 @@ struct Frame {
   uint32_t outputs = 0;
   bool direct_light = false;
   bool needs_uv = false;
-  float camera_position[3] = {0, 0, 0};
+  vec3 camera_position{0.0f};
   std::vector<ClipVertex> vertices;  // by scene vertex index; only drawn objects' are set
   std::vector<DrawRun> runs;
   const uint32_t* id_list = nullptr;  // RasterOptions::triangles, or null
