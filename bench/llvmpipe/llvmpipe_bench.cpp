@@ -21,6 +21,7 @@
 #include <GL/gl.h>
 #include <GL/glext.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -135,10 +136,10 @@ int main(int argc, char** argv) {
   if (scene.cameras.empty()) die(2, "scene " + args.scene + " has no camera");
   Camera camera = scene.cameras.front().camera;
   if (!args.camera.empty()) {
-    bool found = false;
-    for (const NamedCamera& c : scene.cameras)
-      if (c.name == args.camera) camera = c.camera, found = true;
-    if (!found) die(2, "scene " + args.scene + " has no camera " + args.camera);
+    const auto named = std::find_if(scene.cameras.begin(), scene.cameras.end(),
+                                    [&](const NamedCamera& c) { return c.name == args.camera; });
+    if (named == scene.cameras.end()) die(2, "scene " + args.scene + " has no camera " + args.camera);
+    camera = named->camera;
   }
   camera.width = args.width;
   camera.height = args.height;
