@@ -47,6 +47,7 @@ enum : uint32_t {
   kGuardRight = 1u << 7,  // X > (width + G)·W
   kGuardTop = 1u << 8,
   kGuardBottom = 1u << 9,
+  kNotFinite = 1u << 10,  // NaN or infinite clip coordinates: the triangle is dropped
 };
 constexpr uint32_t kRejectMask = kOutLeft | kOutRight | kOutTop | kOutBottom | kOutNear | kOutFar;
 constexpr uint32_t kClipMask = kOutNear | kOutFar | kGuardLeft | kGuardRight | kGuardTop | kGuardBottom;
@@ -240,6 +241,10 @@ void build_chunk(const Frame& frame, const ClipSpace& cs, bool cull_back, uint64
       ++chunk.culled;
       continue;
     }
+    if ((v[0]->code | v[1]->code | v[2]->code) & kNotFinite) {
+      ++chunk.culled;
+      continue;
+    }
     const uint32_t any = (v[0]->code | v[1]->code | v[2]->code) & kClipMask;
     if (!any) {
       const SetupVertex a{v[0]->fx, v[0]->fy, 1.0f / v[0]->W, 0.0f, 0.0f};
@@ -402,7 +407,8 @@ FrameLease prepare_frame(const Scene& scene, const Camera& camera, const RasterO
         v.X = glm::dot(cs.row_x, p);
         v.Y = glm::dot(cs.row_y, p);
         v.W = glm::dot(cs.row_w, p);
-        v.code = cs.outcode(v.X, v.Y, v.W);
+        const bool finite = std::isfinite(v.X) && std::isfinite(v.Y) && std::isfinite(v.W);
+        v.code = finite ? cs.outcode(v.X, v.Y, v.W) : kNotFinite;
         v.fx = v.fy = 0;
         if (!(v.code & kClipMask)) {
           v.fx = snap(v.X, v.W);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
@@ -331,6 +332,22 @@ TEST(Rasterizer, DegenerateAndEmptyInputsDrawNothing) {
     for (uint32_t t : img.triangle.data()) EXPECT_EQ(t, kNoTriangle);
     for (float d : img.depth.data()) EXPECT_EQ(d, kInf);
   }
+}
+
+TEST(Rasterizer, NonFiniteVerticesDropTheirTrianglesOnly) {
+  Mesh m;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  m.positions = {{-1, -1, -3}, {1, -1, -3}, {0, 1, -3}, {nan, 0, -3}, {kInf, 0, -3}, {0, -kInf, -3}};
+  m.triangles = {{0, 1, 3}, {0, 4, 2}, {5, 1, 2}, {0, 1, 2}};
+  Scene scene;
+  const uint32_t mat = add_material(scene, Material{});
+  add_object(scene, m, "m", mat);  // unsanitized on purpose
+  const Camera camera = look_at(vec3(0), vec3(0, 0, -1), vec3(0, 1, 0), 60.0f, 32, 32);
+  RasterStats stats;
+  const RasterImages img = rasterize(scene, camera, {}, &stats);
+  for (uint32_t t : img.triangle.data()) EXPECT_TRUE(t == 3 || t == kNoTriangle);
+  EXPECT_EQ(img.triangle.at(16, 16), 3u);
+  EXPECT_EQ(stats.triangles_culled, 3u);
 }
 
 TEST(Rasterizer, TriangleSubsetDrawsOnlyThoseTriangles) {
