@@ -358,6 +358,7 @@ FrameLease prepare_frame(const Scene& scene, const Camera& camera, const RasterO
   std::vector<uint32_t> drawn;
   f.object_visible.assign(std::max<size_t>(object_count, 1), 0);
   auto consider = [&](uint32_t o) {
+    assert(o < object_count);
     if (f.object_visible[o]) return;
     const Bounds3 b = options.object_bounds.empty() ? object_bounds(scene, o) : options.object_bounds[o];
     if (bounds_visible(cs, b)) {
