@@ -23,14 +23,18 @@ struct Hit {
 
 class RayScene {
  public:
-  // Builds the BVH over the scene's triangles (rest pose or already posed).
+  // Builds the BVH over the scene's triangles (rest pose or already posed): Embree's
+  // high-quality SAH build, robust (watertight) triangle tests. Embree failures (e.g. out
+  // of memory) throw std::runtime_error.
   explicit RayScene(const Scene& scene);
   ~RayScene();
   RayScene(const RayScene&) = delete;
   RayScene& operator=(const RayScene&) = delete;
 
   // Moves the vertices to those of `posed` (same topology as the scene built from) and
-  // refits the BVH.
+  // refits the BVH. The first update rebuilds once into a refittable two-level BVH; later
+  // ones only refit (≈25 ms for 1M triangles). A different vertex or triangle count throws
+  // std::logic_error.
   void update(const Scene& posed);
 
   // Closest hit in [ray.tmin, ray.tmax].
@@ -38,7 +42,8 @@ class RayScene {
   // True if anything is hit in [ray.tmin, ray.tmax].
   bool occluded(const Ray& ray) const;
 
-  // Batched, parallel over chunks of rays; hits.size() == rays.size().
+  // Batched, parallel over fixed chunks of rays; results are bit-identical to the
+  // single-ray calls. hits.size() == rays.size() (else std::logic_error).
   void intersect(std::span<const Ray> rays, std::span<Hit> hits) const;
   void occluded(std::span<const Ray> rays, std::span<uint8_t> blocked) const;
 

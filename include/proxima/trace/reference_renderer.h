@@ -14,26 +14,31 @@
 
 namespace proxima {
 
-// Primary visibility at pixel centers.
+// Primary visibility at pixel centers (rays clipped to the camera's [near, far] depth range).
 struct ItemBuffer {
-  ImageU32 triangle;  // 1 channel; kNoTriangle where nothing was hit
-  ImageF depth;       // 1 channel; −z_cam of the hit, +inf where nothing was hit
-  ImageF normal;      // 3 channels; unit shading normal facing the camera, 0 on miss
-  ImageF position;    // 3 channels; world position, 0 on miss
-  ImageF barycentric; // 2 channels; Embree (u, v)
+  ImageU32 triangle;   // 1 channel; kNoTriangle where nothing was hit
+  ImageF depth;        // 1 channel; −z_cam of the hit, +inf where nothing was hit
+  ImageF normal;       // 3 channels; unit shading normal facing the camera, 0 on miss
+  ImageF position;     // 3 channels; world position, 0 on miss
+  ImageF barycentric;  // 2 channels; Embree (u, v)
 };
 
+// `rays` must be built from `scene` (or updated to it). Throws InputError for an invalid camera.
 ItemBuffer trace_item_buffer(const Scene& scene, const RayScene& rays, const Camera& camera);
 
+// Sampling of render_reference (docs/shading.md); out-of-range values throw InputError.
 struct ReferenceOptions {
-  int supersample = 1;          // k: k×k stratified sub-pixel samples (1 = pixel center)
-  int area_light_samples = 4;   // n: n×n stratified samples per area light
-  int glossy_rays = 16;         // rays in the glossy lobe per shading point (gloss > 0)
-  int max_bounces = 2;          // reflection depth; 0 = no reflections
-  uint64_t seed = 1;
+  int supersample = 1;         // k in [1, 64]: k×k sub-pixel samples at the cell centers of
+                               // a regular grid (1 = pixel center), averaged
+  int area_light_samples = 4;  // n in [1, 256]: n×n jittered stratified samples per area light
+  int glossy_rays = 16;        // [1, 4096] rays in the glossy lobe (gloss > 0) at the first
+                               // bounce; deeper bounces follow the mirror direction only
+  int max_bounces = 2;         // reflection depth in [0, 64]; 0 = no reflections
+  uint64_t seed = 1;           // sub-sample streams: derive_seed(seed, pixel index, sub-sample)
 };
 
-// Linear RGB, 3 channels.
+// The reference image: linear RGB, 3 channels, camera.width × camera.height.
+// Throws InputError for an invalid camera (validate_camera) or options.
 ImageF render_reference(const Scene& scene, const RayScene& rays, const Camera& camera,
                         const ReferenceOptions& options);
 

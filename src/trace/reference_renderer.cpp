@@ -1,0 +1,218 @@
+// The reference renderer: Whitted-style ray tracing of the shared shading model
+// (docs/shading.md, scene/shading.h) with Embree. Every approximation is judged against it.
+//
+// Per (sub-)sample: primary ray → closest hit → emission + ambient + Lambert direct light
+// (shadow ray per point light, n×n stratified shadow rays per area light) + s × reflected
+// radiance. Reflections recurse up to max_bounces; the glossy lobe (glossy_rays stratified
+// rays) is sampled only at the first bounce, deeper bounces follow the mirror ray alone.
+// Escaping rays read environment_radiance().
+#include "proxima/trace/reference_renderer.h"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "proxima/core/error.h"
+#include "proxima/core/parallel.h"
+#include "proxima/core/rng.h"
+#include "proxima/scene/shading.h"
+
+namespace proxima {
+namespace {
+
+constexpr int kTileSize = 16;
+
+// Secondary rays start this far (× scene diagonal) off the surface, along the geometric
+// normal on the side they leave from, so they do not re-hit their own triangle.
+constexpr float kRelativeEpsilon = 1e-4f;
+
+struct SurfacePoint {
+  vec3 p;
+  vec3 n;   // unit shading normal, on the side the ray came from
+  vec3 ng;  // unit geometric normal, same side
+  const Material* material;
+};
+
+// The hit seen along `dir`: the geometric normal flipped to face back along the ray, the
+// shading normal flipped into its hemisphere (vertex normals may disagree with the winding).
+SurfacePoint surface_point(const Scene& scene, const Hit& hit, vec3 dir) {
+  SurfacePoint sp;
+  sp.p = triangle_point(scene, hit.triangle, hit.u, hit.v);
+  sp.ng = triangle_normal(scene, hit.triangle);
+  if (glm::dot(sp.ng, dir) > 0.0f) sp.ng = -sp.ng;
+  sp.n = shading_normal(scene, hit.triangle, hit.u, hit.v);
+  if (glm::dot(sp.n, sp.ng) < 0.0f) sp.n = -sp.n;
+  sp.material = &scene.materials[scene.triangle_material[hit.triangle]];
+  return sp;
+}
+
+// Primary ray through continuous pixel coordinates, clipped to the camera's [near, far]
+// slab like a rasterizer's depth range.
+Ray primary_ray(const Camera& camera, vec3 forward, vec2 pixel) {
+  Ray ray = ray_through(camera, pixel);
+  float cos_axis = glm::dot(ray.dir, forward) / glm::length(ray.dir);
+  ray.tmin = camera.near / cos_axis;
+  ray.tmax = camera.far / cos_axis;
+  return ray;
+}
+
+class Tracer {
+ public:
+  Tracer(const Scene& scene, const RayScene& rays, const ReferenceOptions& options)
+      : scene_(scene),
+        rays_(rays),
+        options_(options),
+        epsilon_(kRelativeEpsilon * std::max(scene_bounds(scene).diagonal(), 1e-3f)) {}
+
+  // Radiance arriving along `ray` (towards its origin). `bounce` = reflections taken so far.
+  // `lobe` is scratch for options.glossy_rays samples; only bounce 0 fills it, so the
+  // recursion can pass it on.
+  vec3 radiance(const Ray& ray, int bounce, Pcg32& rng, std::span<vec2> lobe) const {
+    Hit hit = rays_.intersect(ray);
+    if (!hit.valid()) return environment_radiance(scene_.environment, ray.dir);
+    SurfacePoint sp = surface_point(scene_, hit, ray.dir);
+    const Material& m = *sp.material;
+
+    ShadingTerms terms;
+    terms.emission = m.emission;
+    terms.ambient = scene_.ambient;
+    terms.albedo = surface_diffuse(scene_, hit.triangle, hit.u, hit.v);
+    terms.specular = m.specular;
+    // Direct light is weighted by (1 − s)·albedo: skip its shadow rays when that is zero.
+    if (m.specular < 1.0f && terms.albedo != vec3(0.0f)) terms.direct_irradiance = direct(sp, rng);
+
+    if (m.specular > 0.0f && bounce < options_.max_bounces) {
+      vec3 mirror = reflect(glm::normalize(ray.dir), sp.n);
+      Ray reflected{offset_origin(sp), mirror, 0.0f, kInf};
+      float half_angle = glossy_lobe_half_angle(m.gloss);
+      if (bounce == 0 && half_angle > 0.0f) {
+        stratified_samples_2d(lobe, rng);
+        vec3 sum(0.0f);
+        for (vec2 u : lobe) {
+          reflected.dir = glossy_lobe_direction(mirror, sp.ng, half_angle, u);
+          sum += radiance(reflected, bounce + 1, rng, lobe);
+        }
+        terms.reflected = sum / float(lobe.size());
+      } else {
+        // A shading normal may tilt the mirror ray under the surface: fold it back up.
+        reflected.dir = glossy_lobe_direction(mirror, sp.ng, 0.0f, vec2(0.0f));
+        terms.reflected = radiance(reflected, bounce + 1, rng, lobe);
+      }
+    }
+    return combine_shading(terms);
+  }
+
+ private:
+  vec3 offset_origin(const SurfacePoint& sp) const { return sp.p + epsilon_ * sp.ng; }
+
+  // Unoccluded from `origin` to `target`; the segment stops epsilon short of the target so
+  // a luminaire modelled as geometry at the light's position does not shadow itself.
+  bool visible(vec3 origin, vec3 target) const {
+    vec3 d = target - origin;
+    float length = glm::length(d);
+    if (length <= epsilon_) return true;
+    return !rays_.occluded(Ray{origin, d, 0.0f, 1.0f - epsilon_ / length});
+  }
+
+  // Σ over lights of the shadowed irradiance at sp.
+  vec3 direct(const SurfacePoint& sp, Pcg32& rng) const {
+    vec3 origin = offset_origin(sp);
+    vec3 sum(0.0f);
+    for (const PointLight& light : scene_.point_lights) {
+      vec3 e = point_light_irradiance(light, sp.p, sp.n);
+      if (e != vec3(0.0f) && visible(origin, light.position)) sum += e;
+    }
+    int n = options_.area_light_samples;
+    for (const AreaLight& light : scene_.area_lights) {
+      vec3 light_sum(0.0f);
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          float xi1 = rng.next_float();
+          float xi2 = rng.next_float();
+          vec2 ab = stratum_sample(i, j, n, xi1, xi2);
+          vec3 q = light.point(ab.x, ab.y);
+          vec3 e = area_light_sample_irradiance(light, q, sp.p, sp.n);
+          if (e != vec3(0.0f) && visible(origin, q)) light_sum += e;
+        }
+      sum += light_sum / float(n * n);
+    }
+    return sum;
+  }
+
+  const Scene& scene_;
+  const RayScene& rays_;
+  const ReferenceOptions& options_;
+  float epsilon_;
+};
+
+void validate_options(const ReferenceOptions& o) {
+  auto require = [](bool ok, const std::string& what) {
+    if (!ok) fail_input("reference renderer: " + what);
+  };
+  require(o.supersample >= 1 && o.supersample <= 64, "supersample must be in [1, 64]");
+  require(o.area_light_samples >= 1 && o.area_light_samples <= 256, "area light samples must be in [1, 256]");
+  require(o.glossy_rays >= 1 && o.glossy_rays <= 4096, "glossy rays must be in [1, 4096]");
+  require(o.max_bounces >= 0 && o.max_bounces <= 64, "max bounces must be in [0, 64]");
+}
+
+}  // namespace
+
+ItemBuffer trace_item_buffer(const Scene& scene, const RayScene& rays, const Camera& camera) {
+  validate_camera(camera, "item buffer camera");
+  int w = camera.width;
+  int h = camera.height;
+  ItemBuffer out{ImageU32(w, h, 1, kNoTriangle), ImageF(w, h, 1, kInf), ImageF(w, h, 3, 0.0f),
+                 ImageF(w, h, 3, 0.0f), ImageF(w, h, 2, 0.0f)};
+  vec3 forward = camera_forward(camera);
+  parallel_for_tiles(w, h, kTileSize, [&](const Tile& tile) {
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x) {
+        Ray ray = primary_ray(camera, forward, vec2(float(x) + 0.5f, float(y) + 0.5f));
+        Hit hit = rays.intersect(ray);
+        if (!hit.valid()) continue;
+        SurfacePoint sp = surface_point(scene, hit, ray.dir);
+        out.triangle.at(x, y) = hit.triangle;
+        out.depth.at(x, y) = hit.t * glm::dot(ray.dir, forward);
+        for (int c = 0; c < 3; ++c) {
+          out.normal.at(x, y, c) = sp.n[c];
+          out.position.at(x, y, c) = sp.p[c];
+        }
+        out.barycentric.at(x, y, 0) = hit.u;
+        out.barycentric.at(x, y, 1) = hit.v;
+      }
+  });
+  return out;
+}
+
+ImageF render_reference(const Scene& scene, const RayScene& rays, const Camera& camera,
+                        const ReferenceOptions& options) {
+  validate_camera(camera, "reference camera");
+  validate_options(options);
+  int w = camera.width;
+  int h = camera.height;
+  int k = options.supersample;
+  ImageF out(w, h, 3, 0.0f);
+  vec3 forward = camera_forward(camera);
+  Tracer tracer(scene, rays, options);
+  parallel_for_tiles(w, h, kTileSize, [&](const Tile& tile) {
+    std::vector<vec2> lobe(size_t(options.glossy_rays));
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x) {
+        uint64_t pixel_index = uint64_t(y) * uint64_t(w) + uint64_t(x);
+        vec3 sum(0.0f);
+        // k×k sub-pixel samples at the centers of a regular grid (the pixel center for
+        // k = 1), each with its own random stream; summed in a fixed order.
+        for (int sj = 0; sj < k; ++sj)
+          for (int si = 0; si < k; ++si) {
+            Pcg32 rng(derive_seed(options.seed, pixel_index, uint64_t(sj * k + si)));
+            vec2 pixel{float(x) + (float(si) + 0.5f) / float(k), float(y) + (float(sj) + 0.5f) / float(k)};
+            sum += tracer.radiance(primary_ray(camera, forward, pixel), 0, rng, lobe);
+          }
+        vec3 color = sum / float(k * k);
+        for (int c = 0; c < 3; ++c) out.at(x, y, c) = color[c];
+      }
+  });
+  return out;
+}
+
+}  // namespace proxima
