@@ -82,8 +82,9 @@ vec3 area_light_sample_irradiance(const AreaLight& light, vec3 light_point, vec3
 }
 
 vec3 combine_shading(const ShadingTerms& t) {
-  return t.emission + t.ambient * t.albedo +
-         (1.0f - t.specular) * t.albedo * (1.0f / kPi) * t.direct_irradiance + t.specular * t.reflected;
+  // Ambient stands for diffuse indirect light, so it is weighted like the diffuse part.
+  return t.emission + (1.0f - t.specular) * t.albedo * (t.ambient + (1.0f / kPi) * t.direct_irradiance) +
+         t.specular * t.reflected;
 }
 
 }  // namespace proxima

@@ -50,6 +50,9 @@ struct Minimum {
   size_t cameras;
 };
 
+// Names the parameter in test listings instead of dumping its bytes.
+void PrintTo(const Minimum& m, std::ostream* os) { *os << m.name; }
+
 constexpr Minimum kMinimums[] = {
     {"cornell", 7 * 128, 2, 0, 1},
     {"room-reflector", 2176, 1, 1, 2},

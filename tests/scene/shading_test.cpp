@@ -138,8 +138,8 @@ TEST(Shading, CombineFollowsTheDocumentedFormula) {
   t.direct_irradiance = vec3(kPi);
   t.reflected = vec3(4.0f);
   vec3 l = combine_shading(t);
-  EXPECT_NEAR(l.x, 0.1f + 0.1f + 0.75f * 0.5f + 1.0f, 1e-6f);
-  EXPECT_NEAR(l.y, 0.2f + 0.75f * 1.0f + 1.0f, 1e-6f);
+  EXPECT_NEAR(l.x, 0.1f + 0.75f * 0.5f * (0.2f + 1.0f) + 1.0f, 1e-6f);
+  EXPECT_NEAR(l.y, 0.75f * 1.0f * (0.2f + 1.0f) + 1.0f, 1e-6f);
   EXPECT_NEAR(l.z, 1.0f, 1e-6f);
 }
 

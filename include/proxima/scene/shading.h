@@ -4,7 +4,7 @@
 // around the mirror direction. Pure math: no ray casting here, so rasterizer-based
 // techniques and the reference renderer (trace/) evaluate exactly the same formulas.
 //
-//   L = emission + ambient·albedo + (1 − s)·albedo/π·Σ_lights E + s·L_reflected
+//   L = emission + (1 − s)·albedo·(ambient + Σ_lights E/π) + s·L_reflected
 //
 // Units: radiance in linear RGB; E is irradiance (intensity / r² for a point light);
 // directions are world space; all angles in radians unless the name says _deg.
@@ -70,7 +70,7 @@ struct ShadingTerms {
   vec3 reflected{0.0f};          // mean radiance over the lobe (or mirror) rays
 };
 
-// L = emission + ambient·albedo + (1 − s)·albedo/π·direct_irradiance + s·reflected.
+// L = emission + (1 − s)·albedo·(ambient + direct_irradiance/π) + s·reflected.
 vec3 combine_shading(const ShadingTerms& terms);
 
 }  // namespace proxima
