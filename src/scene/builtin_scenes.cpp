@@ -14,6 +14,7 @@
 
 #include "proxima/core/error.h"
 #include "proxima/scene/procedural.h"
+#include "proxima/scene/sampling_scenes.h"
 
 namespace proxima {
 namespace {
@@ -571,6 +572,10 @@ constexpr Entry kScenes[] = {
      make_living_room},
     {"bathroom", "bathroom with mirror, glossy tiles and chrome fixtures, ~90k triangles",
      make_bathroom},
+    {"nest", "bird nest of ~5,500 interwoven twigs in a bowl, ~67k triangles (depth-image sampling)", make_nest_scene},
+    {"grass", "patch of ~4,600 double-sided grass blades, ~56k triangles (depth-image sampling)", make_grass_scene},
+    {"city", "64 x 64 grid of box buildings, ~50k triangles (depth-image sampling)", make_city_scene},
+    {"tree", "branching tree with ~25k double-sided leaves, ~113k triangles (depth-image sampling)", make_tree_scene},
 };
 
 }  // namespace
