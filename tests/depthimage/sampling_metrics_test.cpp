@@ -59,11 +59,11 @@ INSTANTIATE_TEST_SUITE_P(Nrr, SamplingMetricsOf, testing::Values(Redundancy::Pix
                          param_name);
 
 TEST(SamplingMetrics, ClutterNrrZeroRedundancyAndMoreAvailable) {
-  const Scene scene = make_builtin_scene("living-room");
+  const Scene scene = make_builtin_scene("city");
   const RayScene rays(scene);
   Camera base = scene.cameras[0].camera;
   base.width = base.height = 96;
-  const ViewSet set = make_view_set(ViewShape::Triangle, base, 0.3f, 3.0f);
+  const ViewSet set = make_view_set(ViewShape::Triangle, base, 5.0f, 60.0f);
   const std::vector<Camera> cams = corners(set);
   for (Redundancy r : {Redundancy::Pixel, Redundancy::Visibility}) {
     const std::vector<std::vector<DepthImage>> sets = {
@@ -76,9 +76,10 @@ TEST(SamplingMetrics, ClutterNrrZeroRedundancyAndMoreAvailable) {
     for (size_t i = 0; i < 3; ++i) EXPECT_EQ(m[1].redundant[i], 0u) << redundancy_name(r) << " " << i;
     EXPECT_GT(m[0].redundant_pct[1], 20.0);
     EXPECT_GT(m[1].occluded_pct[2], m[0].occluded_pct[2]);
-    // Not asserted: NRR ≥ conventional availability. Here (small baseline, sub-pixel
-    // triangles) the conventional set wins: it holds each visible triangle up to three
-    // times, and pixel redundancy is not transitive (docs/depthimage.md).
+    // Not asserted: NRR ≥ conventional availability. It depends on the scene and the
+    // resolution (on living-room at 96² the conventional set won: it holds each visible
+    // triangle up to three times, and pixel redundancy is not transitive;
+    // docs/depthimage.md).
     EXPECT_LE(m[1].available_min_pct, m[1].available_avg_pct);
     if (r == Redundancy::Pixel) {
       // Peeled layers are disjoint per pixel: a later layer never holds a triangle an

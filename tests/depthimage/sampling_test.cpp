@@ -57,13 +57,13 @@ TEST_P(Figure11, NrrCapturesCWhichConventionalAndTwoLayerPeelingMiss) {
 INSTANTIATE_TEST_SUITE_P(Nrr, Figure11, testing::Values(Redundancy::Pixel, Redundancy::Visibility),
                          param_name);
 
-// A cluttered scene where redundancy and occlusion are everywhere.
-Scene clutter() { return make_builtin_scene("living-room"); }
+// A cluttered scene where redundancy and occlusion are everywhere (box canyons).
+Scene clutter() { return make_builtin_scene("city"); }
 
 ViewSet clutter_views(const Scene& scene, int size) {
   Camera base = scene.cameras[0].camera;
   base.width = base.height = size;
-  return make_view_set(ViewShape::Triangle, base, 0.3f, 3.0f);
+  return make_view_set(ViewShape::Triangle, base, 5.0f, 60.0f);
 }
 
 class NrrOnClutter : public testing::TestWithParam<Redundancy> {
