@@ -15,6 +15,7 @@
 #include "proxima/core/error.h"
 #include "proxima/scene/procedural.h"
 #include "proxima/scene/sampling_scenes.h"
+#include "proxima/scene/visibility_models.h"
 
 namespace proxima {
 namespace {
@@ -572,6 +573,13 @@ constexpr Entry kScenes[] = {
      make_living_room},
     {"bathroom", "bathroom with mirror, glossy tiles and chrome fixtures, ~90k triangles",
      make_bathroom},
+    {"rooms", "visibility test: 2 rooms joined by a door, 20 polygons", make_vis_rooms},
+    {"maze", "visibility test: maze with off-axis walls, ~325 polygons", make_vis_maze},
+    {"arena", "visibility test: game arena with blocks and platforms, ~667 polygons", make_vis_arena},
+    {"vcity", "visibility test: city of 225 box buildings, 1,126 polygons", make_vis_vcity},
+    {"floor", "visibility test: office floor, 60 offices, ~1,750 polygons", make_vis_floor},
+    {"building", "visibility test: 5 office floors with a stairwell, ~9,700 polygons (proxima visibility --floors N)",
+     [] { return make_vis_building(5); }},
     {"nest", "bird nest of ~5,500 interwoven twigs in a bowl, ~67k triangles (depth-image sampling)", make_nest_scene},
     {"grass", "patch of ~4,600 double-sided grass blades, ~56k triangles (depth-image sampling)", make_grass_scene},
     {"city", "64 x 64 grid of box buildings, ~50k triangles (depth-image sampling)", make_city_scene},
