@@ -9,7 +9,7 @@
 //   I_i                  images[i] (DepthImage)
 //   s (sample)           a Fragment: pixel (x, y), depth, triangle t
 //   a (s unprojected)    unproject(from, pixel center, depth)
-//   b = V_j a ∩ S        first hit of the segment V_j → a (RayScene::occluded up to a − ε)
+//   b = V_j a ∩ S        first front-facing hit of the segment V_j → a (up to a − ε)
 //   r, t_r               reprojected pixel in I_j, against.triangle at r
 //   "z-buffer test"      the rasterizer's (depth, id) depth test; the redundancy loop over
 //                        j < i is the fragment test (NonRedundantTest)
@@ -24,6 +24,10 @@
 #include "proxima/raster/depth_peeling.h"
 
 namespace proxima {
+
+namespace {
+constexpr int kMaxBackFaces = 8;  // back-facing hits the visibility ray walks past
+}  // namespace
 
 const char* redundancy_name(Redundancy r) { return r == Redundancy::Pixel ? "pixel" : "visibility"; }
 
@@ -55,7 +59,17 @@ bool RedundancyTest::operator()(int x, int y, float depth, uint32_t triangle) co
   ray.dir = d;
   ray.tmin = 0.0f;
   ray.tmax = 1.0f - epsilon_ / length;  // b closer than a − ε means occluded
-  return !rays_->occluded(ray);
+  // Back faces do not occlude: the images cull them, and a closed or double-sided
+  // surface always has a front face in front of its back face — except where a thin
+  // double-sided sliver (a blade tip) is narrower than a pixel and only one of its two
+  // sides covers the pixel center. So walk past back-facing hits.
+  for (int k = 0; k < kMaxBackFaces; ++k) {
+    const Hit hit = rays_->intersect(ray);
+    if (!hit.valid()) return true;
+    if (glm::dot(triangle_normal(*scene_, hit.triangle), d) < 0.0f) return false;
+    ray.tmin = std::nextafter(hit.t, kInf);
+  }
+  return false;  // more back faces than we walk past: call it occluded
 }
 
 std::vector<DepthImage> sample_conventional(const Scene& scene, std::span<const Camera> cameras, bool shade) {

@@ -31,8 +31,9 @@ inline constexpr float kVisibilityEpsilon = 1e-4f;
 //    I_j on a pixel holding triangle t.
 //  - Visibility: a = the sample's world point; redundant iff a is in V_j's view (inside
 //    I_j's image rectangle, depth in [near, far]), t faces V_j (I_j culls back faces, so
-//    it cannot see the back of t), and nothing is hit on the segment V_j → a closer than
-//    ε = epsilon·scene diagonal before a (Algorithm 2's b == a, with b the first hit).
+//    it cannot see the back of t), and no front-facing triangle is hit on the segment
+//    V_j → a closer than ε = epsilon·scene diagonal before a (Algorithm 2's b == a, with
+//    b the first hit; back faces are culled by the images, so they do not occlude).
 // Holds references: `scene`, `rays` (Visibility only; may be null for Pixel), `from`
 // and `against` must outlive it. Thread-safe (const).
 class RedundancyTest {
