@@ -103,9 +103,9 @@ std::vector<DepthImage> sample_peeling(const Scene& scene, const Camera& camera,
 namespace {
 
 // Algorithm 1's inner loop as the rasterizer's fragment test: keep a fragment only if it
-// is redundant with none of the earlier images. Kept out of line: inlined, it pushes the
-// rasterizer's edge-function registers onto the stack and slows its coverage loop (over
-// every covered pixel, not only the tested fragments) by ~2× (perf, nest).
+// is redundant with none of the earlier images. Kept out of line so the loop over earlier
+// images does not bloat the rasterizer's coverage loop (measured ~10 % faster on nest,
+// on a loaded machine).
 struct NonRedundantTest {
   std::span<const RedundancyTest> earlier;
 
