@@ -64,5 +64,6 @@ Command register_render(CLI::App& root);
 Command register_bench(CLI::App& root);
 Command register_demo(CLI::App& root);
 Command register_visibility(CLI::App& root);
+Command register_sample(CLI::App& root);
 
 }  // namespace proxima::cli

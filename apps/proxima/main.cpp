@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
       cli::register_scenes(root), cli::register_info(root), cli::register_render(root),
       cli::register_bench(root), cli::register_demo(root),
       cli::register_visibility(root),
+      cli::register_sample(root),
   };
   try {
     root.parse(argc, argv);

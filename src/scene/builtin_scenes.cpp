@@ -14,6 +14,7 @@
 
 #include "proxima/core/error.h"
 #include "proxima/scene/procedural.h"
+#include "proxima/scene/sampling_scenes.h"
 #include "proxima/scene/visibility_models.h"
 
 namespace proxima {
@@ -579,6 +580,10 @@ constexpr Entry kScenes[] = {
     {"floor", "visibility test: office floor, 60 offices, ~1,750 polygons", make_vis_floor},
     {"building", "visibility test: 5 office floors with a stairwell, ~9,700 polygons (proxima visibility --floors N)",
      [] { return make_vis_building(5); }},
+    {"nest", "bird nest of ~5,500 interwoven twigs in a bowl, ~67k triangles (depth-image sampling)", make_nest_scene},
+    {"grass", "patch of ~4,600 double-sided grass blades, ~56k triangles (depth-image sampling)", make_grass_scene},
+    {"city", "64 x 64 grid of box buildings, ~50k triangles (depth-image sampling)", make_city_scene},
+    {"tree", "branching tree with ~25k double-sided leaves, ~113k triangles (depth-image sampling)", make_tree_scene},
 };
 
 }  // namespace

@@ -1,0 +1,71 @@
+// Sampling a scene with n depth images (thesis ch. 2): conventional images from each
+// viewpoint, depth peeling from one viewpoint, and non-redundant rendering (NRR,
+// Algorithm 1) with pixel (Algorithm 3) or visibility (Algorithm 2) redundancy.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "proxima/core/camera.h"
+#include "proxima/depthimage/depth_image.h"
+#include "proxima/scene/scene.h"
+#include "proxima/trace/ray_scene.h"
+
+namespace proxima {
+
+enum class Redundancy {
+  Pixel,       // Algorithm 3: the sample's reprojection into I_j holds the same triangle
+  Visibility,  // Algorithm 2: the segment V_j → sample point is unoccluded (within ε)
+};
+const char* redundancy_name(Redundancy r);  // "pixel" | "visibility"
+
+// Default ε of the visibility test, relative to the scene's bounding-box diagonal (the
+// ray offset of docs/shading.md).
+inline constexpr float kVisibilityEpsilon = 1e-4f;
+
+// Is a sample redundant with one image I_j? The sample is given as it is rasterized by
+// camera `from` (PPC_i): pixel (x, y), depth d (−z_cam), triangle t.
+//  - Pixel: reproject the pixel center at depth d into I_j; redundant iff it lands inside
+//    I_j on a pixel holding triangle t.
+//  - Visibility: a = the sample's world point; redundant iff a is in V_j's view (inside
+//    I_j's image rectangle, depth in [near, far]), t faces V_j (I_j culls back faces, so
+//    it cannot see the back of t), and no front-facing triangle is hit on the segment
+//    V_j → a closer than ε = epsilon·scene diagonal before a (Algorithm 2's b == a, with
+//    b the first hit; back faces are culled by the images, so they do not occlude).
+// Holds references: `scene`, `rays` (Visibility only; may be null for Pixel), `from`
+// and `against` must outlive it. Thread-safe (const).
+class RedundancyTest {
+ public:
+  RedundancyTest(Redundancy kind, const Scene& scene, const RayScene* rays, const Camera& from,
+                 const DepthImage& against, float epsilon = kVisibilityEpsilon);
+  bool operator()(int x, int y, float depth, uint32_t triangle) const;
+
+ private:
+  Redundancy kind_;
+  const Scene* scene_;
+  const RayScene* rays_;
+  const Camera* from_;
+  const DepthImage* against_;
+  Reprojection reproject_;
+  float epsilon_;  // absolute, meters
+};
+
+// Conventional sampling: one independent depth image per camera.
+std::vector<DepthImage> sample_conventional(const Scene& scene, std::span<const Camera> cameras, bool shade);
+
+// Depth peeling (raster/depth_peeling.h, exact (depth, id) order) from one camera:
+// exactly `layers` images; layers past the last non-empty one are empty images.
+std::vector<DepthImage> sample_peeling(const Scene& scene, const Camera& camera, int layers, bool shade);
+
+// Non-redundant rendering, Algorithm 1: image i is rasterized from cameras[i] with a
+// fragment test that discards every fragment redundant with one of the images 0 … i−1.
+// The test runs after the depth test and a discarded fragment leaves the pixel
+// untouched, so each pixel ends with the nearest NON-redundant fragment (not the nearest
+// fragment, which may be redundant). Image 0 is the conventional image.
+// `rays` is required for Visibility (the BVH of `scene`), ignored for Pixel.
+std::vector<DepthImage> sample_nrr(const Scene& scene, std::span<const Camera> cameras, Redundancy redundancy,
+                                   const RayScene* rays, bool shade, float epsilon = kVisibilityEpsilon);
+
+}  // namespace proxima
