@@ -23,11 +23,13 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <unordered_set>
 #include <system_error>
 
 #include "proxima/core/atomic_file.h"
 #include "proxima/core/error.h"
 #include "proxima/core/image_io.h"
+#include "proxima/core/limits.h"
 
 namespace proxima {
 namespace {
@@ -79,6 +81,8 @@ class MaterialConverter {
       : file_(file), ai_(ai), scene_(scene) {}
 
   uint32_t get(unsigned ai_index) {
+    if (ai_index >= ai_.mNumMaterials)
+      fail_input(file_.string() + ": mesh references a missing material");
     auto it = ids_.find(ai_index);
     if (it != ids_.end()) return it->second;
     const uint32_t id = add_material(scene_, convert(*ai_.mMaterials[ai_index], ai_index));
@@ -195,21 +199,53 @@ Mesh convert_mesh(const aiMesh& ai_mesh, const mat4& transform) {
   return mesh;
 }
 
-void add_node(const fs::path& file, const aiScene& ai, const aiNode& node, const mat4& parent,
-              MaterialConverter& materials, Scene& scene) {
-  const mat4 world = parent * to_glm(node.mTransformation);
-  for (unsigned k = 0; k < node.mNumMeshes; ++k) {
-    const aiMesh& ai_mesh = *ai.mMeshes[node.mMeshes[k]];
-    if (!(ai_mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
-    Mesh mesh = convert_mesh(ai_mesh, world);
-    if (mesh.triangles.empty()) continue;
-    std::string name = ai_mesh.mName.C_Str();
-    if (name.empty()) name = node.mName.C_Str();
-    if (name.empty()) name = file.stem().string() + "_" + std::to_string(scene.objects.size());
-    add_object(scene, mesh, name, materials.get(ai_mesh.mMaterialIndex));
+// A node with its world transform.
+struct NodeInstance {
+  const aiNode* node;
+  mat4 world;
+};
+
+// The node graph in depth-first order (parents first, children in order), without
+// recursion: a file can nest nodes arbitrarily deep. A node reached twice means a corrupt
+// graph (assimp's nodes form a tree); failing keeps a cycle from looping forever.
+std::vector<NodeInstance> flatten_nodes(const fs::path& file, const aiNode& root) {
+  std::vector<NodeInstance> out;
+  std::vector<NodeInstance> stack{{&root, to_glm(root.mTransformation)}};
+  std::unordered_set<const aiNode*> seen;
+  while (!stack.empty()) {
+    const NodeInstance n = stack.back();
+    stack.pop_back();
+    if (!seen.insert(n.node).second) fail_input(file.string() + ": node graph has a cycle");
+    out.push_back(n);
+    for (unsigned c = n.node->mNumChildren; c-- > 0;) {
+      const aiNode* child = n.node->mChildren[c];
+      if (child != nullptr) stack.push_back({child, n.world * to_glm(child->mTransformation)});
+    }
   }
-  for (unsigned c = 0; c < node.mNumChildren; ++c)
-    add_node(file, ai, *node.mChildren[c], world, materials, scene);
+  return out;
+}
+
+// The triangle meshes a node instantiates (index checked: the graph comes from the file).
+std::vector<const aiMesh*> node_meshes(const fs::path& file, const aiScene& ai, const aiNode& node) {
+  std::vector<const aiMesh*> meshes;
+  for (unsigned k = 0; k < node.mNumMeshes; ++k) {
+    if (node.mMeshes[k] >= ai.mNumMeshes) fail_input(file.string() + ": node references a missing mesh");
+    const aiMesh* mesh = ai.mMeshes[node.mMeshes[k]];
+    if (mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) meshes.push_back(mesh);
+  }
+  return meshes;
+}
+
+void add_node(const fs::path& file, const aiScene& ai, const NodeInstance& n,
+              MaterialConverter& materials, Scene& scene) {
+  for (const aiMesh* ai_mesh : node_meshes(file, ai, *n.node)) {
+    Mesh mesh = convert_mesh(*ai_mesh, n.world);
+    if (mesh.triangles.empty()) continue;
+    std::string name = ai_mesh->mName.C_Str();
+    if (name.empty()) name = n.node->mName.C_Str();
+    if (name.empty()) name = file.stem().string() + "_" + std::to_string(scene.objects.size());
+    add_object(scene, mesh, name, materials.get(ai_mesh->mMaterialIndex));
+  }
 }
 
 // ---- OBJ writing ------------------------------------------------------------
@@ -266,8 +302,17 @@ Scene import_mesh_file(const fs::path& path) {
 
   Scene scene;
   scene.name = path.stem().string();
+  const std::vector<NodeInstance> nodes = flatten_nodes(path, *ai->mRootNode);
+  // Instancing multiplies geometry: check the flattened size before building it.
+  uint64_t triangles = 0, vertices = 0;
+  for (const NodeInstance& n : nodes)
+    for (const aiMesh* mesh : node_meshes(path, *ai, *n.node)) {
+      triangles += mesh->mNumFaces;
+      vertices += mesh->mNumVertices;
+    }
+  check_geometry_budget(file, triangles, vertices);
   MaterialConverter materials(path, *ai, scene);
-  add_node(path, *ai, *ai->mRootNode, mat4(1.0f), materials, scene);
+  for (const NodeInstance& n : nodes) add_node(path, *ai, n, materials, scene);
   if (scene.triangles.empty()) fail_input(file + ": no triangles");
   return scene;
 }
