@@ -267,6 +267,33 @@ TEST(ImportTest, LinesOnlyHaveNoTriangles) {
   EXPECT_NE(msg.find("lines.obj: no triangles"), std::string::npos) << msg;
 }
 
+// A glTF whose nodes form a chain `depth` deep, the last one holding a triangle.
+std::string deep_gltf(int depth) {
+  std::string nodes;
+  for (int i = 0; i < depth; ++i) {
+    if (i) nodes += ",";
+    nodes += i + 1 < depth ? R"({"children": [)" + std::to_string(i + 1) + R"(], "translation": [1, 0, 0]})"
+                           : std::string(R"({"mesh": 0})");
+  }
+  return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [)" + nodes +
+         R"(], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+         "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
+         "bufferViews": [{"buffer": 0, "byteLength": 36}],
+         "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                        "min": [0, 0, 0], "max": [1, 1, 0]}]})";
+}
+
+// Issue 13: the node graph is walked without recursion, so depth is bounded by memory,
+// not by the stack; every level's transform still applies.
+TEST(ImportTest, DeepNodeGraphIsFlattenedWithoutRecursion) {
+  TempDir dir;
+  const int depth = 2000;
+  write_file(dir.path / "deep.gltf", deep_gltf(depth));
+  const Scene s = import_mesh_file(dir.path / "deep.gltf");
+  ASSERT_EQ(s.triangles.size(), 1u);
+  EXPECT_FLOAT_EQ(s.positions[0].x, float(depth - 1));  // 1999 translations of +1 in x
+}
+
 TEST(ImportTest, WriteObjIntoMissingDirectoryLeavesNothing) {
   TempDir dir;
   Scene scene;
