@@ -14,12 +14,15 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <pthread.h>
+
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <map>
 #include <optional>
 #include <set>
@@ -277,9 +280,47 @@ std::string obj_token(const std::string& name, const std::string& fallback) {
   return t;
 }
 
+// Runs `fn` on a thread with a `bytes` stack and rethrows what it throws.
+template <typename F>
+void run_with_stack(size_t bytes, F&& fn) {
+  std::exception_ptr error;
+  auto body = [&] {
+    try {
+      fn();
+    } catch (...) {
+      error = std::current_exception();
+    }
+  };
+  using Body = decltype(body);
+  pthread_attr_t attr;
+  pthread_attr_init(&attr);
+  pthread_attr_setstacksize(&attr, bytes);
+  pthread_t thread;
+  const int rc = pthread_create(
+      &thread, &attr, [](void* b) -> void* { (*static_cast<Body*>(b))(); return nullptr; }, &body);
+  pthread_attr_destroy(&attr);
+  if (rc != 0) fail_input("cannot start the import thread");
+  pthread_join(thread, nullptr);
+  if (error) std::rethrow_exception(error);
+}
+
+Scene import_assimp(const fs::path& path);
+
 }  // namespace
 
+// assimp's readers, post-processing and aiNode destructor recurse over the node graph, so a
+// deeply nested file overflows an 8 MB stack inside assimp. The whole import runs on a
+// thread with a 1 GiB stack (address space; pages are committed only when touched), which
+// takes node chains of ~10^6 levels.
 Scene import_mesh_file(const fs::path& path) {
+  Scene scene;
+  run_with_stack(size_t(1) << 30, [&] { scene = import_assimp(path); });
+  return scene;
+}
+
+namespace {
+
+Scene import_assimp(const fs::path& path) {
   const std::string file = path.string();
   std::error_code ec;
   if (!fs::exists(path, ec)) fail_input(file + ": no such file");
@@ -316,6 +357,8 @@ Scene import_mesh_file(const fs::path& path) {
   if (scene.triangles.empty()) fail_input(file + ": no triangles");
   return scene;
 }
+
+}  // namespace
 
 void write_obj(const fs::path& path, const Scene& scene) {
   const fs::path mtl_path = fs::path(path).replace_extension(".mtl");
