@@ -35,7 +35,7 @@ namespace proxima::fuzz {
 
 // Limits far below libFuzzer's 2 GB RSS limit, so oversized inputs exercise the limit
 // checks (an InputError) instead of being reported as out-of-memory.
-inline void init_limits() { set_limits({.max_triangles = 200'000, .max_memory_mb = 256}); }
+inline void init_limits() { set_limits({.max_triangles = 20'000, .max_memory_mb = 64}); }
 
 // `data` written to <tmp>/proxima_fuzz_<pid>/input<ext> (per process: -jobs/-fork safe).
 inline std::filesystem::path write_input(const uint8_t* data, size_t size, const std::string& ext) {

@@ -37,13 +37,15 @@ dict=()
 case $target in scene_file | camera_path) dict=(-dict=fuzz/scene.dict) ;; gltf) dict=(-dict=fuzz/gltf.dict) ;; esac
 
 log=$build/$target.log
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/fuzz/lsan.supp}
 set +e
+begin=$SECONDS
 "$build/${target}_fuzz" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
   -artifact_prefix="$artifacts" "${dict[@]}" "$@" "$corpus" "$seeds/$target" >"$log" 2>&1
 status=$?
 set -e
 execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
-echo "fuzz: $target: ${execs:-?} executions in ${seconds} s, exit $status (log: $log)"
+echo "fuzz: $target: ${execs:-?} executions in $((SECONDS - begin)) s, exit $status (log: $log)"
 if [ $status -ne 0 ]; then
   grep -E "ERROR|SUMMARY|invariant|Test unit written" "$log" | head -20 >&2
   exit 1

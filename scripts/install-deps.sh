@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages proxima builds with, only those that are missing.
 # Idempotent; works as root, or through sudo when not root and sudo is available.
+# --fuzz also installs clang with its sanitizer and libFuzzer runtimes (scripts/fuzz.sh,
+# CI); `make test` and `make demo` do not need them.
 set -euo pipefail
 
 packages=(
@@ -9,6 +11,9 @@ packages=(
   libstb-dev libtinyexr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
+if [ "${1:-}" = --fuzz ]; then
+  packages+=(clang libclang-rt-dev zlib1g-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -181,7 +181,10 @@ ImageF read_exr(const fs::path& path) {
   if (w <= 0 || h <= 0) fail(nullptr, "empty data window");
   check_image_budget(path.string(), uint64_t(w), uint64_t(h), uint64_t(std::max(header.num_channels, 1)));
   for (int k = 0; k < header.num_channels; ++k) header.requested_pixel_types[k] = TINYEXR_PIXELTYPE_FLOAT;
-  if (LoadEXRImageFromFile(&exr, &header, path.c_str(), &err) != TINYEXR_SUCCESS) fail(err, "bad data");
+  if (LoadEXRImageFromFile(&exr, &header, path.c_str(), &err) != TINYEXR_SUCCESS) {
+    InitEXRImage(&exr);  // tinyexr frees a half-decoded image itself but leaves its pointers set
+    fail(err, "bad data");
+  }
   int c = exr.num_channels;
   if (c < 1 || c > 4 || !exr.images)
     fail_input(path.string() + ": unsupported EXR layout (tiled or " + std::to_string(c) + " channels)");
