@@ -295,6 +295,17 @@ TEST(ImportTest, DeepNodeGraphLoadsWithoutStackOverflow) {
   EXPECT_FLOAT_EQ(s.positions[0].x, float(depth - 1));  // depth − 1 translations of +1 in x
 }
 
+// Regression (ply_fuzz, issue 13): assimp looped forever on a PLY header whose
+// `end_header` line is misspelled.
+TEST(ImportTest, PlyWithoutEndHeaderIsAnErrorNotAHang) {
+  TempDir dir;
+  write_file(dir.path / "open.ply",
+             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+             "element face 1\nproperty list uchar int vertex_indices\nend_head0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  const std::string msg = error_of([&] { import_mesh_file(dir.path / "open.ply"); });
+  EXPECT_NE(msg.find("open.ply: PLY header has no end_header"), std::string::npos) << msg;
+}
+
 TEST(ImportTest, WriteObjIntoMissingDirectoryLeavesNothing) {
   TempDir dir;
   Scene scene;
