@@ -73,7 +73,8 @@ TEST(Robustness, DegenerateGeometryRendersOrExitsTwoNeverCrashes) {
     } else {
       // The default camera frames the bounds, so the geometry is in view at every scale.
       EXPECT_GT(coverage_pct(out), 10.0) << c.file;
-      for (float v : read_exr(out / "color.exr").data()) ASSERT_TRUE(std::isfinite(v)) << c.file;
+      const ImageF color = read_exr(out / "color.exr");
+      for (float v : color.data()) ASSERT_TRUE(std::isfinite(v)) << c.file;
     }
   }
 }
