@@ -27,6 +27,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <stdexcept>
 #include <unordered_set>
 #include <system_error>
 
@@ -34,6 +35,18 @@
 #include "proxima/core/error.h"
 #include "proxima/core/image_io.h"
 #include "proxima/core/limits.h"
+
+// Debian's assimp 5.2 is built with its internal assertions on, and a failed one calls
+// abort() — e.g. TriangulateProcess on a malformed PLY face list (found by ply_fuzz). This
+// definition interposes the library's (its calls go through the PLT; the executables
+// export it, see CMakeLists.txt): it throws instead, which assimp's importers and
+// post-processing steps catch and report as a failed import.
+namespace Assimp {
+void aiAssertViolation(const char* expression, const char* file, int line) {
+  throw std::runtime_error(std::string("assimp internal check failed: ") + expression + " (" + file + ":" +
+                           std::to_string(line) + ")");
+}
+}  // namespace Assimp
 
 namespace proxima {
 namespace {

@@ -306,6 +306,18 @@ TEST(ImportTest, PlyWithoutEndHeaderIsAnErrorNotAHang) {
   EXPECT_NE(msg.find("open.ply: PLY header has no end_header"), std::string::npos) << msg;
 }
 
+// Regression (ply_fuzz, issue 13): a garbled face list tripped an internal assertion in
+// assimp's triangulation, which called abort() — proxima crashed with exit 134.
+TEST(ImportTest, PlyTrippingAnAssimpAssertionIsAnError) {
+  TempDir dir;
+  write_file(dir.path / "garbled.ply",
+             "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+             "element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+             "3 0 1 2\nat x\nproperty float y\np3 0 2 3\n");
+  const std::string msg = error_of([&] { import_mesh_file(dir.path / "garbled.ply"); });
+  EXPECT_NE(msg.find("garbled.ply: assimp internal check failed"), std::string::npos) << msg;
+}
+
 TEST(ImportTest, WriteObjIntoMissingDirectoryLeavesNothing) {
   TempDir dir;
   Scene scene;
