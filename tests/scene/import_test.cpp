@@ -296,14 +296,24 @@ TEST(ImportTest, DeepNodeGraphLoadsWithoutStackOverflow) {
 }
 
 // Regression (ply_fuzz, issue 13): assimp looped forever on a PLY header whose
-// `end_header` line is misspelled.
-TEST(ImportTest, PlyWithoutEndHeaderIsAnErrorNotAHang) {
+// `end_header` line is misspelled, or with NUL bytes in a line.
+TEST(ImportTest, MalformedPlyHeaderIsAnErrorNotAHang) {
   TempDir dir;
   write_file(dir.path / "open.ply",
              "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
              "element face 1\nproperty list uchar int vertex_indices\nend_head0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
   const std::string msg = error_of([&] { import_mesh_file(dir.path / "open.ply"); });
-  EXPECT_NE(msg.find("open.ply: PLY header has no end_header"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("open.ply: PLY header has an unknown line 'end_head0 0 0'"), std::string::npos) << msg;
+  // …and on NUL bytes before end_header.
+  write_file(dir.path / "nul.ply", std::string("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n\0\0end_header\n", 68));
+  const std::string nul = error_of([&] { import_mesh_file(dir.path / "nul.ply"); });
+  EXPECT_NE(nul.find("nul.ply: PLY header line 5 is not ASCII text"), std::string::npos) << nul;
+  // A well-formed header with comments and CRLF line ends still loads.
+  write_file(dir.path / "crlf.ply",
+             "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nelement vertex 3\r\nproperty float x\r\n"
+             "property float y\r\nproperty float z\r\nelement face 1\r\nproperty list uchar int vertex_indices\r\n"
+             "end_header\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n");
+  EXPECT_EQ(import_mesh_file(dir.path / "crlf.ply").triangles.size(), 1u);
 }
 
 // Regression (ply_fuzz, issue 13): a garbled face list tripped an internal assertion in
