@@ -32,11 +32,15 @@ asan:
 	$(SANITIZER_ENV) $(MAKE) test BUILD=build/asan TYPE=Debug \
 	  CMAKE_EXTRA="-DPROXIMA_SANITIZE=ON -DPROXIMA_BUILD_BENCH=OFF"
 
-# Every libFuzzer target for FUZZ_SECONDS on its corpus (clang; scripts/fuzz.sh).
+# Each libFuzzer target in FUZZ_TARGETS (default: all of fuzz/) for FUZZ_SECONDS on its
+# corpus (clang; scripts/fuzz.sh). Runs them all, then fails if any found something.
 FUZZ_SECONDS ?= 30
+FUZZ_TARGETS ?= $(patsubst fuzz/%_fuzz.cpp,%,$(wildcard fuzz/*_fuzz.cpp))
 fuzz:
 	@bash scripts/install-deps.sh --fuzz
-	$(SANITIZER_ENV) JOBS=$(JOBS) bash scripts/fuzz.sh all $(FUZZ_SECONDS)
+	@status=0; for t in $(FUZZ_TARGETS); do \
+	  $(SANITIZER_ENV) JOBS=$(JOBS) bash scripts/fuzz.sh $$t $(FUZZ_SECONDS) || status=1; \
+	done; exit $$status
 
 clean:
 	rm -rf build out

@@ -341,15 +341,17 @@ Scene import_mesh_file(const fs::path& path) {
 namespace {
 
 // assimp 5.2's PLY reader loops forever on some malformed headers (no `end_header`, NUL
-// bytes in a line; found by ply_fuzz), so a PLY file (recognized by its magic, as assimp
-// does) must have a well-formed header before assimp sees it: printable ASCII lines, each
+// bytes in a line; found by ply_fuzz), so a PLY file (recognized by its magic in any case,
+// as assimp does) must have a well-formed header before assimp sees it: printable ASCII lines, each
 // starting with a PLY keyword, ending at `end_header` within the first 64 KiB.
 void check_ply_header(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::string head(64 * 1024, '\0');
   in.read(head.data(), std::streamsize(head.size()));
   head.resize(size_t(in.gcount()));
-  if (head.rfind("ply", 0) != 0) return;
+  std::string magic = head.substr(0, 3);
+  for (char& c : magic) c = char(std::tolower(static_cast<unsigned char>(c)));  // assimp ignores case
+  if (magic != "ply") return;
   auto fail = [&](const std::string& why) { fail_input(path.string() + ": PLY header " + why); };
   size_t pos = 0;
   for (int number = 1;; ++number) {
@@ -359,7 +361,8 @@ void check_ply_header(const fs::path& path) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     for (char c : line)
       if (!(c == '\t' || (c >= ' ' && c <= '~'))) fail("line " + std::to_string(number) + " is not ASCII text");
-    const std::string keyword = line.substr(0, line.find_first_of(" \t"));
+    std::string keyword = line.substr(0, line.find_first_of(" \t"));
+    for (char& c : keyword) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (keyword == "end_header") return;
     static const std::set<std::string> kKeywords = {"ply", "format", "element", "property", "comment", "obj_info"};
     if (!kKeywords.count(keyword)) fail("has an unknown line '" + line.substr(0, 40) + "'");

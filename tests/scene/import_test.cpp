@@ -308,6 +308,10 @@ TEST(ImportTest, MalformedPlyHeaderIsAnErrorNotAHang) {
   write_file(dir.path / "nul.ply", std::string("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n\0\0end_header\n", 68));
   const std::string nul = error_of([&] { import_mesh_file(dir.path / "nul.ply"); });
   EXPECT_NE(nul.find("nul.ply: PLY header line 5 is not ASCII text"), std::string::npos) << nul;
+  // …and when the magic is in another case (assimp matches "plY" too).
+  write_file(dir.path / "upper.ply", "plY\nformat ascii 1. vertex 4\nproperty float x\nproperty ");
+  const std::string upper = error_of([&] { import_mesh_file(dir.path / "upper.ply"); });
+  EXPECT_NE(upper.find("upper.ply: PLY header has no end_header"), std::string::npos) << upper;
   // A well-formed header with comments and CRLF line ends still loads.
   write_file(dir.path / "crlf.ply",
              "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nelement vertex 3\r\nproperty float x\r\n"
