@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <fstream>
 #include <string>
 
 #define STB_IMAGE_IMPLEMENTATION
@@ -44,6 +46,29 @@ void check_regular_file(const fs::path& path) {
   if (!fs::is_regular_file(path, ec)) fail_input(path.string() + ": not a regular file");
 }
 
+// stb_image grows its buffer to a chunk's declared length before reading it, so a
+// 100-byte PNG declaring a 1 GiB IDAT chunk allocates 2 GiB (found by png_fuzz). Chunks
+// must fit in the file.
+void check_png_chunks(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  char sig[8] = {};
+  if (!in.read(sig, 8) || std::memcmp(sig, "\x89PNG\r\n\x1a\n", 8) != 0) return;  // not a PNG
+  std::error_code ec;
+  const uint64_t size = fs::file_size(path, ec);
+  if (ec) return;  // stb reports the unreadable file
+  uint64_t pos = 8;
+  unsigned char header[8];
+  while (pos + 12 <= size && in.read(reinterpret_cast<char*>(header), 8)) {
+    const uint64_t length = uint64_t(header[0]) << 24 | uint64_t(header[1]) << 16 | uint64_t(header[2]) << 8 | header[3];
+    if (pos + 12 + length > size)
+      fail_input(path.string() + ": cannot read image: PNG chunk of " + std::to_string(length) +
+                 " bytes runs past the end of the file");
+    if (std::memcmp(header + 4, "IEND", 4) == 0) return;
+    pos += 12 + length;
+    in.seekg(std::streamoff(pos));
+  }
+}
+
 void check_channels(const fs::path& path, int channels, int lo, int hi) {
   if (channels < lo || channels > hi)
     fail_input(path.string() + ": cannot store an image with " + std::to_string(channels) + " channels");
@@ -78,6 +103,7 @@ void write_png_linear(const fs::path& path, const ImageF& linear) {
 ImageF read_image_linear(const fs::path& path, int channels) {
   check_channels(path, channels, 3, 4);
   check_regular_file(path);
+  check_png_chunks(path);
   int w = 0, h = 0, n = 0;
   // The header's size is checked before decoding: a small PNG can claim gigapixels.
   if (!stbi_info(path.c_str(), &w, &h, &n))

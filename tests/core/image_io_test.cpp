@@ -81,5 +81,26 @@ TEST(ImageIo, PngWithEmptyIdatChunkIsAnInputError) {
   EXPECT_THROW(read_image_linear(dir.path / "empty_idat.png"), InputError);
 }
 
+// Regression (png_fuzz in CI, issue 13): a PNG declaring a 1 GiB IDAT chunk in a tiny file
+// made stb_image allocate 2 GiB before noticing the data is missing.
+TEST(ImageIo, PngChunkLongerThanTheFileIsRejectedBeforeAllocating) {
+  TempDir dir;
+  std::string png = "\x89PNG\r\n\x1a\n";
+  png += std::string("\0\0\0\x0dIHDR\0\0\0\x01\0\0\0\x01\x08\x02\0\0\0\0\0\0\0", 25);  // 1×1 RGB
+  png += std::string("\x40\0\0\0IDAT", 8) + "short";                                          // 1 GiB claimed
+  std::ofstream(dir.path / "liar.png", std::ios::binary) << png;
+  try {
+    read_image_linear(dir.path / "liar.png");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("liar.png: cannot read image: PNG chunk of 1073741824 bytes runs past"),
+              std::string::npos)
+        << e.what();
+  }
+  ImageF ok(3, 2, 3, 0.25f);
+  write_png_linear(dir.path / "ok.png", ok);  // real files (several chunks) still read
+  EXPECT_EQ(read_image_linear(dir.path / "ok.png").width(), 3);
+}
+
 }  // namespace
 }  // namespace proxima
