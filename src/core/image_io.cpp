@@ -58,7 +58,7 @@ void check_png_chunks(const fs::path& path) {
   if (ec) return;  // stb reports the unreadable file
   uint64_t pos = 8;
   unsigned char header[8];
-  while (pos + 12 <= size && in.read(reinterpret_cast<char*>(header), 8)) {
+  while (pos + 8 <= size && in.read(reinterpret_cast<char*>(header), 8)) {  // stb reads any whole header
     const uint64_t length = uint64_t(header[0]) << 24 | uint64_t(header[1]) << 16 | uint64_t(header[2]) << 8 | header[3];
     if (pos + 12 + length > size)
       fail_input(path.string() + ": cannot read image: PNG chunk of " + std::to_string(length) +

@@ -97,6 +97,9 @@ TEST(ImageIo, PngChunkLongerThanTheFileIsRejectedBeforeAllocating) {
               std::string::npos)
         << e.what();
   }
+  // …also when the file ends right after the chunk's 8-byte header.
+  std::ofstream(dir.path / "cut.png", std::ios::binary) << png.substr(0, png.size() - 5);
+  EXPECT_THROW(read_image_linear(dir.path / "cut.png"), InputError);
   ImageF ok(3, 2, 3, 0.25f);
   write_png_linear(dir.path / "ok.png", ok);  // real files (several chunks) still read
   EXPECT_EQ(read_image_linear(dir.path / "ok.png").width(), 3);
