@@ -1,4 +1,4 @@
-// Texture and environment images: read_image_linear (stb_image, PNG and JPEG).
+// Texture and environment images: read_image_linear (stb_image, PNG only).
 #include "fuzz_util.h"
 #include "proxima/core/image_io.h"
 
