@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc)
 BUILD ?= build/release
 TYPE ?= Release
 
-.PHONY: all deps build demo test bench asan clean
+.PHONY: all deps build demo test bench asan fuzz clean
 
 all: build
 
@@ -24,9 +24,23 @@ test: build
 bench: build
 	$(BUILD)/proxima bench trace --out out/bench-trace
 
-# Debug build with AddressSanitizer + UndefinedBehaviorSanitizer, whole test suite.
+# Debug build with AddressSanitizer + UndefinedBehaviorSanitizer (+ float-cast-overflow),
+# whole test suite. Every report is fatal (-fno-sanitize-recover), leaks included.
+SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:detect_stack_use_after_return=1:strict_string_checks=1 \
+	LSAN_OPTIONS=suppressions=$(CURDIR)/fuzz/lsan.supp UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 asan:
-	$(MAKE) test BUILD=build/asan TYPE=Debug CMAKE_EXTRA=-DPROXIMA_SANITIZE=ON
+	$(SANITIZER_ENV) $(MAKE) test BUILD=build/asan TYPE=Debug \
+	  CMAKE_EXTRA="-DPROXIMA_SANITIZE=ON -DPROXIMA_BUILD_BENCH=OFF"
+
+# Each libFuzzer target in FUZZ_TARGETS (default: all of fuzz/) for FUZZ_SECONDS on its
+# corpus (clang; scripts/fuzz.sh). Runs them all, then fails if any found something.
+FUZZ_SECONDS ?= 30
+FUZZ_TARGETS ?= $(patsubst fuzz/%_fuzz.cpp,%,$(wildcard fuzz/*_fuzz.cpp))
+fuzz:
+	@bash scripts/install-deps.sh --fuzz
+	@status=0; for t in $(FUZZ_TARGETS); do \
+	  $(SANITIZER_ENV) JOBS=$(JOBS) bash scripts/fuzz.sh $$t $(FUZZ_SECONDS) || status=1; \
+	done; exit $$status
 
 clean:
 	rm -rf build out

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages proxima builds with, only those that are missing.
 # Idempotent; works as root, or through sudo when not root and sudo is available.
+# --fuzz also installs clang with its sanitizer and libFuzzer runtimes (scripts/fuzz.sh,
+# CI); `make test` and `make demo` do not need them.
 set -euo pipefail
 
 packages=(
@@ -12,6 +14,9 @@ packages=(
   # software OpenGL through EGL, measured side by side with proxima's rasterizer.
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
 )
+if [ "${1:-}" = --fuzz ]; then
+  packages+=(clang libclang-rt-dev zlib1g-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

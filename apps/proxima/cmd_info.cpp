@@ -10,6 +10,7 @@ Command register_info(CLI::App& root) {
   auto* app = root.add_subcommand("info", "print triangles, objects, materials, lights and bounds of a scene");
   static std::string target;
   app->add_option("scene", target, "built-in scene name, .json scene file or mesh file")->required();
+  add_limit_flags(app);
   return {app, [] {
             Scene s = load_scene(target);
             Bounds3 b = scene_bounds(s);

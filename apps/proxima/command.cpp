@@ -4,6 +4,7 @@
 #include <system_error>
 
 #include "proxima/core/error.h"
+#include "proxima/core/limits.h"
 
 namespace proxima::cli {
 
@@ -11,10 +12,31 @@ namespace {
 std::vector<std::string> g_command_line;
 }
 
+void add_limit_flags(CLI::App* app) {
+  auto setter = [](uint64_t Limits::*field, const char* flag) {
+    return [field, flag](uint64_t v) {
+      if (v == 0) throw CLI::ValidationError(flag, "must be positive");
+      try {
+        Limits l = limits();  // keeps the other limit (environment or default)
+        l.*field = v;
+        set_limits(l);
+      } catch (const InputError& e) {  // a malformed PROXIMA_MAX_* variable
+        throw CLI::ValidationError(flag, e.what());
+      }
+    };
+  };
+  app->add_option_function<uint64_t>("--max-triangles", setter(&Limits::max_triangles, "--max-triangles"),
+                                     "refuse scenes with more triangles (default 50000000, env PROXIMA_MAX_TRIANGLES)");
+  app->add_option_function<uint64_t>("--max-memory-mb", setter(&Limits::max_memory_mb, "--max-memory-mb"),
+                                     "refuse scenes/images estimated to need more MiB (default 3/4 of RAM, env "
+                                     "PROXIMA_MAX_MEMORY_MB)");
+}
+
 void add_scene_flag(CLI::App* app, CommonOptions& o, const std::string& default_scene) {
   o.scene = default_scene;
   app->add_option("--scene", o.scene, "built-in scene name (see `proxima scenes`), .json scene file, or mesh file")
       ->capture_default_str();
+  add_limit_flags(app);
 }
 
 void add_size_flags(CLI::App* app, CommonOptions& o) {
@@ -88,8 +110,9 @@ Camera pick_camera(const Scene& scene, const CameraChoice& choice, int width, in
     Bounds3 b = scene_bounds(scene);
     float r = 0.5f * b.diagonal();
     vec3 c = b.center();
-    cam = look_at(c + vec3(0.0f, 0.25f * r, 2.5f * r), c, {0, 1, 0}, 45.0f, width, height,
-                  std::max(1e-4f, 0.01f * r), 10.0f * r);
+    // Clip distances scale with the scene (r > 0: sanitized scenes have a triangle of
+    // non-zero area), so micrometer-sized models are not clipped away.
+    cam = look_at(c + vec3(0.0f, 0.25f * r, 2.5f * r), c, {0, 1, 0}, 45.0f, width, height, 0.01f * r, 10.0f * r);
   }
   cam.width = width;
   cam.height = height;

@@ -31,7 +31,10 @@ struct CommonOptions {
   std::string out;
 };
 
+// --scene, with the resource-limit flags below.
 void add_scene_flag(CLI::App* app, CommonOptions& o, const std::string& default_scene);
+// --max-triangles, --max-memory-mb (proxima/core/limits.h), applied while parsing.
+void add_limit_flags(CLI::App* app);
 void add_size_flags(CLI::App* app, CommonOptions& o);
 void add_threads_flag(CLI::App* app, CommonOptions& o);
 void add_seed_flag(CLI::App* app, CommonOptions& o);

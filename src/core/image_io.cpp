@@ -2,17 +2,24 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <fstream>
 #include <string>
 
 #define STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STBI_FAILURE_USERMSG
+// PNG only: the least decoder code facing untrusted files. stb's JPEG decoder (Debian's
+// 2022-09 stb) writes past its Huffman size table on a malformed DHT segment (found by
+// png_fuzz), so JPEG needs a safer decoder before it comes back.
+#define STBI_ONLY_PNG
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 #include <tinyexr.h>
 
 #include "proxima/core/atomic_file.h"
 #include "proxima/core/error.h"
+#include "proxima/core/limits.h"
 
 namespace proxima {
 
@@ -31,6 +38,36 @@ namespace {
 uint8_t to_byte(float v) {
   if (!(v > 0.0f)) return 0;  // also maps NaN to 0
   return uint8_t(std::lround(std::min(v, 1.0f) * 255.0f));
+}
+
+// Devices and FIFOs would block or never end; only regular files are images.
+void check_regular_file(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) fail_input(path.string() + ": no such file");
+  if (!fs::is_regular_file(path, ec)) fail_input(path.string() + ": not a regular file");
+}
+
+// stb_image grows its buffer to a chunk's declared length before reading it, so a
+// 100-byte PNG declaring a 1 GiB IDAT chunk allocates 2 GiB (found by png_fuzz). Chunks
+// must fit in the file.
+void check_png_chunks(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  char sig[8] = {};
+  if (!in.read(sig, 8) || std::memcmp(sig, "\x89PNG\r\n\x1a\n", 8) != 0) return;  // not a PNG
+  std::error_code ec;
+  const uint64_t size = fs::file_size(path, ec);
+  if (ec) return;  // stb reports the unreadable file
+  uint64_t pos = 8;
+  unsigned char header[8];
+  while (pos + 8 <= size && in.read(reinterpret_cast<char*>(header), 8)) {  // stb reads any whole header
+    const uint64_t length = uint64_t(header[0]) << 24 | uint64_t(header[1]) << 16 | uint64_t(header[2]) << 8 | header[3];
+    if (pos + 12 + length > size)
+      fail_input(path.string() + ": cannot read image: PNG chunk of " + std::to_string(length) +
+                 " bytes runs past the end of the file");
+    if (std::memcmp(header + 4, "IEND", 4) == 0) return;
+    pos += 12 + length;
+    in.seekg(std::streamoff(pos));
+  }
 }
 
 void check_channels(const fs::path& path, int channels, int lo, int hi) {
@@ -66,7 +103,13 @@ void write_png_linear(const fs::path& path, const ImageF& linear) {
 
 ImageF read_image_linear(const fs::path& path, int channels) {
   check_channels(path, channels, 3, 4);
+  check_regular_file(path);
+  check_png_chunks(path);
   int w = 0, h = 0, n = 0;
+  // The header's size is checked before decoding: a small PNG can claim gigapixels.
+  if (!stbi_info(path.c_str(), &w, &h, &n))
+    fail_input(path.string() + ": cannot read image: " + stbi_failure_reason());
+  check_image_budget(path.string(), uint64_t(w), uint64_t(h), uint64_t(channels));
   stbi_uc* pixels = stbi_load(path.c_str(), &w, &h, &n, channels);
   if (!pixels) fail_input(path.string() + ": cannot read image: " + stbi_failure_reason());
   ImageF img(w, h, channels);
@@ -135,32 +178,43 @@ void write_exr(const fs::path& path, const ImageF& image) {
 }
 
 ImageF read_exr(const fs::path& path) {
+  check_regular_file(path);
   EXRVersion version;
   if (ParseEXRVersionFromFile(&version, path.c_str()) != TINYEXR_SUCCESS)
     fail_input(path.string() + ": not an EXR file");
+  // tinyexr's C structs own memory; free them on every exit, including throws.
   EXRHeader header;
   InitEXRHeader(&header);
-  const char* err = nullptr;
-  if (ParseEXRHeaderFromFile(&header, &version, path.c_str(), &err) != TINYEXR_SUCCESS) {
-    std::string msg = err ? err : "bad header";
-    if (err) FreeEXRErrorMessage(err);
-    fail_input(path.string() + ": cannot read EXR: " + msg);
-  }
-  for (int k = 0; k < header.num_channels; ++k) header.requested_pixel_types[k] = TINYEXR_PIXELTYPE_FLOAT;
   EXRImage exr;
   InitEXRImage(&exr);
-  if (LoadEXRImageFromFile(&exr, &header, path.c_str(), &err) != TINYEXR_SUCCESS) {
-    std::string msg = err ? err : "bad data";
+  struct Release {
+    EXRHeader& h;
+    EXRImage& i;
+    ~Release() {
+      FreeEXRImage(&i);
+      FreeEXRHeader(&h);
+    }
+  } release{header, exr};
+  auto fail = [&](const char* err, const char* fallback) {
+    std::string msg = err ? err : fallback;
     if (err) FreeEXRErrorMessage(err);
-    FreeEXRHeader(&header);
     fail_input(path.string() + ": cannot read EXR: " + msg);
+  };
+  const char* err = nullptr;
+  if (ParseEXRHeaderFromFile(&header, &version, path.c_str(), &err) != TINYEXR_SUCCESS) fail(err, "bad header");
+  // The header's size is checked before decoding: a small file can claim gigapixels.
+  const EXRBox2i& dw = header.data_window;
+  const int64_t w = int64_t(dw.max_x) - dw.min_x + 1, h = int64_t(dw.max_y) - dw.min_y + 1;
+  if (w <= 0 || h <= 0) fail(nullptr, "empty data window");
+  check_image_budget(path.string(), uint64_t(w), uint64_t(h), uint64_t(std::max(header.num_channels, 1)));
+  for (int k = 0; k < header.num_channels; ++k) header.requested_pixel_types[k] = TINYEXR_PIXELTYPE_FLOAT;
+  if (LoadEXRImageFromFile(&exr, &header, path.c_str(), &err) != TINYEXR_SUCCESS) {
+    InitEXRImage(&exr);  // tinyexr frees a half-decoded image itself but leaves its pointers set
+    fail(err, "bad data");
   }
   int c = exr.num_channels;
-  if (c < 1 || c > 4 || !exr.images) {
-    FreeEXRImage(&exr);
-    FreeEXRHeader(&header);
+  if (c < 1 || c > 4 || !exr.images)
     fail_input(path.string() + ": unsupported EXR layout (tiled or " + std::to_string(c) + " channels)");
-  }
   // Stored alphabetically; put R G B A (or U V / Y) back in interleaved order.
   auto rank = [](const std::string& name) {
     static const char* order[] = {"R", "G", "B", "A", "U", "V", "Y"};
@@ -180,8 +234,6 @@ ImageF read_exr(const fs::path& path) {
     const float* plane = reinterpret_cast<const float*>(exr.images[perm[size_t(k)]]);
     for (size_t i = 0; i < n; ++i) dst[i * size_t(c) + size_t(k)] = plane[i];
   }
-  FreeEXRImage(&exr);
-  FreeEXRHeader(&header);
   return img;
 }
 

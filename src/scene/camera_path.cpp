@@ -31,6 +31,14 @@ Camera camera_at_time(const CameraPath& path, float t, int width, int height, fl
       key.position = catmull_rom(k[i0].position, k[i1].position, k[i2].position, k[i3].position, w);
       key.target = catmull_rom(k[i0].target, k[i1].target, k[i2].target, k[i3].target, w);
       key.vfov_deg = k[i1].vfov_deg + (k[i2].vfov_deg - k[i1].vfov_deg) * w;
+      // Valid keys can still interpolate to a view look_at cannot take (the target passing
+      // through the position, looking straight along up) or overflow for huge coordinates;
+      // such a frame takes the view of the nearer key.
+      const CameraKey& nearer = w < 0.5f ? k[i1] : k[i2];
+      if (!is_finite(key.position)) key.position = nearer.position;
+      const vec3 dir = key.target - key.position;
+      if (!is_finite(dir) || !(glm::length(glm::cross(glm::normalize(dir), path.up)) > 1e-6f * glm::length(path.up)))
+        key.target = key.position + (nearer.target - nearer.position);
     }
   }
   return look_at(key.position, key.target, path.up, key.vfov_deg, width, height, near, far);

@@ -14,20 +14,39 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <pthread.h>
+
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <exception>
+#include <fstream>
 #include <map>
 #include <optional>
 #include <set>
+#include <stdexcept>
+#include <unordered_set>
 #include <system_error>
 
 #include "proxima/core/atomic_file.h"
 #include "proxima/core/error.h"
 #include "proxima/core/image_io.h"
+#include "proxima/core/limits.h"
+
+// Debian's assimp 5.2 is built with its internal assertions on, and a failed one calls
+// abort() — e.g. TriangulateProcess on a malformed PLY face list (found by ply_fuzz). This
+// definition interposes the library's (its calls go through the PLT; the executables
+// export it, see CMakeLists.txt): it throws instead, which assimp's importers and
+// post-processing steps catch and report as a failed import.
+namespace Assimp {
+void aiAssertViolation(const char* expression, const char* file, int line) {
+  throw std::runtime_error(std::string("assimp internal check failed: ") + expression + " (" + file + ":" +
+                           std::to_string(line) + ")");
+}
+}  // namespace Assimp
 
 namespace proxima {
 namespace {
@@ -79,6 +98,8 @@ class MaterialConverter {
       : file_(file), ai_(ai), scene_(scene) {}
 
   uint32_t get(unsigned ai_index) {
+    if (ai_index >= ai_.mNumMaterials)
+      fail_input(file_.string() + ": mesh references a missing material");
     auto it = ids_.find(ai_index);
     if (it != ids_.end()) return it->second;
     const uint32_t id = add_material(scene_, convert(*ai_.mMaterials[ai_index], ai_index));
@@ -195,21 +216,53 @@ Mesh convert_mesh(const aiMesh& ai_mesh, const mat4& transform) {
   return mesh;
 }
 
-void add_node(const fs::path& file, const aiScene& ai, const aiNode& node, const mat4& parent,
-              MaterialConverter& materials, Scene& scene) {
-  const mat4 world = parent * to_glm(node.mTransformation);
-  for (unsigned k = 0; k < node.mNumMeshes; ++k) {
-    const aiMesh& ai_mesh = *ai.mMeshes[node.mMeshes[k]];
-    if (!(ai_mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
-    Mesh mesh = convert_mesh(ai_mesh, world);
-    if (mesh.triangles.empty()) continue;
-    std::string name = ai_mesh.mName.C_Str();
-    if (name.empty()) name = node.mName.C_Str();
-    if (name.empty()) name = file.stem().string() + "_" + std::to_string(scene.objects.size());
-    add_object(scene, mesh, name, materials.get(ai_mesh.mMaterialIndex));
+// A node with its world transform.
+struct NodeInstance {
+  const aiNode* node;
+  mat4 world;
+};
+
+// The node graph in depth-first order (parents first, children in order), without
+// recursion: a file can nest nodes arbitrarily deep. A node reached twice means a corrupt
+// graph (assimp's nodes form a tree); failing keeps a cycle from looping forever.
+std::vector<NodeInstance> flatten_nodes(const fs::path& file, const aiNode& root) {
+  std::vector<NodeInstance> out;
+  std::vector<NodeInstance> stack{{&root, to_glm(root.mTransformation)}};
+  std::unordered_set<const aiNode*> seen;
+  while (!stack.empty()) {
+    const NodeInstance n = stack.back();
+    stack.pop_back();
+    if (!seen.insert(n.node).second) fail_input(file.string() + ": node graph has a cycle");
+    out.push_back(n);
+    for (unsigned c = n.node->mNumChildren; c-- > 0;) {
+      const aiNode* child = n.node->mChildren[c];
+      if (child != nullptr) stack.push_back({child, n.world * to_glm(child->mTransformation)});
+    }
   }
-  for (unsigned c = 0; c < node.mNumChildren; ++c)
-    add_node(file, ai, *node.mChildren[c], world, materials, scene);
+  return out;
+}
+
+// The triangle meshes a node instantiates (index checked: the graph comes from the file).
+std::vector<const aiMesh*> node_meshes(const fs::path& file, const aiScene& ai, const aiNode& node) {
+  std::vector<const aiMesh*> meshes;
+  for (unsigned k = 0; k < node.mNumMeshes; ++k) {
+    if (node.mMeshes[k] >= ai.mNumMeshes) fail_input(file.string() + ": node references a missing mesh");
+    const aiMesh* mesh = ai.mMeshes[node.mMeshes[k]];
+    if (mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) meshes.push_back(mesh);
+  }
+  return meshes;
+}
+
+void add_node(const fs::path& file, const aiScene& ai, const NodeInstance& n,
+              MaterialConverter& materials, Scene& scene) {
+  for (const aiMesh* ai_mesh : node_meshes(file, ai, *n.node)) {
+    Mesh mesh = convert_mesh(*ai_mesh, n.world);
+    if (mesh.triangles.empty()) continue;
+    std::string name = ai_mesh->mName.C_Str();
+    if (name.empty()) name = n.node->mName.C_Str();
+    if (name.empty()) name = file.stem().string() + "_" + std::to_string(scene.objects.size());
+    add_object(scene, mesh, name, materials.get(ai_mesh->mMaterialIndex));
+  }
 }
 
 // ---- OBJ writing ------------------------------------------------------------
@@ -241,14 +294,89 @@ std::string obj_token(const std::string& name, const std::string& fallback) {
   return t;
 }
 
+// Runs `fn` on a thread with a `bytes` stack and rethrows what it throws.
+template <typename F>
+void run_with_stack(size_t bytes, F&& fn) {
+  std::exception_ptr error;
+  auto body = [&] {
+    try {
+      fn();
+    } catch (...) {
+      error = std::current_exception();
+    }
+  };
+  using Body = decltype(body);
+  pthread_attr_t attr;
+  pthread_attr_init(&attr);
+  pthread_attr_setstacksize(&attr, bytes);
+  pthread_t thread;
+  const int rc = pthread_create(
+      &thread, &attr, [](void* b) -> void* { (*static_cast<Body*>(b))(); return nullptr; }, &body);
+  pthread_attr_destroy(&attr);
+  if (rc != 0) fail_input("cannot start the import thread");
+  pthread_join(thread, nullptr);
+  if (error) std::rethrow_exception(error);
+}
+
+Scene import_assimp(const fs::path& path);
+
 }  // namespace
 
+// assimp's readers, post-processing and aiNode destructor recurse over the node graph, so a
+// deeply nested file overflows an 8 MB stack inside assimp (a 100000-deep glTF chain did).
+// The import runs on a thread whose stack grows with the file: a nesting level takes at
+// least ~12 bytes of file and at most ~700 bytes of assimp's stack (measured on glTF), so
+// 64 bytes of stack per byte of file, between 16 MiB and 1 GiB (address space; pages are
+// committed only when touched). Small files get small stacks, which keeps sanitizer
+// builds fast.
 Scene import_mesh_file(const fs::path& path) {
+  std::error_code ec;
+  const uintmax_t bytes = fs::file_size(path, ec);
+  const size_t stack = std::clamp<uintmax_t>(ec ? 0 : bytes * 64, size_t(16) << 20, size_t(1) << 30);
+  Scene scene;
+  run_with_stack(stack, [&] { scene = import_assimp(path); });
+  return scene;
+}
+
+namespace {
+
+// assimp 5.2's PLY reader loops forever on some malformed headers (no `end_header`, NUL
+// bytes in a line; found by ply_fuzz), so a PLY file (recognized by its magic in any case,
+// as assimp does) must have a well-formed header before assimp sees it: printable ASCII lines, each
+// starting with a PLY keyword, ending at `end_header` within the first 64 KiB.
+void check_ply_header(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(64 * 1024, '\0');
+  in.read(head.data(), std::streamsize(head.size()));
+  head.resize(size_t(in.gcount()));
+  std::string magic = head.substr(0, 3);
+  for (char& c : magic) c = char(std::tolower(static_cast<unsigned char>(c)));  // assimp ignores case
+  if (magic != "ply") return;
+  auto fail = [&](const std::string& why) { fail_input(path.string() + ": PLY header " + why); };
+  size_t pos = 0;
+  for (int number = 1;; ++number) {
+    const size_t eol = head.find('\n', pos);
+    if (eol == std::string::npos) fail("has no end_header in its first 64 KiB");
+    std::string line = head.substr(pos, eol - pos);
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    for (char c : line)
+      if (!(c == '\t' || (c >= ' ' && c <= '~'))) fail("line " + std::to_string(number) + " is not ASCII text");
+    std::string keyword = line.substr(0, line.find_first_of(" \t"));
+    for (char& c : keyword) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (keyword == "end_header") return;
+    static const std::set<std::string> kKeywords = {"ply", "format", "element", "property", "comment", "obj_info"};
+    if (!kKeywords.count(keyword)) fail("has an unknown line '" + line.substr(0, 40) + "'");
+    pos = eol + 1;
+  }
+}
+
+Scene import_assimp(const fs::path& path) {
   const std::string file = path.string();
   std::error_code ec;
   if (!fs::exists(path, ec)) fail_input(file + ": no such file");
   if (!fs::is_regular_file(path, ec)) fail_input(file + ": not a regular file");
 
+  check_ply_header(path);
   Assimp::Importer importer;
   // SortByPType puts lines and points into meshes of their own, which add_node skips.
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
@@ -266,11 +394,22 @@ Scene import_mesh_file(const fs::path& path) {
 
   Scene scene;
   scene.name = path.stem().string();
+  const std::vector<NodeInstance> nodes = flatten_nodes(path, *ai->mRootNode);
+  // Instancing multiplies geometry: check the flattened size before building it.
+  uint64_t triangles = 0, vertices = 0;
+  for (const NodeInstance& n : nodes)
+    for (const aiMesh* mesh : node_meshes(path, *ai, *n.node)) {
+      triangles += mesh->mNumFaces;
+      vertices += mesh->mNumVertices;
+    }
+  check_geometry_budget(file, triangles, vertices);
   MaterialConverter materials(path, *ai, scene);
-  add_node(path, *ai, *ai->mRootNode, mat4(1.0f), materials, scene);
+  for (const NodeInstance& n : nodes) add_node(path, *ai, n, materials, scene);
   if (scene.triangles.empty()) fail_input(file + ": no triangles");
   return scene;
 }
+
+}  // namespace
 
 void write_obj(const fs::path& path, const Scene& scene) {
   const fs::path mtl_path = fs::path(path).replace_extension(".mtl");

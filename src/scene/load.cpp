@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "proxima/core/error.h"
+#include "proxima/core/limits.h"
 #include "proxima/scene/builtin_scenes.h"
 #include "proxima/scene/import.h"
 #include "proxima/scene/scene_file.h"
@@ -39,6 +40,8 @@ Scene load_unsanitized(const std::string& name_or_path) {
 Scene load_scene(const std::string& name_or_path) {
   try {
     Scene scene = load_unsanitized(name_or_path);
+    // Files are checked before they allocate; this also holds built-in scenes to the limits.
+    check_geometry_budget(name_or_path, scene.triangles.size(), scene.positions.size());
     sanitize_scene(scene, name_or_path);
     return scene;
   } catch (const std::filesystem::filesystem_error& e) {

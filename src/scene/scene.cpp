@@ -134,6 +134,8 @@ void sanitize_scene(Scene& scene, const std::string& source) {
   for (vec3& n : scene.normals)
     if (!is_finite(n) || glm::dot(n, n) == 0.0f) n = vec3(0.0f, 1.0f, 0.0f);
   if (scene.uvs.size() != nv) scene.uvs.assign(nv, vec2(0.0f));
+  for (vec2& uv : scene.uvs)
+    if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = vec2(0.0f);
 
   // Drop zero-area triangles (the cross product underflows or vanishes), keeping each
   // object's triangles contiguous and in order.

@@ -15,6 +15,7 @@
 
 #include "proxima/core/error.h"
 #include "proxima/core/image_io.h"
+#include "proxima/core/limits.h"
 #include "proxima/scene/builtin_scenes.h"
 #include "proxima/scene/import.h"
 #include "proxima/scene/procedural.h"
@@ -271,6 +272,13 @@ class SceneReader {
  private:
   fs::path resolve(const std::string& relative) const { return path_.parent_path() / relative; }
 
+  // Fails at `n` when adding this much geometry would take the scene over the limits.
+  void check_budget(const Node& n, uint64_t triangles, uint64_t vertices) const {
+    const std::string error = geometry_budget_error(scene_.triangles.size() + triangles,
+                                                    scene_.positions.size() + vertices);
+    if (!error.empty()) n.fail(error);
+  }
+
   void read_builtin(const Node& n) {
     const std::string name = n.string();
     if (!is_builtin_scene(name)) {
@@ -371,35 +379,50 @@ class SceneReader {
       read_mesh_object(n, name, transform.matrix(), animation);
       return;
     }
+    // Each generator's triangle and (upper bound) vertex count (procedural.h) is checked
+    // against the limits before it allocates.
     Mesh mesh;
     if (type == "sphere") {
-      mesh = make_sphere(n["radius"].positive(), n.get_int("segments", 3, kMaxSegments, 32),
-                         n.get_int("rings", 2, kMaxSegments, 16));
+      const float radius = n["radius"].positive();
+      const uint64_t seg = n.get_int("segments", 3, kMaxSegments, 32);
+      const uint64_t rings = n.get_int("rings", 2, kMaxSegments, 16);
+      check_budget(n, 2 * seg * (rings - 1), (seg + 1) * (rings + 1));
+      mesh = make_sphere(radius, int(seg), int(rings));
     } else if (type == "cylinder") {
-      mesh = make_cylinder(n["radius"].positive(), n["height"].positive(),
-                           n.get_int("segments", 3, kMaxSegments, 32),
-                           n.get_int("rings", 1, kMaxSegments, 1),
-                           n.get("capped", &Node::boolean, true));
+      const float radius = n["radius"].positive(), height = n["height"].positive();
+      const uint64_t seg = n.get_int("segments", 3, kMaxSegments, 32);
+      const uint64_t rings = n.get_int("rings", 1, kMaxSegments, 1);
+      const bool capped = n.get("capped", &Node::boolean, true);
+      check_budget(n, 2 * seg * rings + 2 * seg, (seg + 1) * (rings + 1) + 2 * (seg + 2));
+      mesh = make_cylinder(radius, height, int(seg), int(rings), capped);
     } else if (type == "torus") {
-      mesh = make_torus(n["major_radius"].positive(), n["minor_radius"].positive(),
-                        n.get_int("major_segments", 3, kMaxSegments, 48),
-                        n.get_int("minor_segments", 3, kMaxSegments, 24));
+      const float major = n["major_radius"].positive(), minor = n["minor_radius"].positive();
+      const uint64_t a = n.get_int("major_segments", 3, kMaxSegments, 48);
+      const uint64_t b = n.get_int("minor_segments", 3, kMaxSegments, 24);
+      check_budget(n, 2 * a * b, (a + 1) * (b + 1));
+      mesh = make_torus(major, minor, int(a), int(b));
     } else if (type == "box") {
       const Node size = n["size"];
       vec3 s = size.vector3();
       if (!(s.x > 0.0f && s.y > 0.0f && s.z > 0.0f)) size.fail("sizes must be > 0");
-      mesh = make_box(s, n.get_int("subdivisions", 1, kMaxSegments, 1));
+      const uint64_t sub = n.get_int("subdivisions", 1, kMaxSegments, 1);
+      check_budget(n, 12 * sub * sub, 6 * (sub + 1) * (sub + 1));
+      mesh = make_box(s, int(sub));
     } else if (type == "plane") {
       const std::vector<Node> size = n["size"].items(2);
-      int sub_x = 1, sub_z = 1;
+      uint64_t sub_x = 1, sub_z = 1;
       if (n.has("subdivisions")) {
         const std::vector<Node> sub = n["subdivisions"].items(2);
         sub_x = sub[0].integer(1, kMaxSegments);
         sub_z = sub[1].integer(1, kMaxSegments);
       }
-      mesh = make_plane(size[0].positive(), size[1].positive(), sub_x, sub_z);
+      const float size_x = size[0].positive(), size_z = size[1].positive();
+      check_budget(n, 2 * sub_x * sub_z, (sub_x + 1) * (sub_z + 1));
+      mesh = make_plane(size_x, size_z, int(sub_x), int(sub_z));
     } else {  // teapot
-      mesh = make_teapot(n.get_int("tessellation", 1, kMaxTessellation, 8));
+      const uint64_t t = n.get_int("tessellation", 1, kMaxTessellation, 8);
+      check_budget(n, 64 * t * t, 32 * (t + 1) * (t + 1));
+      mesh = make_teapot(int(t));
     }
     transform_mesh(mesh, transform.matrix());
     const uint32_t mat = n.has("material") ? material(n["material"]) : default_material();
@@ -417,6 +440,7 @@ class SceneReader {
     } catch (const InputError& e) {
       file_node.fail(e.what());
     }
+    check_budget(file_node, imported.triangles.size(), imported.positions.size());
 
     // Imported material id → scene material id.
     std::vector<std::optional<uint32_t>> remap(imported.materials.size());

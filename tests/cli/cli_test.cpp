@@ -1,40 +1,18 @@
 // The command line end to end: exit codes, error messages naming the flag/file, no
 // partial outputs, determinism across --threads, results.json contents.
-#include <array>
-#include <cstdio>
 #include <fstream>
 #include <string>
-#include <sys/wait.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/cli_util.h"
 #include "proxima/core/image_io.h"
+#include "proxima/scene/builtin_scenes.h"
 #include "test_util.h"
 
 namespace proxima {
 namespace {
-
-struct RunResult {
-  int exit_code;
-  std::string output;  // stdout + stderr
-};
-
-RunResult run_cli(const std::string& args) {
-  std::string cmd = std::string(PROXIMA_CLI_PATH) + " " + args + " 2>&1 </dev/null";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return {-1, "popen failed"};
-  std::string output;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) output.append(buf.data(), n);
-  int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
-
-void write_file(const std::filesystem::path& p, const std::string& text) {
-  std::ofstream(p) << text;
-}
 
 TEST(Cli, HelpOnEverySubcommand) {
   for (const char* sub : {"scenes", "info", "render", "bench", "bench trace", "bench raster", "demo"}) {
@@ -105,22 +83,27 @@ TEST(Cli, InfoCountsDroppedDegenerateTriangles) {
   EXPECT_NE(r.output.find("dropped degenerate:  2"), std::string::npos) << r.output;
 }
 
-TEST(Cli, RenderIsIdenticalForOneAndTwoThreads) {
-  TempDir dir;
-  std::string common = "render --scene cornell --width 48 --height 40 --spp 2 --glossy-rays 4 --seed 9 ";
-  RunResult a = run_cli(common + "--threads 1 --out " + (dir.path / "t1").string());
-  RunResult b = run_cli(common + "--threads 2 --out " + (dir.path / "t2").string());
-  ASSERT_EQ(a.exit_code, 0) << a.output;
-  ASSERT_EQ(b.exit_code, 0) << b.output;
-  for (const char* f : {"color.exr", "depth.exr", "normal.exr", "id.exr"}) {
-    ImageF ia = read_exr(dir.path / "t1" / f);
-    ImageF ib = read_exr(dir.path / "t2" / f);
-    EXPECT_TRUE(ia == ib) << f;
+TEST(Cli, RenderIsIdenticalForOneAndTwoThreadsOnEveryBuiltinScene) {
+  for (const BuiltinSceneInfo& scene : builtin_scenes()) {
+    TempDir dir;
+    std::string common =
+        "render --scene " + scene.name + " --width 64 --height 48 --spp 2 --glossy-rays 4 --seed 9 ";
+    RunResult a = run_cli(common + "--threads 1 --out " + (dir.path / "t1").string());
+    RunResult b = run_cli(common + "--threads 2 --out " + (dir.path / "t2").string());
+    ASSERT_EQ(a.exit_code, 0) << scene.name << ": " << a.output;
+    ASSERT_EQ(b.exit_code, 0) << scene.name << ": " << b.output;
+    for (const char* f : {"color.exr", "depth.exr", "normal.exr", "id.exr"}) {
+      ImageF ia = read_exr(dir.path / "t1" / f);
+      ImageF ib = read_exr(dir.path / "t2" / f);
+      EXPECT_TRUE(ia == ib) << scene.name << ": " << f;
+    }
+    ImageF depth = read_exr(dir.path / "t1" / "depth.exr");
+    EXPECT_EQ(depth.width(), 64);
+    EXPECT_EQ(depth.height(), 48);
+    std::ifstream pa(dir.path / "t1" / "color.png", std::ios::binary), pb(dir.path / "t2" / "color.png", std::ios::binary);
+    EXPECT_TRUE(std::string(std::istreambuf_iterator<char>(pa), {}) == std::string(std::istreambuf_iterator<char>(pb), {}))
+        << scene.name << ": color.png";
   }
-  ImageF depth = read_exr(dir.path / "t1" / "depth.exr");
-  EXPECT_EQ(depth.width(), 48);
-  EXPECT_EQ(depth.height(), 40);
-  EXPECT_TRUE(std::filesystem::exists(dir.path / "t1" / "color.png"));
 }
 
 TEST(Cli, BenchTraceWritesTheNamedMetrics) {

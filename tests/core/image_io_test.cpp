@@ -1,6 +1,7 @@
 #include "proxima/core/image_io.h"
 
 #include <filesystem>
+#include <fstream>
 
 #include <gtest/gtest.h>
 
@@ -51,6 +52,66 @@ TEST(ImageIo, MissingDirectoryFailsWithoutLeavingFiles) {
 
 TEST(ImageIo, SrgbTransferInverts) {
   for (float v = 0.0f; v <= 1.0f; v += 0.01f) EXPECT_NEAR(srgb_to_linear(linear_to_srgb(v)), v, 1e-5f);
+}
+
+// Regression (exr_fuzz, issue 13): an EXR whose pixel data fails to decode was freed twice
+// (tinyexr frees the half-decoded image, read_exr freed it again).
+TEST(ImageIo, TruncatedExrFailsWithoutDoubleFree) {
+  TempDir dir;
+  ImageF img(64, 64, 3);
+  for (size_t i = 0; i < img.data().size(); ++i) img.data()[i] = float(i % 97) / 7.0f;
+  write_exr(dir.path / "full.exr", img);
+  std::ifstream in(dir.path / "full.exr", std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  for (size_t keep : {bytes.size() - 1, bytes.size() / 2, size_t(400)}) {
+    std::ofstream(dir.path / "cut.exr", std::ios::binary) << bytes.substr(0, keep);
+    EXPECT_THROW(read_exr(dir.path / "cut.exr"), InputError) << keep;
+  }
+}
+
+// Regression (png_fuzz, issue 13): a PNG whose first IDAT chunk is empty made stb_image call
+// memcpy(NULL, …, 0), fatal under UBSan (make asan) — now a plain decode error.
+TEST(ImageIo, PngWithEmptyIdatChunkIsAnInputError) {
+  TempDir dir;
+  std::string png = "\x89PNG\r\n\x1a\n";
+  png += std::string("\0\0\0\x0dIHDR\0\0\0\x01\0\0\0\x01\x08\x02\0\0\0\0\0\0\0", 25);  // 1×1 RGB
+  png += std::string("\0\0\0\0IDAT\0\0\0\0", 12);                                           // empty
+  png += std::string("\0\0\0\0IEND\0\0\0\0", 12);
+  std::ofstream(dir.path / "empty_idat.png", std::ios::binary) << png;
+  EXPECT_THROW(read_image_linear(dir.path / "empty_idat.png"), InputError);
+}
+
+// Regression (png_fuzz in CI, issue 13): a PNG declaring a 1 GiB IDAT chunk in a tiny file
+// made stb_image allocate 2 GiB before noticing the data is missing.
+TEST(ImageIo, PngChunkLongerThanTheFileIsRejectedBeforeAllocating) {
+  TempDir dir;
+  std::string png = "\x89PNG\r\n\x1a\n";
+  png += std::string("\0\0\0\x0dIHDR\0\0\0\x01\0\0\0\x01\x08\x02\0\0\0\0\0\0\0", 25);  // 1×1 RGB
+  png += std::string("\x40\0\0\0IDAT", 8) + "short";                                          // 1 GiB claimed
+  std::ofstream(dir.path / "liar.png", std::ios::binary) << png;
+  try {
+    read_image_linear(dir.path / "liar.png");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("liar.png: cannot read image: PNG chunk of 1073741824 bytes runs past"),
+              std::string::npos)
+        << e.what();
+  }
+  // …also when the file ends right after the chunk's 8-byte header.
+  std::ofstream(dir.path / "cut.png", std::ios::binary) << png.substr(0, png.size() - 5);
+  EXPECT_THROW(read_image_linear(dir.path / "cut.png"), InputError);
+  ImageF ok(3, 2, 3, 0.25f);
+  write_png_linear(dir.path / "ok.png", ok);  // real files (several chunks) still read
+  EXPECT_EQ(read_image_linear(dir.path / "ok.png").width(), 3);
+}
+
+// Regression (png_fuzz, issue 13): stb's JPEG decoder wrote past its Huffman table on this
+// 19-byte file (a DHT segment whose counts sum above 256). JPEG is no longer decoded.
+TEST(ImageIo, JpegIsRefusedNotDecoded) {
+  TempDir dir;
+  std::ofstream(dir.path / "dht.jpg", std::ios::binary)
+      << std::string("\xff\xff\xd8\xff\xff\xff\xc4\x00\x20\x00\xff\xff\xff\x05\xf0\x24\xff\x01\x00", 19);
+  EXPECT_THROW(read_image_linear(dir.path / "dht.jpg"), InputError);
 }
 
 }  // namespace

@@ -267,6 +267,71 @@ TEST(ImportTest, LinesOnlyHaveNoTriangles) {
   EXPECT_NE(msg.find("lines.obj: no triangles"), std::string::npos) << msg;
 }
 
+// A glTF whose nodes form a chain `depth` deep, the last one holding a triangle.
+std::string deep_gltf(int depth) {
+  std::string nodes;
+  for (int i = 0; i < depth; ++i) {
+    if (i) nodes += ",";
+    nodes += i + 1 < depth ? R"({"children": [)" + std::to_string(i + 1) + R"(], "translation": [1, 0, 0]})"
+                           : std::string(R"({"mesh": 0})");
+  }
+  return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [)" + nodes +
+         R"(], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+         "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
+         "bufferViews": [{"buffer": 0, "byteLength": 36}],
+         "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                        "min": [0, 0, 0], "max": [1, 1, 0]}]})";
+}
+
+// Regression (issue 13): a glTF node chain 100000 deep overflowed the stack (a crash inside
+// assimp's recursive node building). The graph is now flattened without recursion and
+// assimp runs on a thread with a large stack; every level's transform still applies.
+TEST(ImportTest, DeepNodeGraphLoadsWithoutStackOverflow) {
+  TempDir dir;
+  const int depth = 100000;
+  write_file(dir.path / "deep.gltf", deep_gltf(depth));
+  const Scene s = import_mesh_file(dir.path / "deep.gltf");
+  ASSERT_EQ(s.triangles.size(), 1u);
+  EXPECT_FLOAT_EQ(s.positions[0].x, float(depth - 1));  // depth − 1 translations of +1 in x
+}
+
+// Regression (ply_fuzz, issue 13): assimp looped forever on a PLY header whose
+// `end_header` line is misspelled, or with NUL bytes in a line.
+TEST(ImportTest, MalformedPlyHeaderIsAnErrorNotAHang) {
+  TempDir dir;
+  write_file(dir.path / "open.ply",
+             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+             "element face 1\nproperty list uchar int vertex_indices\nend_head0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  const std::string msg = error_of([&] { import_mesh_file(dir.path / "open.ply"); });
+  EXPECT_NE(msg.find("open.ply: PLY header has an unknown line 'end_head0 0 0'"), std::string::npos) << msg;
+  // …and on NUL bytes before end_header.
+  write_file(dir.path / "nul.ply", std::string("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n\0\0end_header\n", 68));
+  const std::string nul = error_of([&] { import_mesh_file(dir.path / "nul.ply"); });
+  EXPECT_NE(nul.find("nul.ply: PLY header line 5 is not ASCII text"), std::string::npos) << nul;
+  // …and when the magic is in another case (assimp matches "plY" too).
+  write_file(dir.path / "upper.ply", "plY\nformat ascii 1. vertex 4\nproperty float x\nproperty ");
+  const std::string upper = error_of([&] { import_mesh_file(dir.path / "upper.ply"); });
+  EXPECT_NE(upper.find("upper.ply: PLY header has no end_header"), std::string::npos) << upper;
+  // A well-formed header with comments and CRLF line ends still loads.
+  write_file(dir.path / "crlf.ply",
+             "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nelement vertex 3\r\nproperty float x\r\n"
+             "property float y\r\nproperty float z\r\nelement face 1\r\nproperty list uchar int vertex_indices\r\n"
+             "end_header\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n");
+  EXPECT_EQ(import_mesh_file(dir.path / "crlf.ply").triangles.size(), 1u);
+}
+
+// Regression (ply_fuzz, issue 13): a garbled face list tripped an internal assertion in
+// assimp's triangulation, which called abort() — proxima crashed with exit 134.
+TEST(ImportTest, PlyTrippingAnAssimpAssertionIsAnError) {
+  TempDir dir;
+  write_file(dir.path / "garbled.ply",
+             "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+             "element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+             "3 0 1 2\nat x\nproperty float y\np3 0 2 3\n");
+  const std::string msg = error_of([&] { import_mesh_file(dir.path / "garbled.ply"); });
+  EXPECT_NE(msg.find("garbled.ply: assimp internal check failed"), std::string::npos) << msg;
+}
+
 TEST(ImportTest, WriteObjIntoMissingDirectoryLeavesNothing) {
   TempDir dir;
   Scene scene;

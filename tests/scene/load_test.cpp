@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <string>
 
@@ -84,6 +85,22 @@ TEST(LoadTest, DegenerateTrianglesAreDroppedAndCounted) {
   EXPECT_EQ(s.dropped_degenerate, 2u);
   ASSERT_EQ(s.objects.size(), 1u);
   EXPECT_EQ(s.objects[0].triangle_count, 2u);
+}
+
+// Regression (issue 13): non-finite texture coordinates survived sanitize_scene and
+// reached the texture lookup's float → int conversion.
+TEST(LoadTest, NonFiniteUvsAreReplaced) {
+  TempDir dir;
+  const fs::path obj = dir.path / "uv.obj";
+  write_file(obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt nan 0\nvt 0 inf\nvt 0.5 0.5\nf 1/1 2/2 3/3\n");
+  const Scene s = load_scene(obj.string());
+  ASSERT_EQ(s.uvs.size(), 3u);
+  int zeros = 0;
+  for (const vec2& uv : s.uvs) {
+    EXPECT_TRUE(std::isfinite(uv.x) && std::isfinite(uv.y));
+    zeros += uv == vec2(0.0f);
+  }
+  EXPECT_EQ(zeros, 2);
 }
 
 TEST(LoadTest, MalformedFilesNameTheFile) {

@@ -15,7 +15,7 @@ void write_png_linear(const std::filesystem::path& path, const ImageF& linear);
 // 8-bit PNG as stored (no color conversion). 1, 2, 3 or 4 channels.
 void write_png(const std::filesystem::path& path, const ImageU8& image);
 
-// PNG/JPEG → linear float RGB (sRGB decoded) with `channels` channels (3 or 4).
+// PNG (8 or 16 bit; JPEG is refused, see image_io.cpp) → linear float RGB (sRGB decoded) with `channels` channels (3 or 4).
 ImageF read_image_linear(const std::filesystem::path& path, int channels = 3);
 
 // Float image (1..4 channels) → 32-bit float EXR. Channel names: Y, or R G B (A).

@@ -24,7 +24,9 @@ struct CameraPath {
   vec3 up{0.0f, 1.0f, 0.0f};
 };
 
-// Camera at time t on the path, with the given image size and clip distances.
+// Camera at time t on the path, with the given image size and clip distances. A time whose
+// interpolated view is degenerate (target at the position, view along `up`, overflow)
+// takes the view of the nearer key.
 Camera camera_at_time(const CameraPath& path, float t, int width, int height, float near = 0.01f,
                       float far = 1000.0f);
 

@@ -86,7 +86,8 @@ Scene pose_scene(const Scene& rest, float t);
 
 // Checks and repairs a scene after loading: throws InputError (naming `source`) for
 // non-finite vertices, out-of-range indices or material ids; drops zero-area triangles,
-// counting them in dropped_degenerate; fills missing normals/uvs. Keeps object ranges valid.
+// counting them in dropped_degenerate; fills missing normals/uvs and replaces non-finite
+// ones (normal +Y, uv 0). Keeps object ranges valid.
 void sanitize_scene(Scene& scene, const std::string& source);
 
 }  // namespace proxima
