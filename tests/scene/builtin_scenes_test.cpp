@@ -58,11 +58,13 @@ constexpr Minimum kMinimums[] = {
     {"room-reflector", 2176, 1, 1, 2},
     {"living-room", 250000, 20, 2, 2},
     {"bathroom", 80000, 10, 2, 2},
+    {"room-teapot", 39800, 1, 1, 2},
+    {"room-parallax", 2176, 1, 0, 2},
 };
 
-TEST(BuiltinScenes, ListNamesTheFourScenes) {
+TEST(BuiltinScenes, ListNamesEveryScene) {
   std::vector<BuiltinSceneInfo> list = builtin_scenes();
-  ASSERT_EQ(list.size(), 4u);
+  ASSERT_EQ(list.size(), std::size(kMinimums));
   for (size_t i = 0; i < list.size(); ++i) {
     EXPECT_EQ(list[i].name, kMinimums[i].name);
     EXPECT_FALSE(list[i].description.empty());
