@@ -61,6 +61,8 @@ DistanceCubeMap render_distance_cube_map(const Scene& scene, const RayScene& ray
   DistanceCubeMap map;
   map.camera = CubeCamera{center, options.resolution, 1e-4f * diagonal, 4.0f * diagonal};
   map.face_cams = face_cameras(map.camera);
+  for (size_t f = 0; f < 6; ++f)
+    map.face_basis[f] = {camera_right(map.face_cams[f]), camera_up(map.face_cams[f]), camera_forward(map.face_cams[f])};
 
   const std::vector<uint32_t> objects = draw_list(scene, options);
   const std::vector<Bounds3> bounds = raster_object_bounds(scene);
@@ -105,38 +107,75 @@ DistanceCubeMap render_distance_cube_map(const Scene& scene, const RayScene& ray
   return map;
 }
 
-CubeSample sample_cube(const DistanceCubeMap& map, vec3 dir) {
-  CubeTexel t = cube_lookup(map.camera, dir);
+namespace {
+
+// Bilinear filter of `dir` over the non-empty texels; with kColor false only the distance.
+// Returns the covered weight (the sum of the non-empty taps' weights).
+template <bool kColor>
+float filter(const DistanceCubeMap& map, vec3 dir, vec3* color, float* distance, uint32_t* object) {
+  // The face and continuous pixel of cube_lookup(), with the cached face frames.
+  const vec3 a = glm::abs(dir);
+  int face;
+  if (a.x >= a.y && a.x >= a.z) face = dir.x >= 0.0f ? 0 : 1;
+  else if (a.y >= a.z) face = dir.y >= 0.0f ? 2 : 3;
+  else face = dir.z >= 0.0f ? 4 : 5;
+  const auto& basis = map.face_basis[size_t(face)];
+  const int res = map.camera.resolution;
+  const float half = 0.5f * float(res);
+  const float scale = half / glm::dot(dir, basis[2]);
   // Bilinear taps around the continuous position (texel centers at +0.5).
-  const float fx = t.pixel.x - 0.5f, fy = t.pixel.y - 0.5f;
+  const float fx = half + glm::dot(dir, basis[0]) * scale - 0.5f;
+  const float fy = half - glm::dot(dir, basis[1]) * scale - 0.5f;
   const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
   const float ax = fx - float(x0), ay = fy - float(y0);
   const float weights[4] = {(1 - ax) * (1 - ay), ax * (1 - ay), (1 - ax) * ay, ax * ay};
-  const int dx[4] = {0, 1, 0, 1}, dy[4] = {0, 0, 1, 1};
+  const bool inside = x0 >= 0 && y0 >= 0 && x0 + 1 < res && y0 + 1 < res;
 
-  CubeSample s;
-  float covered = 0.0f, best = -1.0f, distance = 0.0f;
-  vec3 color(0.0f);
+  float covered = 0.0f, best = -1.0f, d_sum = 0.0f;
+  vec3 c_sum(0.0f);
   for (int k = 0; k < 4; ++k) {
     if (weights[k] <= 0.0f) continue;
-    TapRef tap = resolve_tap(map, t.face, x0 + dx[k], y0 + dy[k]);
-    const ImageF& face = map.faces[size_t(tap.face)];
-    if (face.empty()) continue;
-    const float d = face.at(tap.x, tap.y, 3);
-    if (d == kDistanceInf) continue;
+    TapRef tap = inside ? TapRef{face, x0 + (k & 1), y0 + (k >> 1)} : resolve_tap(map, face, x0 + (k & 1), y0 + (k >> 1));
+    const ImageF& img = map.faces[size_t(tap.face)];
+    if (img.empty()) continue;
+    const float* texel = &img.at(tap.x, tap.y, 0);
+    if (texel[3] == kDistanceInf) continue;
     covered += weights[k];
-    distance += weights[k] * d;
-    color += weights[k] * vec3(face.at(tap.x, tap.y, 0), face.at(tap.x, tap.y, 1), face.at(tap.x, tap.y, 2));
-    if (weights[k] > best) {
-      best = weights[k];
-      s.object = map.objects[size_t(tap.face)].at(tap.x, tap.y);
+    d_sum += weights[k] * texel[3];
+    if constexpr (kColor) {
+      c_sum += weights[k] * vec3(texel[0], texel[1], texel[2]);
+      if (weights[k] > best) {
+        best = weights[k];
+        *object = map.objects[size_t(tap.face)].at(tap.x, tap.y);
+      }
     }
   }
-  if (covered < 0.5f) return CubeSample{};
+  if (covered >= 0.5f) {
+    *distance = d_sum / covered;
+    if constexpr (kColor) *color = c_sum / covered;
+  }
+  return covered;
+}
+
+}  // namespace
+
+CubeSample sample_cube(const DistanceCubeMap& map, vec3 dir) {
+  CubeSample s;
+  uint32_t object = s.object;
+  vec3 color(0.0f);
+  float distance = kDistanceInf;
+  if (filter<true>(map, dir, &color, &distance, &object) < 0.5f) return s;
   s.empty = false;
-  s.color = color / covered;
-  s.distance = distance / covered;
+  s.color = color;
+  s.distance = distance;
+  s.object = object;
   return s;
+}
+
+float sample_distance(const DistanceCubeMap& map, vec3 dir) {
+  float distance = kDistanceInf;
+  filter<false>(map, dir, nullptr, &distance, nullptr);
+  return distance;
 }
 
 }  // namespace proxima

@@ -47,12 +47,11 @@ EnvLookup rectified_lookup(const DistanceCubeMap& map, const Environment& env, v
   const int N = rectify_step_limit(options.D, options.d_e);
   EnvLookup r;
   vec3 l1 = (x - c) + options.D * l;
-  CubeSample s;
   for (int n = 1;; ++n) {
-    s = sample_cube(map, l1);
+    const float d = sample_distance(map, l1);
     r.steps = n;
-    r.saw_inf |= s.empty;
-    const float delta = s.distance - glm::length(l1);  // +inf when empty: search farther
+    r.saw_inf |= d == kDistanceInf;
+    const float delta = d - glm::length(l1);  // +inf when empty: search farther
     if (std::abs(delta) < options.d_e) {
       r.converged = true;
       break;
@@ -72,7 +71,9 @@ EnvLookup rectified_lookup(const DistanceCubeMap& map, const Environment& env, v
     }
     return r;
   }
-  // Not converged without any d_inf: the bisection's last point (within 2^(1−N)·D).
+  // The color at the final query (converged, or the bisection's last point within
+  // 2^(1−N)·D when no lookup was d_inf).
+  const CubeSample s = sample_cube(map, l1);
   r.color = s.empty ? environment_radiance(env, l) : s.color;
   r.miss = s.empty;
   r.object = s.object;

@@ -20,7 +20,7 @@ inline uint32_t add_quad(Scene& s, vec3 corner, vec3 eu, vec3 ev, uint32_t mater
 
 inline uint32_t add_diffuse(Scene& s, vec3 color, float specular = 0.0f) {
   Material m;
-  m.name = "m" + std::to_string(s.materials.size());
+  m.name = std::to_string(s.materials.size());
   m.diffuse = color;
   m.specular = specular;
   return add_material(s, m);

@@ -23,6 +23,8 @@ inline constexpr float kDistanceInf = kInf;
 struct DistanceCubeMap {
   CubeCamera camera;                 // projection center c, face resolution, near/far
   std::array<Camera, 6> face_cams;   // face_cameras(camera), cached for seam lookups
+  // Per face: camera_right, camera_up, camera_forward of face_cams (cached for lookups).
+  std::array<std::array<vec3, 3>, 6> face_basis;
   // Per face (CubeFace order): 4 channels — linear RGB radiance of the surface, Euclidean
   // distance to c (kDistanceInf where empty). An empty image = nothing on that face.
   std::array<ImageF, 6> faces;
@@ -60,5 +62,8 @@ struct CubeSample {
 // never blend into colors or distances; coverage is decided as by the nearest tap (≥ half
 // the weight non-empty), so silhouettes stay as sharp as the texel grid.
 CubeSample sample_cube(const DistanceCubeMap& map, vec3 dir);
+
+// sample_cube(map, dir).distance without the color (the bisection's inner steps).
+float sample_distance(const DistanceCubeMap& map, vec3 dir);
 
 }  // namespace proxima
