@@ -12,8 +12,10 @@
 #include "proxima/core/image_io.h"
 #include "proxima/core/parallel.h"
 #include "proxima/core/timer.h"
+#include "proxima/reflect/direct_light.h"
 #include "proxima/reflect/envmap_reflection.h"
 #include "proxima/scene/load.h"
+#include "proxima/scene/shading.h"
 #include "proxima/trace/reference_renderer.h"
 
 namespace proxima::cli {
@@ -94,6 +96,36 @@ double mean_abs_error(const ImageF& a, const ImageF& b, const ImageU32& mask, Im
       error_image.at(x, y) = uint8_t(std::min(255.0f, 4.0f * e + 0.5f));
     }
   return n ? sum / double(n) : 0.0;
+}
+
+// Per mask pixel, the object the reference's mirror ray from the primary hit meets
+// (kNoObject where it escapes): what each method's lookup should have found.
+ImageU32 reference_reflected_objects(const Scene& scene, const RayScene& rays, const Camera& camera,
+                                     const ItemBuffer& item, const ImageU32& mask) {
+  ImageU32 out(camera.width, camera.height, 1, kNoTriangle);  // kNoObject has the same value
+  const DirectLight offsets(scene, rays, 1);
+  parallel_for(size_t(camera.height), 8, [&](size_t y0, size_t y1) {
+    for (int y = int(y0); y < int(y1); ++y)
+      for (int x = 0; x < camera.width; ++x) {
+        if (!mask.at(x, y)) continue;
+        const uint32_t t = item.triangle.at(x, y);
+        const float u = item.barycentric.at(x, y, 0), v = item.barycentric.at(x, y, 1);
+        const vec3 view = triangle_point(scene, t, u, v) - camera.position;
+        const SurfacePoint sp = surface_point_seen(scene, t, u, v, view);
+        const vec3 dir = glossy_lobe_direction(reflect(glm::normalize(view), sp.n), sp.ng, 0.0f, vec2(0.0f));
+        const Hit hit = rays.intersect(Ray{offsets.offset_origin(sp), dir, 0.0f, kInf});
+        if (hit.valid()) out.at(x, y) = scene.triangle_object[hit.triangle];
+      }
+  });
+  return out;
+}
+
+// Percentage of mask pixels whose looked-up object is the reference's.
+double object_match_pct(const ImageU32& objects, const ImageU32& reference, const ImageU32& mask, size_t count) {
+  size_t same = 0;
+  for (size_t i = 0; i < mask.data().size(); ++i)
+    same += mask.data()[i] && objects.data()[i] == reference.data()[i];
+  return count ? 100.0 * double(same) / double(count) : 100.0;
 }
 
 }  // namespace
@@ -207,15 +239,29 @@ Command register_reflect(CLI::App& root) {
             size_t mask_pixels = 0;
             const ImageU32 mask = comparison_mask(pixels, item, scene, reflectors, &mask_pixels);
             results.metrics["reflector_pixels"] = double(mask_pixels);
+            const ImageU32 reference_objects = reference_reflected_objects(scene, rays, camera, item, mask);
+            // Pixels whose mirror ray meets the environment, not the reflector itself: no map
+            // of the environment (the reflector excluded) can show self-reflections.
+            ImageU32 env_mask = mask;
+            size_t self_pixels = 0;
+            for (size_t i = 0; i < env_mask.data().size(); ++i) {
+              const uint32_t o = reference_objects.data()[i];
+              if (env_mask.data()[i] && std::find(reflectors.begin(), reflectors.end(), o) != reflectors.end()) {
+                env_mask.data()[i] = 0u;
+                ++self_pixels;
+              }
+            }
+            results.metrics["self_reflection_pct"] = mask_pixels ? 100.0 * double(self_pixels) / double(mask_pixels) : 0.0;
 
             Table table{"reflect " + scene.name + " (" + std::to_string(camera.width) + "x" +
                             std::to_string(camera.height) + ", cube " + std::to_string(f.cube_size) + "², d_e " +
                             std::to_string(f.d_e).substr(0, 5) + ")",
-                        {"method", "ms_per_frame", "fps", "ms_with_map_build", "mae_0_255", "edge_pct"},
+                        {"method", "ms_per_frame", "fps", "ms_with_map_build", "mae_0_255", "env_mae_0_255", "object_match_pct",
+                         "edge_pct"},
                         {}};
             for (const std::string& m : methods) {
               ImageF color;
-              double ms = 0.0, with_build = 0.0, edge_pct = 0.0;
+              double ms = 0.0, with_build = 0.0, edge_pct = 0.0, match_pct = 100.0;
               if (m == "reference") {
                 color = reference;
                 ms = with_build = median(reference_ms);
@@ -234,6 +280,7 @@ Command register_reflect(CLI::App& root) {
                 with_build = ms + results.metrics[m == "layered" ? "layered_build_ms" : "envmap_build_ms"];
                 edge_pct = frame.stats.lookups ? 100.0 * double(frame.stats.edge_lookups) / double(frame.stats.lookups) : 0.0;
                 results.metrics[m + "_edge_pct"] = edge_pct;
+                match_pct = object_match_pct(frame.object, reference_objects, mask, mask_pixels);
                 results.metrics[m + "_samples_per_lookup"] =
                     frame.stats.lookups ? double(frame.stats.map_samples) / double(frame.stats.lookups) : 0.0;
                 // Outside the reflector the image is the reference's: only the reflection differs.
@@ -245,16 +292,20 @@ Command register_reflect(CLI::App& root) {
               }
               ImageU8 error_image;
               const double mae = mean_abs_error(color, reference, mask, error_image);
+              ImageU8 unused;
+              const double env_mae = mean_abs_error(color, reference, env_mask, unused);
               results.metrics[m + "_mae"] = mae;
+              results.metrics[m + "_env_mae"] = env_mae;
               results.metrics[m + "_ms"] = ms;
               results.metrics[m + "_with_build_ms"] = with_build;
+              results.metrics[m + "_object_match_pct"] = match_pct;
               write_png_linear(out / (m + ".png"), color);
               results.images[m] = m + ".png";
               if (m != "reference") {
                 write_png(out / ("error_" + m + ".png"), error_image);
                 results.images["error_" + m] = "error_" + m + ".png";
               }
-              table.rows.push_back({m, ms, 1000.0 / ms, with_build, mae, edge_pct});
+              table.rows.push_back({m, ms, 1000.0 / ms, with_build, mae, env_mae, match_pct, edge_pct});
             }
             results.tables.push_back(std::move(table));
             publish_results(out, results);

@@ -83,6 +83,8 @@ DistanceCubeMap render_distance_cube_map(const Scene& scene, const RayScene& ray
     covered += face_covered;
     ImageF& face = map.faces[size_t(f)];
     face = ImageF(res, res, 4, 0.0f);
+    ImageF& distance = map.distances[size_t(f)];
+    distance = ImageF(res, res, 1, kDistanceInf);
     map.objects[size_t(f)] = g.object;
     parallel_for_tiles(res, res, kTileSize, [&](const Tile& tile) {
       for (int y = tile.y0; y < tile.y1; ++y)
@@ -99,7 +101,7 @@ DistanceCubeMap render_distance_cube_map(const Scene& scene, const RayScene& ray
           // Texels are one bounce deep: their own reflections are beyond the bounce limit.
           vec3 color = combine_shading(light.local_terms(sp, rng));
           for (int c = 0; c < 3; ++c) face.at(x, y, c) = color[c];
-          face.at(x, y, 3) = glm::length(p - center);
+          face.at(x, y, 3) = distance.at(x, y) = glm::length(p - center);
         }
     });
   }
@@ -130,18 +132,31 @@ float filter(const DistanceCubeMap& map, vec3 dir, vec3* color, float* distance,
   const float ax = fx - float(x0), ay = fy - float(y0);
   const float weights[4] = {(1 - ax) * (1 - ay), ax * (1 - ay), (1 - ax) * ay, ax * ay};
   const bool inside = x0 >= 0 && y0 >= 0 && x0 + 1 < res && y0 + 1 < res;
+  if constexpr (!kColor) {
+    // Fast path of the bisection's steps: all four taps on one face and non-empty.
+    const ImageF& img = map.distances[size_t(face)];
+    if (inside && !img.empty()) {
+      const float* r0 = &img.at(x0, y0);
+      const float* r1 = r0 + res;
+      if (std::max(std::max(r0[0], r0[1]), std::max(r1[0], r1[1])) < kDistanceInf) {
+        *distance = weights[0] * r0[0] + weights[1] * r0[1] + weights[2] * r1[0] + weights[3] * r1[1];
+        return 1.0f;
+      }
+    }
+  }
 
   float covered = 0.0f, best = -1.0f, d_sum = 0.0f;
   vec3 c_sum(0.0f);
   for (int k = 0; k < 4; ++k) {
     if (weights[k] <= 0.0f) continue;
     TapRef tap = inside ? TapRef{face, x0 + (k & 1), y0 + (k >> 1)} : resolve_tap(map, face, x0 + (k & 1), y0 + (k >> 1));
-    const ImageF& img = map.faces[size_t(tap.face)];
+    const ImageF& img = kColor ? map.faces[size_t(tap.face)] : map.distances[size_t(tap.face)];
     if (img.empty()) continue;
     const float* texel = &img.at(tap.x, tap.y, 0);
-    if (texel[3] == kDistanceInf) continue;
+    const float d = kColor ? texel[3] : texel[0];
+    if (d == kDistanceInf) continue;
     covered += weights[k];
-    d_sum += weights[k] * texel[3];
+    d_sum += weights[k] * d;
     if constexpr (kColor) {
       c_sum += weights[k] * vec3(texel[0], texel[1], texel[2]);
       if (weights[k] > best) {

@@ -47,6 +47,7 @@ EnvLookup rectified_lookup(const DistanceCubeMap& map, const Environment& env, v
   const int N = rectify_step_limit(options.D, options.d_e);
   EnvLookup r;
   vec3 l1 = (x - c) + options.D * l;
+  float step = options.D;  // 2^(1−n)·D before the update of step n: halved each step (exact)
   for (int n = 1;; ++n) {
     const float d = sample_distance(map, l1);
     r.steps = n;
@@ -57,7 +58,8 @@ EnvLookup rectified_lookup(const DistanceCubeMap& map, const Environment& env, v
       break;
     }
     if (n == N) break;
-    l1 += (delta > 0.0f ? 1.0f : -1.0f) * std::ldexp(options.D, -n) * l;
+    step *= 0.5f;
+    l1 += (delta > 0.0f ? step : -step) * l;
   }
   r.query = c + l1;
   if (!r.converged && r.saw_inf) {

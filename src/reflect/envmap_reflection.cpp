@@ -84,14 +84,16 @@ ReflectorPixels rasterize_reflector_pixels(const Scene& scene, const Camera& cam
 EnvmapFrame shade_reflector_pixels(const Scene& scene, const RayScene& rays, const Camera& camera,
                                    const ReflectorPixels& pixels, const EnvmapInputs& in) {
   const int w = camera.width, h = camera.height;
-  EnvmapFrame frame{ImageF(w, h, 3, 0.0f), {}};
+  EnvmapFrame frame{ImageF(w, h, 3, 0.0f), ImageU32(w, h, 1, kNoObject), {}};
   const DirectLight light(scene, rays, in.area_light_samples);
   std::atomic<size_t> n_pixels{0}, n_lookups{0}, n_samples{0}, n_edges{0};
   parallel_for_tiles(w, h, kTileSize, [&](const Tile& tile) {
     std::vector<vec2> lobe(size_t(in.glossy_rays));
     size_t tp = 0, tl = 0, ts = 0, te = 0;
+    uint32_t first_object = kNoObject;
     auto trace = [&](vec3 x, vec3 dir) {
       EnvLookup r = lookup(in, scene.environment, x, dir);
+      if (first_object == kNoObject && !r.miss) first_object = r.object;
       ++tl;
       ts += size_t(r.steps);
       te += r.miss;
@@ -102,6 +104,7 @@ EnvmapFrame shade_reflector_pixels(const Scene& scene, const RayScene& rays, con
         const uint32_t t = pixels.triangle.at(x, y);
         if (t == kNoTriangle) continue;
         ++tp;
+        first_object = kNoObject;
         const float u = pixels.barycentric.at(x, y, 0), v = pixels.barycentric.at(x, y, 1);
         const vec3 view = triangle_point(scene, t, u, v) - camera.position;
         SurfacePoint sp = surface_point_seen(scene, t, u, v, view);
@@ -123,6 +126,7 @@ EnvmapFrame shade_reflector_pixels(const Scene& scene, const RayScene& rays, con
         }
         const vec3 color = combine_shading(terms);
         for (int c = 0; c < 3; ++c) frame.color.at(x, y, c) = color[c];
+        frame.object.at(x, y) = first_object;
       }
     n_pixels += tp;
     n_lookups += tl;

@@ -595,8 +595,8 @@ Scene make_room_teapot() {
 
 // The parallax scene of the paper's Fig. 8: the 8 × 8 × 4 m room (1 m checks on the floor
 // and the front wall), the mirror cylinder at its center and a red sphere between the
-// cylinder and the front wall; cameras "left" and "right" see the sphere's reflection
-// shift against the wall.
+// cylinder and the front wall, off the room's axis; cameras "left" and "right" see the
+// sphere's reflection shift against the wall.
 Scene make_room_parallax() {
   Scene s;
   s.name = "room-parallax";
@@ -616,7 +616,7 @@ Scene make_room_parallax() {
   const uint32_t red = add_material(s, material("red", {0.85f, 0.1f, 0.1f}));
   const uint32_t mirror = add_material(s, material("mirror", vec3(0.9f), 1.0f, 0.0f));
   const uint32_t lamp = add_material(s, material("lamp", vec3(0.0f), 0, 0, vec3(5.0f)));
-  put(s, make_sphere(0.4f, 48, 24), "sphere", red, place({0.0f, 1.0f, 2.2f}));
+  put(s, make_sphere(0.4f, 48, 24), "sphere", red, place({0.5f, 0.9f, 2.0f}));
   put(s, make_cylinder(0.5f, 2.0f, 64, 16, true), "reflector", mirror);
   put(s, make_quad({-0.5f, 3.99f, -0.5f}, {1, 0, 0}, {0, 0, 1}, 1, 1), "light", lamp);
   AreaLight area;
