@@ -3,7 +3,7 @@
 // platform, OpenGL 3.3 core) and prints its timing as one JSON object on stdout, so
 // `proxima bench raster` can run it as a subprocess side by side with its own figures.
 //
-//   proxima_llvmpipe_bench [--scene BUILTIN] [--camera NAME] [--width W] [--height H]
+//   proxima_llvmpipe_bench [--scene NAME|FILE] [--camera NAME] [--width W] [--height H]
 //                          [--threads N] [--repetitions R]
 //
 // --threads sets LP_NUM_THREADS (llvmpipe's rasterizer threads; its setup and binning run
@@ -31,7 +31,7 @@
 #include "proxima/core/error.h"
 #include "proxima/core/timer.h"
 #include "proxima/raster/rasterizer.h"
-#include "proxima/scene/builtin_scenes.h"
+#include "proxima/scene/load.h"
 
 namespace {
 
@@ -43,7 +43,7 @@ using namespace proxima;
 }
 
 struct Args {
-  std::string scene = "living-room";  // a built-in scene
+  std::string scene = "living-room";  // built-in name or scene/mesh file (load_scene)
   std::string camera;                 // empty = the scene's first camera
   int width = 1024, height = 1024, threads = 0, repetitions = 7;
 };
@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
 
   Scene scene;
   try {
-    scene = make_builtin_scene(args.scene);
+    scene = load_scene(args.scene);
   } catch (const InputError& e) {
     die(2, e.what());
   }

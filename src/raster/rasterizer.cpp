@@ -20,6 +20,7 @@
 #include <mutex>
 
 #include "proxima/core/error.h"
+#include "proxima/scene/shading.h"
 
 namespace proxima {
 namespace raster_detail {
@@ -526,18 +527,16 @@ void resolve_tile(const Frame& frame, const Tile& tile, const TileBuffer& buffer
                           : tri.material->diffuse;
           color = albedo;
           if (frame.direct_light) {
-            // docs/shading.md without shadows and reflections: emission + ambient·albedo
-            // + (1 − s)·albedo/π·Σ I·max(0, cos θ)/r² over the point lights.
+            // docs/shading.md without shadows and reflections (scene/shading.h).
+            ShadingTerms terms;
+            terms.emission = tri.material->emission;
+            terms.ambient = scene.ambient;
+            terms.albedo = albedo;
+            terms.specular = tri.material->specular;
             const vec3 p = w * tri.p[0] + u * tri.p[1] + v * tri.p[2];
-            vec3 irradiance(0.0f);
-            for (const PointLight& light : scene.point_lights) {
-              const vec3 d = light.position - p;
-              const float r2 = glm::dot(d, d);
-              const float cos_theta = r2 > 0.0f ? glm::dot(normal, d) / std::sqrt(r2) : 0.0f;
-              if (cos_theta > 0.0f) irradiance += light.intensity * (cos_theta / r2);
-            }
-            color = tri.material->emission + albedo * scene.ambient +
-                    (1.0f - tri.material->specular) * albedo / kPi * irradiance;
+            for (const PointLight& light : scene.point_lights)
+              terms.direct_irradiance += point_light_irradiance(light, p, normal);
+            color = combine_shading(terms);
           }
         }
       }

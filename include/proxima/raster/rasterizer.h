@@ -59,9 +59,10 @@ struct RasterOptions {
   // false: every covered fragment goes to the fragment test and, if kept, overwrites the
   // pixel (coverage counting).
   bool depth_test = true;
-  // kRasterDiffuse: the diffuse part of docs/shading.md without shadows or reflections —
-  // emission + ambient·albedo + (1 − s)·albedo/π·Σ I·cos θ/r² over the point lights (area
-  // lights are left to techniques that sample them) — instead of the bare albedo.
+  // kRasterDiffuse: docs/shading.md without shadows or reflections (combine_shading with
+  // reflected = 0) — emission + (1 − s)·albedo·(ambient + Σ E/π) over the point lights,
+  // unshadowed (area lights are left to techniques that sample them) — instead of the
+  // bare albedo.
   bool direct_light = false;
   bool fragment_barycentrics = false;  // fill Fragment::u, v for the fragment test
   // What to draw (at most one non-empty; both empty = the whole scene):
