@@ -8,6 +8,9 @@ packages=(
   libglm-dev libembree-dev libtbb-dev libassimp-dev
   libstb-dev libtinyexr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  # Optional llvmpipe harness of `proxima bench raster` (bench/llvmpipe): Mesa's
+  # software OpenGL through EGL, measured side by side with proxima's rasterizer.
+  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
 )
 
 missing=()

@@ -1,12 +1,19 @@
 // `proxima bench trace`: BVH build time and rays per second of the Embree reference on a
 // built-in scene, at 1 thread and at all threads, medians over repetitions.
+// `proxima bench raster`: the software rasterizer's agreement with Embree item buffers on
+// every built-in camera, and its frame time on living-room beside Mesa's llvmpipe
+// (the optional harness proxima_llvmpipe_bench next to this binary), in one run.
 #include <cstdio>
+#include <filesystem>
 #include <memory>
+
+#include <nlohmann/json.hpp>
 
 #include "command.h"
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
 #include "proxima/core/timer.h"
+#include "proxima/eval/raster_agreement.h"
 #include "proxima/scene/load.h"
 #include "proxima/trace/ray_scene.h"
 
@@ -18,6 +25,7 @@ struct BenchFlags {
   CommonOptions common;
   CameraChoice camera;
   int reps = 5;
+  bool skip_agreement = false;
 };
 
 std::vector<Ray> primary_rays(const Camera& cam) {
@@ -104,6 +112,98 @@ int run_trace(const BenchFlags& f) {
   return 0;
 }
 
+// Runs the llvmpipe harness beside this executable; NaN when it is absent or fails.
+double llvmpipe_ms(const std::string& scene, const CameraChoice& camera, int width, int height, int threads,
+                   int reps, std::string* why) {
+  namespace fs = std::filesystem;
+  fs::path self = fs::read_symlink("/proc/self/exe");
+  fs::path harness = self.parent_path() / "proxima_llvmpipe_bench";
+  if (!fs::exists(harness)) {
+    *why = "llvmpipe harness not built (needs libegl-dev libgl-dev)";
+    return std::nan("");
+  }
+  std::string cmd = harness.string() + " --scene " + scene + " --width " + std::to_string(width) + " --height " +
+                    std::to_string(height) + " --threads " + std::to_string(threads) + " --repetitions " +
+                    std::to_string(reps);
+  if (!camera.camera.empty()) cmd += " --camera " + camera.camera;
+  FILE* pipe = popen((cmd + " 2>/dev/null").c_str(), "r");
+  if (!pipe) {
+    *why = "cannot start the llvmpipe harness";
+    return std::nan("");
+  }
+  std::string text;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) text.append(buf, n);
+  int status = pclose(pipe);
+  if (status != 0) {
+    *why = "llvmpipe harness failed (exit status " + std::to_string(status) + "; EGL/llvmpipe unavailable?)";
+    return std::nan("");
+  }
+  try {
+    return nlohmann::json::parse(text).at("ms_depth_id").get<double>();
+  } catch (const std::exception& e) {
+    *why = std::string("llvmpipe harness printed unreadable output: ") + e.what();
+    return std::nan("");
+  }
+}
+
+int run_raster(const BenchFlags& f) {
+  if (f.reps < 1 || f.reps > 1000) fail_input("--reps: must be in 1..1000");
+  Scene scene = load_scene(f.common.scene);
+  Camera cam = pick_camera(scene, f.camera, f.common.width, f.common.height);
+  auto out = prepare_out_dir(f.common.out);
+  int all = f.common.threads > 0 ? f.common.threads : hardware_threads();
+
+  Results results;
+  results.command = command_line();
+  results.threads = all;
+
+  // Agreement with Embree: every built-in scene, every camera, 512×512.
+  Table agree{"rasterized vs ray-cast triangle ids, 512×512, every built-in camera",
+              {"scene", "camera", "agreement_pct", "edge", "depth_tie", "other"},
+              {}};
+  double min_agreement = 100.0;
+  size_t other_total = 0;
+  if (!f.skip_agreement) {
+    for (const CameraAgreement& c : raster_agreement_on_builtins(512)) {
+      const IdAgreement& a = c.agreement;
+      min_agreement = std::min(min_agreement, a.agreement_pct());
+      other_total += a.other;
+      agree.rows.push_back({c.scene, c.camera, a.agreement_pct(), double(a.edge), double(a.depth), double(a.other)});
+    }
+    results.metrics["id_agreement_pct"] = min_agreement;
+    results.metrics["id_disagreements_other"] = double(other_total);
+    results.tables.push_back(agree);
+  }
+
+  // Speed: proxima at 1 and all threads, llvmpipe at the same counts, one run.
+  RasterBenchOptions opts;
+  opts.threads = all == 1 ? std::vector<int>{1} : std::vector<int>{1, all};
+  opts.repetitions = f.reps;
+  std::vector<RasterTiming> timings = bench_raster(scene, cam, opts);
+  Table speed{"raster " + scene.name + ", " + std::to_string(cam.width) + "x" + std::to_string(cam.height) +
+                  ", median of " + std::to_string(f.reps),
+              {"threads", "depth_id_ms", "gbuffer_ms", "tris_per_s", "llvmpipe_depth_id_ms", "speedup_vs_llvmpipe"},
+              {}};
+  std::string why;
+  for (const RasterTiming& t : timings) {
+    double gl = llvmpipe_ms(f.common.scene, f.camera, cam.width, cam.height, t.threads, f.reps, &why);
+    double speedup = gl / t.depth_id_ms;
+    speed.rows.push_back({double(t.threads), t.depth_id_ms, t.gbuffer_ms, t.tris_per_s, gl, speedup});
+    std::string suffix = t.threads == all ? "" : "_1t";
+    results.metrics["raster_ms_depth_id" + suffix] = t.depth_id_ms;
+    results.metrics["raster_ms_gbuffer" + suffix] = t.gbuffer_ms;
+    results.metrics["tris_per_s" + suffix] = t.tris_per_s;
+    results.metrics["llvmpipe_ms_depth_id" + suffix] = gl;
+    results.metrics["speedup_vs_llvmpipe" + suffix] = speedup;
+  }
+  if (!why.empty()) std::fprintf(stderr, "proxima: bench raster: %s; llvmpipe columns left empty\n", why.c_str());
+  results.tables.push_back(speed);
+  publish_results(out, results);
+  return 0;
+}
+
 }  // namespace
 
 Command register_bench(CLI::App& root) {
@@ -120,8 +220,24 @@ Command register_bench(CLI::App& root) {
   add_out_flag(trace, f.common, false);
   f.common.out = "out/bench-trace";
   trace->add_option("--reps", f.reps, "repetitions per measurement")->capture_default_str();
-  return {app, [trace] {
+
+  static BenchFlags r;
+  auto* raster = app->add_subcommand(
+      "raster", "software rasterizer: id agreement with Embree on every built-in camera; ms/frame vs llvmpipe");
+  add_scene_flag(raster, r.common, "living-room");
+  add_camera_flags(raster, r.camera);
+  r.common.width = 1024;
+  r.common.height = 1024;
+  add_size_flags(raster, r.common);
+  add_threads_flag(raster, r.common);
+  add_out_flag(raster, r.common, false);
+  r.common.out = "out/bench-raster";
+  r.reps = 9;
+  raster->add_option("--reps", r.reps, "repetitions per measurement")->capture_default_str();
+  raster->add_flag("--skip-agreement", r.skip_agreement, "time only; skip the Embree agreement pass");
+  return {app, [trace, raster] {
             if (trace->parsed()) return run_trace(f);
+            if (raster->parsed()) return run_raster(r);
             return 2;
           }};
 }
