@@ -12,6 +12,7 @@
 #include "proxima/core/image_io.h"
 #include "proxima/core/parallel.h"
 #include "proxima/core/timer.h"
+#include "proxima/eval/image_error.h"
 #include "proxima/reflect/direct_light.h"
 #include "proxima/reflect/envmap_reflection.h"
 #include "proxima/scene/load.h"
@@ -37,6 +38,9 @@ struct ReflectFlags {
   int reps = 3;
 };
 
+// Error heat maps saturate here (0–255 units), the same for every method.
+constexpr float kHeatmapMax = 64.0f;
+
 // Every method in the order of the results table; "reference" last.
 const char* const kMethods[] = {"envmap", "rectified", "average", "layered", "reference"};
 
@@ -61,47 +65,25 @@ void validate(const ReflectFlags& f) {
   if (f.common.threads < 0) fail_input("--threads: must be ≥ 0");
 }
 
-// The value PNG output shows, on the 0–255 scale errors are reported in.
-float to_255(float linear) { return 255.0f * linear_to_srgb(std::clamp(linear, 0.0f, 1.0f)); }
-
 // Pixels both the rasterized frame and the reference's item buffer give to a reflector.
-ImageU32 comparison_mask(const ReflectorPixels& pixels, const ItemBuffer& item, const Scene& scene,
-                         std::span<const uint32_t> reflectors, size_t* count) {
-  ImageU32 mask(pixels.triangle.width(), pixels.triangle.height(), 1, 0u);
+ImageU8 comparison_mask(const ReflectorPixels& pixels, const ItemBuffer& item, const Scene& scene,
+                        std::span<const uint32_t> reflectors, size_t* count) {
+  ImageU8 mask(pixels.triangle.width(), pixels.triangle.height(), 1, 0);
   *count = 0;
   for (size_t i = 0; i < mask.data().size(); ++i) {
     const uint32_t t = item.triangle.data()[i];
     if (pixels.triangle.data()[i] == kNoTriangle || t == kNoTriangle) continue;
     if (std::find(reflectors.begin(), reflectors.end(), scene.triangle_object[t]) == reflectors.end()) continue;
-    mask.data()[i] = 1u;
+    mask.data()[i] = 1;
     ++*count;
   }
   return mask;
 }
 
-// Mean over the mask of the channel-averaged |a − b| on the 0–255 sRGB scale; fills a
-// grey error image (×4, so 64 is white) over the mask.
-double mean_abs_error(const ImageF& a, const ImageF& b, const ImageU32& mask, ImageU8& error_image) {
-  error_image = ImageU8(a.width(), a.height(), 1, 0);
-  double sum = 0.0;
-  size_t n = 0;
-  for (int y = 0; y < a.height(); ++y)
-    for (int x = 0; x < a.width(); ++x) {
-      if (!mask.at(x, y)) continue;
-      float e = 0.0f;
-      for (int c = 0; c < 3; ++c) e += std::abs(to_255(a.at(x, y, c)) - to_255(b.at(x, y, c)));
-      e /= 3.0f;
-      sum += double(e);
-      ++n;
-      error_image.at(x, y) = uint8_t(std::min(255.0f, 4.0f * e + 0.5f));
-    }
-  return n ? sum / double(n) : 0.0;
-}
-
 // Per mask pixel, the object the reference's mirror ray from the primary hit meets
 // (kNoObject where it escapes): what each method's lookup should have found.
 ImageU32 reference_reflected_objects(const Scene& scene, const RayScene& rays, const Camera& camera,
-                                     const ItemBuffer& item, const ImageU32& mask) {
+                                     const ItemBuffer& item, const ImageU8& mask) {
   ImageU32 out(camera.width, camera.height, 1, kNoTriangle);  // kNoObject has the same value
   const DirectLight offsets(scene, rays, 1);
   parallel_for(size_t(camera.height), 8, [&](size_t y0, size_t y1) {
@@ -121,7 +103,7 @@ ImageU32 reference_reflected_objects(const Scene& scene, const RayScene& rays, c
 }
 
 // Percentage of mask pixels whose looked-up object is the reference's.
-double object_match_pct(const ImageU32& objects, const ImageU32& reference, const ImageU32& mask, size_t count) {
+double object_match_pct(const ImageU32& objects, const ImageU32& reference, const ImageU8& mask, size_t count) {
   size_t same = 0;
   for (size_t i = 0; i < mask.data().size(); ++i)
     same += mask.data()[i] && objects.data()[i] == reference.data()[i];
@@ -237,17 +219,17 @@ Command register_reflect(CLI::App& root) {
 
             ReflectorPixels pixels = rasterize_reflector_pixels(scene, camera, reflectors);
             size_t mask_pixels = 0;
-            const ImageU32 mask = comparison_mask(pixels, item, scene, reflectors, &mask_pixels);
+            const ImageU8 mask = comparison_mask(pixels, item, scene, reflectors, &mask_pixels);
             results.metrics["reflector_pixels"] = double(mask_pixels);
             const ImageU32 reference_objects = reference_reflected_objects(scene, rays, camera, item, mask);
             // Pixels whose mirror ray meets the environment, not the reflector itself: no map
             // of the environment (the reflector excluded) can show self-reflections.
-            ImageU32 env_mask = mask;
+            ImageU8 env_mask = mask;
             size_t self_pixels = 0;
             for (size_t i = 0; i < env_mask.data().size(); ++i) {
               const uint32_t o = reference_objects.data()[i];
               if (env_mask.data()[i] && std::find(reflectors.begin(), reflectors.end(), o) != reflectors.end()) {
-                env_mask.data()[i] = 0u;
+                env_mask.data()[i] = 0;
                 ++self_pixels;
               }
             }
@@ -290,10 +272,9 @@ Command register_reflect(CLI::App& root) {
                     if (pixels.triangle.at(x, y) != kNoTriangle)
                       for (int c = 0; c < 3; ++c) color.at(x, y, c) = frame.color.at(x, y, c);
               }
-              ImageU8 error_image;
-              const double mae = mean_abs_error(color, reference, mask, error_image);
-              ImageU8 unused;
-              const double env_mae = mean_abs_error(color, reference, env_mask, unused);
+              // eval/image_error.h: 0–255 on the displayed sRGB scale, channels averaged.
+              const double mae = compare_images(color, reference, &mask).mae_avg;
+              const double env_mae = compare_images(color, reference, &env_mask).mae_avg;
               results.metrics[m + "_mae"] = mae;
               results.metrics[m + "_env_mae"] = env_mae;
               results.metrics[m + "_ms"] = ms;
@@ -302,7 +283,9 @@ Command register_reflect(CLI::App& root) {
               write_png_linear(out / (m + ".png"), color);
               results.images[m] = m + ".png";
               if (m != "reference") {
-                write_png(out / ("error_" + m + ".png"), error_image);
+                // One scale for every method: black 0 … yellow ≥ kHeatmapMax.
+                write_png_linear(out / ("error_" + m + ".png"),
+                                 error_heatmap(error_image(color, reference, &mask), kHeatmapMax, &mask));
                 results.images["error_" + m] = "error_" + m + ".png";
               }
               table.rows.push_back({m, ms, 1000.0 / ms, with_build, mae, env_mae, match_pct, edge_pct});
