@@ -143,6 +143,13 @@ Command register_reflect(CLI::App& root) {
             ThreadLimit limit(f.common.threads);
             Scene scene = load_scene(f.common.scene);
             Camera camera = pick_camera(scene, f.camera, f.common.width, f.common.height);
+            if (has_animation(scene)) {
+              // Animated objects at the path frame's time (as `proxima render`), else at 0.
+              float t = 0.0f;
+              for (const auto& p : scene.camera_paths)
+                if (!f.camera.path.empty() && p.name == f.camera.path) t = frame_time(p, f.camera.frame);
+              scene = pose_scene(scene, t);
+            }
             const std::vector<uint32_t> reflectors = reflective_objects(scene);
             if (reflectors.empty()) fail_input("--scene: '" + f.common.scene + "' has no reflective object");
             auto out = prepare_out_dir(f.common.out);
