@@ -136,7 +136,8 @@ Command register_reflect(CLI::App& root) {
       ->capture_default_str();
   app->add_option("--light-samples", f.light_samples, "N×N samples per area light")->capture_default_str();
   app->add_option("--glossy-rays", f.glossy_rays, "rays (lookups) per glossy lobe")->capture_default_str();
-  app->add_option("--reps", f.reps, "timed repetitions per method (median reported)")->capture_default_str();
+  app->add_option("--reps", f.reps, "timed frames per method, round-robin over the methods (median reported)")
+      ->capture_default_str();
 
   return {app, [] {
             validate(f);
@@ -171,13 +172,7 @@ Command register_reflect(CLI::App& root) {
             ro.glossy_rays = f.glossy_rays;
             ro.max_bounces = 1;
             ro.seed = f.common.seed;
-            std::vector<double> reference_ms;
-            ImageF reference;
-            for (int r = 0; r < (wants("reference") ? f.reps : 1); ++r) {
-              Stopwatch w;
-              reference = render_reference(scene, rays, camera, ro);
-              reference_ms.push_back(w.elapsed_ms());
-            }
+            const ImageF reference = render_reference(scene, rays, camera, ro);
             const ItemBuffer item = trace_item_buffer(scene, rays, camera);
 
             // Maps: one for plain / rectified / average, one per layer for layered. Built once
@@ -224,7 +219,7 @@ Command register_reflect(CLI::App& root) {
             results.metrics["d_e_m"] = f.d_e;
             results.metrics["N"] = rectify_step_limit(in.rectify.D, f.d_e);
 
-            ReflectorPixels pixels = rasterize_reflector_pixels(scene, camera, reflectors);
+            const ReflectorPixels pixels = rasterize_reflector_pixels(scene, camera, reflectors);
             size_t mask_pixels = 0;
             const ImageU8 mask = comparison_mask(pixels, item, scene, reflectors, &mask_pixels);
             results.metrics["reflector_pixels"] = double(mask_pixels);
@@ -248,32 +243,40 @@ Command register_reflect(CLI::App& root) {
                         {"method", "ms_per_frame", "fps", "ms_with_map_build", "mae_0_255", "env_mae_0_255", "object_match_pct",
                          "edge_pct"},
                         {}};
-            for (const std::string& m : methods) {
-              ImageF color;
-              double ms = 0.0, with_build = 0.0, edge_pct = 0.0, match_pct = 100.0;
-              if (m == "reference") {
-                color = reference;
-                ms = with_build = median(reference_ms);
-              } else {
-                in.method = parse_method(m);
-                std::vector<double> times;
-                EnvmapFrame frame = shade_reflector_pixels(scene, rays, camera, pixels, in);  // warm-up
-                for (int r = 0; r < f.reps; ++r) {
-                  // A frame: the reflector's visibility (rasterized) and its shading.
-                  Stopwatch w;
-                  pixels = rasterize_reflector_pixels(scene, camera, reflectors);
-                  frame = shade_reflector_pixels(scene, rays, camera, pixels, in);
-                  times.push_back(w.elapsed_ms());
-                }
-                ms = median(times);
-                with_build = ms + results.metrics[m == "layered" ? "layered_build_ms" : "envmap_build_ms"];
+            // A method's frame: the reflector's visibility (rasterized) and its shading.
+            auto frame_of = [&](const std::string& m) {
+              in.method = parse_method(m);
+              return shade_reflector_pixels(scene, rays, camera,
+                                            rasterize_reflector_pixels(scene, camera, reflectors), in);
+            };
+            // Outputs (and warm-up) first, then the timed frames round-robin over the methods,
+            // so load changes on the shared machine hit every method alike.
+            std::vector<EnvmapFrame> frames(methods.size());
+            for (size_t i = 0; i < methods.size(); ++i)
+              if (methods[i] != "reference") frames[i] = frame_of(methods[i]);
+            std::vector<std::vector<double>> times(methods.size());
+            for (int r = 0; r < f.reps; ++r)
+              for (size_t i = 0; i < methods.size(); ++i) {
+                Stopwatch w;
+                if (methods[i] == "reference") render_reference(scene, rays, camera, ro);
+                else frame_of(methods[i]);
+                times[i].push_back(w.elapsed_ms());
+              }
+
+            for (size_t i = 0; i < methods.size(); ++i) {
+              const std::string& m = methods[i];
+              const EnvmapFrame& frame = frames[i];
+              const double ms = median(times[i]);
+              double with_build = ms, edge_pct = 0.0, match_pct = 100.0;
+              ImageF color = reference;
+              if (m != "reference") {
+                with_build += results.metrics[m == "layered" ? "layered_build_ms" : "envmap_build_ms"];
                 edge_pct = frame.stats.lookups ? 100.0 * double(frame.stats.edge_lookups) / double(frame.stats.lookups) : 0.0;
                 results.metrics[m + "_edge_pct"] = edge_pct;
                 match_pct = object_match_pct(frame.object, reference_objects, mask, mask_pixels);
                 results.metrics[m + "_samples_per_lookup"] =
                     frame.stats.lookups ? double(frame.stats.map_samples) / double(frame.stats.lookups) : 0.0;
                 // Outside the reflector the image is the reference's: only the reflection differs.
-                color = reference;
                 for (int y = 0; y < color.height(); ++y)
                   for (int x = 0; x < color.width(); ++x)
                     if (pixels.triangle.at(x, y) != kNoTriangle)

@@ -124,7 +124,9 @@ float filter(const DistanceCubeMap& map, vec3 dir, vec3* color, float* distance,
   const auto& basis = map.face_basis[size_t(face)];
   const int res = map.camera.resolution;
   const float half = 0.5f * float(res);
-  const float scale = half / glm::dot(dir, basis[2]);
+  const float depth = glm::dot(dir, basis[2]);  // ≥ |dir|/√3 on the chosen face
+  if (!(depth > 0.0f)) return 0.0f;              // dir = 0 or NaN: nothing to look up
+  const float scale = half / depth;
   // Bilinear taps around the continuous position (texel centers at +0.5).
   const float fx = half + glm::dot(dir, basis[0]) * scale - 0.5f;
   const float fy = half - glm::dot(dir, basis[1]) * scale - 0.5f;

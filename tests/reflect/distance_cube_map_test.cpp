@@ -173,6 +173,37 @@ TEST(DistanceCubeMap, SameForAnyThreadCount) {
   }
 }
 
+TEST(DistanceCubeMap, DistanceOnlyLookupMatchesTheFullOne) {
+  // A wall with a card in front of it, crossing the +X/+Z edge: silhouettes, seams, empties.
+  Scene s;
+  const uint32_t white = add_diffuse(s, vec3(0.8f));
+  add_quad(s, {2, -2, -1}, {0, 0, 4}, {0, 4, 0}, white, "wall");
+  add_quad(s, {1, -0.3f, 0.6f}, {0, 0, 0.8f}, {0, 0.6f, 0}, white, "card");
+  s.ambient = vec3(1.0f);
+  RayScene rays(s);
+  DistanceCubeMap map = render_distance_cube_map(s, rays, vec3(0.0f), small(24));
+  Pcg32 rng(2);
+  int empty = 0, full_hits = 0;
+  for (int i = 0; i < 5000; ++i) {
+    const vec3 d = random_dir(rng);
+    const CubeSample full = sample_cube(map, d);
+    const float fast = sample_distance(map, d);
+    if (full.empty) {
+      EXPECT_EQ(fast, kDistanceInf);
+      ++empty;
+    } else {
+      EXPECT_NEAR(fast, full.distance, 1e-5f * full.distance);
+      ++full_hits;
+    }
+  }
+  EXPECT_GT(empty, 1000);
+  EXPECT_GT(full_hits, 300);
+  // Degenerate directions are empty, never undefined.
+  EXPECT_TRUE(sample_cube(map, vec3(0.0f)).empty);
+  EXPECT_EQ(sample_distance(map, vec3(0.0f)), kDistanceInf);
+  EXPECT_TRUE(sample_cube(map, vec3(std::nanf(""), 0.0f, 0.0f)).empty);
+}
+
 TEST(DistanceCubeMap, RejectsBadResolution) {
   Scene s = box_room({-1, -1, -1}, {1, 1, 1});
   RayScene rays(s);

@@ -28,7 +28,7 @@ struct DistanceCubeMap {
   // Per face (CubeFace order): 4 channels — linear RGB radiance of the surface, Euclidean
   // distance to c (kDistanceInf where empty). An empty image = nothing on that face.
   std::array<ImageF, 6> faces;
-  std::array<ImageU32, 6> objects;   // object id per texel (kNoObject where empty); same emptiness
+  std::array<ImageU32, 6> objects;   // object id per texel (kNoObject = 0xFFFFFFFF where empty)
   // The alpha channel of `faces` again, 1 channel: the bisection reads only distances, and
   // a quarter of the bytes keeps more of the map in cache.
   std::array<ImageF, 6> distances;
@@ -55,18 +55,19 @@ DistanceCubeMap render_distance_cube_map(const Scene& scene, const RayScene& ray
 struct CubeSample {
   vec3 color{0.0f};          // bilinear over the non-empty taps (weights renormalized); 0 if empty
   float distance = kDistanceInf;  // the same filter on the distance; kDistanceInf if empty
-  uint32_t object = 0xFFFFFFFFu;  // object of the heaviest non-empty tap
+  uint32_t object = 0xFFFFFFFFu;  // object of the heaviest non-empty tap (kNoObject if empty)
   bool empty = true;         // the non-empty taps carry less than half the weight
 };
 
-// Bilinear lookup of direction `dir` (need not be unit, ≠ 0) with seams: a tap beyond a
+// Bilinear lookup of direction `dir` (need not be unit; 0 or NaN → empty) with seams: a tap beyond a
 // face edge is the texel of the neighbouring face that the tap's (extrapolated) center
 // direction falls in, so filtering is continuous across edges and corners. Empty texels
 // never blend into colors or distances; coverage is decided as by the nearest tap (≥ half
 // the weight non-empty), so silhouettes stay as sharp as the texel grid.
 CubeSample sample_cube(const DistanceCubeMap& map, vec3 dir);
 
-// sample_cube(map, dir).distance without the color (the bisection's inner steps).
+// sample_cube(map, dir).distance (up to rounding) without the color, from the compact
+// distance planes (the bisection's inner steps). A zero or NaN dir is empty.
 float sample_distance(const DistanceCubeMap& map, vec3 dir);
 
 }  // namespace proxima
