@@ -82,7 +82,8 @@ void BM_ShadeReflector(benchmark::State& state) {
   in.map = &r.map;
   in.average_distance = average_distance(r.map, 0.0349066f);
   in.rectify.D = 12.0f;
-  for (auto _ : state) benchmark::DoNotOptimize(shade_reflector_pixels(r.scene, r.rays, r.camera, r.pixels, in));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(shade_reflector_pixels(r.scene, r.rays, r.camera, r.pixels, in));
   state.SetLabel(method_name(in.method));
 }
 BENCHMARK(BM_ShadeReflector)->Arg(0)->Arg(1)->Arg(2)->ArgName("method")->Unit(benchmark::kMillisecond);

@@ -30,7 +30,8 @@ std::vector<uint32_t> draw_list(const Scene& scene, const DistanceCubeMapOptions
   if (!options.objects.empty()) return {options.objects.begin(), options.objects.end()};
   std::vector<uint32_t> out;
   for (uint32_t o = 0; o < uint32_t(scene.objects.size()); ++o)
-    if (std::find(options.exclude.begin(), options.exclude.end(), o) == options.exclude.end()) out.push_back(o);
+    if (std::find(options.exclude.begin(), options.exclude.end(), o) == options.exclude.end())
+      out.push_back(o);
   return out;
 }
 
@@ -62,7 +63,8 @@ DistanceCubeMap render_distance_cube_map(const Scene& scene, const RayScene& ray
   map.camera = CubeCamera{center, options.resolution, 1e-4f * diagonal, 4.0f * diagonal};
   map.face_cams = face_cameras(map.camera);
   for (size_t f = 0; f < 6; ++f)
-    map.face_basis[f] = {camera_right(map.face_cams[f]), camera_up(map.face_cams[f]), camera_forward(map.face_cams[f])};
+    map.face_basis[f] = {camera_right(map.face_cams[f]), camera_up(map.face_cams[f]),
+                         camera_forward(map.face_cams[f])};
 
   const std::vector<uint32_t> objects = draw_list(scene, options);
   const std::vector<Bounds3> bounds = raster_object_bounds(scene);
@@ -118,14 +120,17 @@ float filter(const DistanceCubeMap& map, vec3 dir, vec3* color, float* distance,
   // The face and continuous pixel of cube_lookup(), with the cached face frames.
   const vec3 a = glm::abs(dir);
   int face;
-  if (a.x >= a.y && a.x >= a.z) face = dir.x >= 0.0f ? 0 : 1;
-  else if (a.y >= a.z) face = dir.y >= 0.0f ? 2 : 3;
-  else face = dir.z >= 0.0f ? 4 : 5;
+  if (a.x >= a.y && a.x >= a.z)
+    face = dir.x >= 0.0f ? 0 : 1;
+  else if (a.y >= a.z)
+    face = dir.y >= 0.0f ? 2 : 3;
+  else
+    face = dir.z >= 0.0f ? 4 : 5;
   const auto& basis = map.face_basis[size_t(face)];
   const int res = map.camera.resolution;
   const float half = 0.5f * float(res);
   const float depth = glm::dot(dir, basis[2]);  // ≥ |dir|/√3 on the chosen face
-  if (!(depth > 0.0f)) return 0.0f;              // dir = 0 or NaN: nothing to look up
+  if (!(depth > 0.0f)) return 0.0f;             // dir = 0 or NaN: nothing to look up
   const float scale = half / depth;
   // Bilinear taps around the continuous position (texel centers at +0.5).
   const float fx = half + glm::dot(dir, basis[0]) * scale - 0.5f;
@@ -151,7 +156,8 @@ float filter(const DistanceCubeMap& map, vec3 dir, vec3* color, float* distance,
   vec3 c_sum(0.0f);
   for (int k = 0; k < 4; ++k) {
     if (weights[k] <= 0.0f) continue;
-    TapRef tap = inside ? TapRef{face, x0 + (k & 1), y0 + (k >> 1)} : resolve_tap(map, face, x0 + (k & 1), y0 + (k >> 1));
+    TapRef tap = inside ? TapRef{face, x0 + (k & 1), y0 + (k >> 1)}
+                        : resolve_tap(map, face, x0 + (k & 1), y0 + (k >> 1));
     const ImageF& img = kColor ? map.faces[size_t(tap.face)] : map.distances[size_t(tap.face)];
     if (img.empty()) continue;
     const float* texel = &img.at(tap.x, tap.y, 0);

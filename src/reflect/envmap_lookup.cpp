@@ -22,7 +22,6 @@
 #include <algorithm>
 #include <cmath>
 
-
 namespace proxima {
 
 int rectify_step_limit(float D, float d_e) {
@@ -136,8 +135,10 @@ std::vector<EnvmapLayer> build_layers(const Scene& scene, const RayScene& rays, 
   std::vector<uint32_t> enclosure;
   for (uint32_t o = 0; o < uint32_t(scene.objects.size()); ++o) {
     if (std::find(exclude.begin(), exclude.end(), o) != exclude.end()) continue;
-    if (faces_center(scene, o, center)) enclosure.push_back(o);
-    else groups.push_back({o});
+    if (faces_center(scene, o, center))
+      enclosure.push_back(o);
+    else
+      groups.push_back({o});
   }
   if (!enclosure.empty()) groups.push_back(enclosure);
 

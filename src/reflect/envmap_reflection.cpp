@@ -28,10 +28,14 @@ constexpr int kTileSize = 16;
 
 EnvLookup lookup(const EnvmapInputs& in, const Environment& env, vec3 x, vec3 dir) {
   switch (in.method) {
-    case EnvmapMethod::Plain: return plain_lookup(*in.map, env, dir);
-    case EnvmapMethod::Rectified: return rectified_lookup(*in.map, env, x, dir, in.rectify);
-    case EnvmapMethod::Average: return average_lookup(*in.map, env, x, dir, in.average_distance);
-    case EnvmapMethod::Layered: return layered_lookup(in.layers, env, x, dir, in.rectify);
+    case EnvmapMethod::Plain:
+      return plain_lookup(*in.map, env, dir);
+    case EnvmapMethod::Rectified:
+      return rectified_lookup(*in.map, env, x, dir, in.rectify);
+    case EnvmapMethod::Average:
+      return average_lookup(*in.map, env, x, dir, in.average_distance);
+    case EnvmapMethod::Layered:
+      return layered_lookup(in.layers, env, x, dir, in.rectify);
   }
   return {};
 }
@@ -40,10 +44,14 @@ EnvLookup lookup(const EnvmapInputs& in, const Environment& env, vec3 x, vec3 di
 
 const char* method_name(EnvmapMethod method) {
   switch (method) {
-    case EnvmapMethod::Plain: return "envmap";
-    case EnvmapMethod::Rectified: return "rectified";
-    case EnvmapMethod::Average: return "average";
-    case EnvmapMethod::Layered: return "layered";
+    case EnvmapMethod::Plain:
+      return "envmap";
+    case EnvmapMethod::Rectified:
+      return "rectified";
+    case EnvmapMethod::Average:
+      return "average";
+    case EnvmapMethod::Layered:
+      return "layered";
   }
   return "?";
 }
@@ -75,8 +83,10 @@ ReflectorPixels rasterize_reflector_pixels(const Scene& scene, const Camera& cam
   ReflectorPixels out{std::move(g.triangle), std::move(g.barycentric), 0};
   for (size_t i = 0; i < g.object.data().size(); ++i) {
     const uint32_t o = g.object.data()[i];
-    if (std::find(reflectors.begin(), reflectors.end(), o) != reflectors.end()) ++out.count;
-    else out.triangle.data()[i] = kNoTriangle;
+    if (std::find(reflectors.begin(), reflectors.end(), o) != reflectors.end())
+      ++out.count;
+    else
+      out.triangle.data()[i] = kNoTriangle;
   }
   return out;
 }

@@ -136,7 +136,8 @@ TEST(DistanceCubeMap, FilteringIsContinuousAcrossFaceEdges) {
   // Directions just either side of the +X / +Z edge and of the +X / +Y / +Z corner: the
   // two faces must blend the same texels and agree.
   for (vec3 edge : {vec3(1, 0.3f, 1), vec3(1, -0.6f, 1), vec3(1, 1, 0.2f), vec3(1, 1, 1)}) {
-    const vec3 a = edge + vec3(1e-4f, 0, 0), b = edge + vec3(0, 0, 1e-4f) + vec3(0, edge.y == 1 ? 1e-4f : 0, 0);
+    const vec3 a = edge + vec3(1e-4f, 0, 0),
+               b = edge + vec3(0, 0, 1e-4f) + vec3(0, edge.y == 1 ? 1e-4f : 0, 0);
     CubeSample sa = sample_cube(map, a), sb = sample_cube(map, b);
     ASSERT_NE(cube_lookup(map.camera, a).face, cube_lookup(map.camera, b).face);
     EXPECT_NEAR(sa.distance, sb.distance, 2e-3f * sa.distance) << edge.x << " " << edge.y << " " << edge.z;

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "proxima/core/rng.h"
@@ -142,7 +141,8 @@ TEST(EnvmapLookup, DInfGivesBlackOrFallbackOnlyWhereTheRayEscapes) {
   int hits = 0, escapes = 0;
   for (int i = 0; i < 3000; ++i) {
     const vec3 x = 0.3f * (vec3(rng.next_float(), rng.next_float(), 0.0f) - 0.5f);
-    const vec3 l = glm::normalize(vec3(2.0f * rng.next_float() - 1.0f, 2.0f * rng.next_float() - 1.0f, -1.0f));
+    const vec3 l =
+        glm::normalize(vec3(2.0f * rng.next_float() - 1.0f, 2.0f * rng.next_float() - 1.0f, -1.0f));
     const vec3 p = x + (-3.0f - x.z) / l.z * l;
     const float inside = 2.0f - std::max(std::abs(p.x), std::abs(p.y));  // > 0: hits the wall
     // Near the wall's edge the search may look past it from c (the sign condition of §2.2

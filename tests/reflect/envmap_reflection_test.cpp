@@ -81,14 +81,16 @@ TEST(EnvmapReflection, RectifiedErrorIsAFractionOfPlainOnRoomReflector) {
   const ImageF ref = s.reference(cam);
   EnvmapInputs plain = s.inputs(EnvmapMethod::Plain), rect = s.inputs(EnvmapMethod::Rectified);
   plain.map = rect.map = &map;
-  const double e_plain = reflector_mae(shade_reflector_pixels(s.scene, *s.rays, cam, pixels, plain).color, ref, pixels);
+  const double e_plain =
+      reflector_mae(shade_reflector_pixels(s.scene, *s.rays, cam, pixels, plain).color, ref, pixels);
   const EnvmapFrame r = shade_reflector_pixels(s.scene, *s.rays, cam, pixels, rect);
   const double e_rect = reflector_mae(r.color, ref, pixels);
   EXPECT_GT(e_plain, 0.01);
   EXPECT_LT(e_rect, e_plain / 3.0) << e_rect << " vs " << e_plain;
   EXPECT_EQ(r.stats.pixels, pixels.count);
   EXPECT_EQ(r.stats.lookups, pixels.count);  // a mirror: one lookup per pixel
-  EXPECT_LE(r.stats.map_samples, pixels.count * size_t(rectify_step_limit(rect.rectify.D, rect.rectify.d_e) + 1));
+  EXPECT_LE(r.stats.map_samples,
+            pixels.count * size_t(rectify_step_limit(rect.rectify.D, rect.rectify.d_e) + 1));
 }
 
 TEST(EnvmapReflection, OnlyReflectorPixelsAreShadedAndThreadsAgree) {
@@ -136,7 +138,8 @@ TEST(EnvmapReflection, LayeredFollowsTheParallaxPlainMappingMisses) {
     EnvmapInputs plain = s.inputs(EnvmapMethod::Plain), layered = s.inputs(EnvmapMethod::Layered);
     plain.map = &map;
     layered.layers = layers;
-    const double e_plain = reflector_mae(shade_reflector_pixels(s.scene, *s.rays, cam, pixels, plain).color, ref, pixels);
+    const double e_plain =
+        reflector_mae(shade_reflector_pixels(s.scene, *s.rays, cam, pixels, plain).color, ref, pixels);
     const double e_layered =
         reflector_mae(shade_reflector_pixels(s.scene, *s.rays, cam, pixels, layered).color, ref, pixels);
     EXPECT_LT(e_layered, e_plain / 2.0) << view << ": " << e_layered << " vs " << e_plain;

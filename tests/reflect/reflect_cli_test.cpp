@@ -1,13 +1,13 @@
 // `proxima reflect` end to end: the metrics issue 6 names, images, bad input → exit 2
 // naming the flag with nothing written, identical images for any --threads.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
 #include <array>
 #include <cstdio>
 #include <fstream>
-#include <string>
-#include <sys/wait.h>
-
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "proxima/core/image_io.h"
 #include "test_util.h"
@@ -66,8 +66,12 @@ TEST(ReflectCli, BadInputExitsTwoNamingTheFlag) {
 
 TEST(ReflectCli, ImagesDoNotDependOnThreads) {
   TempDir a, b;
-  ASSERT_EQ(run("--method layered --scene room-parallax --threads 1" + kSmall + " --out " + a.path.string()).exit_code, 0);
-  ASSERT_EQ(run("--method layered --scene room-parallax --threads 2" + kSmall + " --out " + b.path.string()).exit_code, 0);
+  ASSERT_EQ(run("--method layered --scene room-parallax --threads 1" + kSmall + " --out " + a.path.string())
+                .exit_code,
+            0);
+  ASSERT_EQ(run("--method layered --scene room-parallax --threads 2" + kSmall + " --out " + b.path.string())
+                .exit_code,
+            0);
   EXPECT_TRUE(read_image_linear(a.path / "layered.png") == read_image_linear(b.path / "layered.png"));
 }
 

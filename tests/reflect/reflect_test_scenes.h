@@ -8,7 +8,8 @@
 namespace proxima::reflect_test {
 
 // Two-triangle quad corner + a·eu + b·ev facing cross(eu, ev), as one object.
-inline uint32_t add_quad(Scene& s, vec3 corner, vec3 eu, vec3 ev, uint32_t material, const std::string& name) {
+inline uint32_t add_quad(Scene& s, vec3 corner, vec3 eu, vec3 ev, uint32_t material,
+                         const std::string& name) {
   Mesh m;
   m.positions = {corner, corner + eu, corner + eu + ev, corner + ev};
   vec3 n = glm::normalize(glm::cross(eu, ev));

@@ -21,24 +21,24 @@ namespace proxima {
 inline constexpr float kDistanceInf = kInf;
 
 struct DistanceCubeMap {
-  CubeCamera camera;                 // projection center c, face resolution, near/far
-  std::array<Camera, 6> face_cams;   // face_cameras(camera), cached for seam lookups
+  CubeCamera camera;                // projection center c, face resolution, near/far
+  std::array<Camera, 6> face_cams;  // face_cameras(camera), cached for seam lookups
   // Per face: camera_right, camera_up, camera_forward of face_cams (cached for lookups).
   std::array<std::array<vec3, 3>, 6> face_basis;
   // Per face (CubeFace order): 4 channels — linear RGB radiance of the surface, Euclidean
   // distance to c (kDistanceInf where empty). An empty image = nothing on that face.
   std::array<ImageF, 6> faces;
-  std::array<ImageU32, 6> objects;   // object id per texel (kNoObject = 0xFFFFFFFF where empty)
+  std::array<ImageU32, 6> objects;  // object id per texel (kNoObject = 0xFFFFFFFF where empty)
   // The alpha channel of `faces` again, 1 channel: the bisection reads only distances, and
   // a quarter of the bytes keeps more of the map in cache.
   std::array<ImageF, 6> distances;
-  double covered_fraction = 0.0;     // texels hit / all texels (a solid-angle proxy)
+  double covered_fraction = 0.0;  // texels hit / all texels (a solid-angle proxy)
 };
 
 struct DistanceCubeMapOptions {
-  int resolution = 512;          // texels per face side
-  int area_light_samples = 4;    // n of the n×n area-light samples per texel (as the reference)
-  uint64_t seed = 1;             // texel streams: derive_seed(seed, face, texel index)
+  int resolution = 512;        // texels per face side
+  int area_light_samples = 4;  // n of the n×n area-light samples per texel (as the reference)
+  uint64_t seed = 1;           // texel streams: derive_seed(seed, face, texel index)
   // What to draw (at most one non-empty; both empty = the whole scene):
   std::span<const uint32_t> objects;  // only these object ids
   std::span<const uint32_t> exclude;  // every object but these (e.g. the reflector itself)
@@ -53,10 +53,10 @@ DistanceCubeMap render_distance_cube_map(const Scene& scene, const RayScene& ray
 
 // One filtered lookup along a direction from c.
 struct CubeSample {
-  vec3 color{0.0f};          // bilinear over the non-empty taps (weights renormalized); 0 if empty
+  vec3 color{0.0f};               // bilinear over the non-empty taps (weights renormalized); 0 if empty
   float distance = kDistanceInf;  // the same filter on the distance; kDistanceInf if empty
   uint32_t object = 0xFFFFFFFFu;  // object of the heaviest non-empty tap (kNoObject if empty)
-  bool empty = true;         // the non-empty taps carry less than half the weight
+  bool empty = true;              // the non-empty taps carry less than half the weight
 };
 
 // Bilinear lookup of direction `dir` (need not be unit; 0 or NaN → empty) with seams: a tap beyond a

@@ -20,8 +20,8 @@ enum class EdgeRule {
 };
 
 struct RectifyOptions {
-  float D = 12.0f;     // search length (m): the hit must lie within [x, x + 2D·l̂) (paper: 12)
-  float d_e = 0.01f;   // tolerance d_e (m) on |d − |l1||, and the bisection's resolution
+  float D = 12.0f;    // search length (m): the hit must lie within [x, x + 2D·l̂) (paper: 12)
+  float d_e = 0.01f;  // tolerance d_e (m) on |d − |l1||, and the bisection's resolution
   EdgeRule edge = EdgeRule::Black;
 };
 
@@ -29,12 +29,12 @@ struct RectifyOptions {
 int rectify_step_limit(float D, float d_e);
 
 struct EnvLookup {
-  vec3 color{0.0f};            // radiance returned
-  vec3 query{0.0f};            // world point c + l1 of the last map lookup
-  int steps = 0;               // map lookups made (≤ N for the rectified search)
-  bool converged = false;      // ended by condition 1, |Δd| < d_e
-  bool saw_inf = false;        // some lookup returned d_inf
-  bool miss = false;           // nothing found: the edge rule applied, or the lookup was d_inf
+  vec3 color{0.0f};               // radiance returned
+  vec3 query{0.0f};               // world point c + l1 of the last map lookup
+  int steps = 0;                  // map lookups made (≤ N for the rectified search)
+  bool converged = false;         // ended by condition 1, |Δd| < d_e
+  bool saw_inf = false;           // some lookup returned d_inf
+  bool miss = false;              // nothing found: the edge rule applied, or the lookup was d_inf
   uint32_t object = 0xFFFFFFFFu;  // object the color came from (kNoObject: environment/black)
 };
 
@@ -61,14 +61,14 @@ EnvLookup average_lookup(const DistanceCubeMap& map, const Environment& env, vec
 // §2.4: one map per environment object.
 struct EnvmapLayer {
   DistanceCubeMap map;
-  std::vector<uint32_t> objects;  // the objects drawn into it
+  std::vector<uint32_t> objects;          // the objects drawn into it
   float average_distance = kDistanceInf;  // d̄ of the layer (eq. 3): its sort key
-  bool per_pixel = true;  // rectified by bisection; false: by d̄ (small solid angle)
+  bool per_pixel = true;                  // rectified by bisection; false: by d̄ (small solid angle)
 };
 
 struct LayerOptions {
-  DistanceCubeMapOptions map;          // resolution, light samples, seed (objects/exclude unused)
-  float angle_step_rad = 0.0349066f;   // s of eq. 2 (2°)
+  DistanceCubeMapOptions map;            // resolution, light samples, seed (objects/exclude unused)
+  float angle_step_rad = 0.0349066f;     // s of eq. 2 (2°)
   double per_pixel_min_coverage = 0.05;  // a layer covering less of the cube uses d̄
 };
 

@@ -64,7 +64,7 @@ struct EnvmapStats {
 };
 
 struct EnvmapFrame {
-  ImageF color;   // 3 channels, linear RGB; reflector pixels only, 0 elsewhere
+  ImageF color;     // 3 channels, linear RGB; reflector pixels only, 0 elsewhere
   ImageU32 object;  // object the pixel's first lookup that found a surface came from;
                     // kNoObject elsewhere and where every lookup missed
   EnvmapStats stats;
