@@ -155,7 +155,7 @@ std::vector<EnvmapLayer> build_layers(const Scene& scene, const RayScene& rays, 
     layer.per_pixel = layer.map.covered_fraction >= options.per_pixel_min_coverage;
     layers.push_back(std::move(layer));
   }
-  // Near → far; ties by first object id so the order never depends on anything else.
+  // Near → far by d̄; ties keep the grouping order (single objects by id, the enclosure last).
   std::stable_sort(layers.begin(), layers.end(), [](const EnvmapLayer& a, const EnvmapLayer& b) {
     return a.average_distance < b.average_distance;
   });
