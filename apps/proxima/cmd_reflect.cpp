@@ -36,6 +36,7 @@ struct ReflectFlags {
   int light_samples = 4;
   int glossy_rays = 16;
   int reps = 3;
+  double per_pixel_coverage = 0.05;  // LayerOptions::per_pixel_min_coverage
 };
 
 // Error heat maps saturate here (0–255 units), the same for every method.
@@ -64,6 +65,8 @@ void validate(const ReflectFlags& f) {
   if (f.light_samples < 1 || f.light_samples > 64) fail_input("--light-samples: must be in 1..64");
   if (f.glossy_rays < 1 || f.glossy_rays > 4096) fail_input("--glossy-rays: must be in 1..4096");
   if (f.reps < 1 || f.reps > 100) fail_input("--reps: must be in 1..100");
+  if (!(f.per_pixel_coverage >= 0.0 && f.per_pixel_coverage <= 1.0))
+    fail_input("--per-pixel-coverage: must be in [0, 1]");
   if (f.common.threads < 0) fail_input("--threads: must be ≥ 0");
 }
 
@@ -142,6 +145,10 @@ Command register_reflect(CLI::App& root) {
       ->capture_default_str();
   app->add_option("--light-samples", f.light_samples, "N×N samples per area light")->capture_default_str();
   app->add_option("--glossy-rays", f.glossy_rays, "rays (lookups) per glossy lobe")->capture_default_str();
+  app->add_option("--per-pixel-coverage", f.per_pixel_coverage,
+                  "layered: layers covering at least this fraction of the cube are rectified per pixel, "
+                  "smaller ones by their average distance")
+      ->capture_default_str();
   app->add_option("--reps", f.reps, "timed frames per method, round-robin over the methods (median reported)")
       ->capture_default_str();
 
@@ -210,6 +217,7 @@ Command register_reflect(CLI::App& root) {
           LayerOptions lo;
           lo.map = mo;
           lo.angle_step_rad = step;
+          lo.per_pixel_min_coverage = f.per_pixel_coverage;
           Stopwatch w;
           layers = build_layers(scene, rays, center, reflectors, lo);
           results.metrics["layered_build_ms"] = w.elapsed_ms();

@@ -146,6 +146,7 @@ std::vector<EnvmapLayer> build_layers(const Scene& scene, const RayScene& rays, 
   for (const auto& group : groups) {
     EnvmapLayer layer;
     layer.objects = group;
+    layer.enclosure = &group == &groups.back() && !enclosure.empty();
     DistanceCubeMapOptions mo = options.map;
     mo.objects = layer.objects;
     mo.exclude = {};
@@ -155,8 +156,9 @@ std::vector<EnvmapLayer> build_layers(const Scene& scene, const RayScene& rays, 
     layer.per_pixel = layer.map.covered_fraction >= options.per_pixel_min_coverage;
     layers.push_back(std::move(layer));
   }
-  // Near → far by d̄; ties keep the grouping order (single objects by id, the enclosure last).
+  // Near → far by d̄, the enclosure last; ties keep the grouping order (objects by id).
   std::stable_sort(layers.begin(), layers.end(), [](const EnvmapLayer& a, const EnvmapLayer& b) {
+    if (a.enclosure != b.enclosure) return b.enclosure;
     return a.average_distance < b.average_distance;
   });
   return layers;

@@ -209,9 +209,29 @@ TEST(EnvmapLookup, LayersResolveOcclusionNearToFar) {
   EXPECT_EQ(layered_lookup(layers, s.environment, x, {0, 1.2f, 1}, o).object, 3u);  // ceiling
   EXPECT_EQ(layered_lookup(layers, s.environment, x, {0, 0.7f, 1}, o).object, 5u);  // wall_pz
   EXPECT_EQ(layered_lookup(layers, s.environment, x, {1, 0, 0}, o).object, 1u);     // wall_px
+  EXPECT_FALSE(layers[0].enclosure);
+  EXPECT_TRUE(layers[1].enclosure);
   // Excluding the box leaves the enclosure only.
   const uint32_t exclude[] = {box};
   EXPECT_EQ(build_layers(s, rays, vec3(0.0f), exclude, lo).size(), 1u);
+}
+
+TEST(EnvmapLookup, TheEnclosureIsTheLastLayerEvenWhenNearerOnAverage) {
+  // c half a meter above the floor: the room's d̄ is small, a box by the far wall is
+  // farther on average, yet it stands inside the room and must be looked up first.
+  Scene s = box_room({-4, -0.5f, -4}, {4, 4, 4});
+  Mesh cube = make_box(vec3(0.6f), 1);
+  transform_mesh(cube, glm::translate(mat4(1.0f), vec3(0, 0, 3.6f)));
+  const uint32_t box = add_object(s, cube, "box", add_diffuse(s, vec3(0.9f, 0.9f, 0.1f)));
+  RayScene rays(s);
+  LayerOptions lo;
+  lo.map = small(64);
+  std::vector<EnvmapLayer> layers = build_layers(s, rays, vec3(0.0f), {}, lo);
+  ASSERT_EQ(layers.size(), 2u);
+  EXPECT_GT(layers[0].average_distance, layers[1].average_distance);
+  EXPECT_EQ(layers[0].objects, std::vector<uint32_t>{box});
+  EXPECT_TRUE(layers[1].enclosure);
+  EXPECT_EQ(layered_lookup(layers, s.environment, vec3(0.1f, 0, 0), {0, 0, 1}, RectifyOptions{}).object, box);
 }
 
 }  // namespace

@@ -64,6 +64,7 @@ struct EnvmapLayer {
   std::vector<uint32_t> objects;          // the objects drawn into it
   float average_distance = kDistanceInf;  // d̄ of the layer (eq. 3): its sort key
   bool per_pixel = true;                  // rectified by bisection; false: by d̄ (small solid angle)
+  bool enclosure = false;                 // the objects facing c (sorted last)
 };
 
 struct LayerOptions {
@@ -75,7 +76,8 @@ struct LayerOptions {
 // Layers around `center` for every object not in `exclude`: the enclosure — objects whose
 // every triangle faces c (walls, floor, ceiling, lamps on them; they cannot occlude each
 // other as seen from c) — is one layer, every other object is a layer of its own. Sorted
-// near → far by d̄.
+// near → far by d̄, the enclosure last: it surrounds c, so everything else lies in front of
+// it (its d̄ can be smaller than that of furniture standing at its walls).
 std::vector<EnvmapLayer> build_layers(const Scene& scene, const RayScene& rays, vec3 center,
                                       std::span<const uint32_t> exclude, const LayerOptions& options);
 
