@@ -13,7 +13,7 @@ struct BuiltinSceneInfo {
   std::string description;
 };
 
-// cornell, room-reflector, living-room, bathroom, room-teapot, room-parallax, in that order:
+// cornell, room-reflector, living-room, bathroom, in that order:
 // - cornell: interior x ∈ [−1, 1], y ∈ [0, 2], z ∈ [−1, 1], open at z = +1; inward walls
 //   of 8 × 8 quads; mirror sphere r 0.4 at (−0.4, 0.4, −0.2); glossy 0.5 × 1 × 0.5 block at
 //   (0.45, 0.5, −0.35) turned 20° about +Y; 0.5 × 0.5 area light facing down at y = 1.98
@@ -24,6 +24,7 @@ struct BuiltinSceneInfo {
 //   "table"; paths "walk", "orbit".
 // - bathroom: ~93k triangles, ~50k on 26 reflectors; cameras "door", "mirror"; paths
 //   "walk", "pan".
+// Appended for environment maps with distance (issue 6):
 // - room-teapot: room-reflector with a 39,800-triangle mirror teapot instead of the cylinder.
 // - room-parallax: the room with a mirror cylinder and a red sphere between it and the
 //   checkered front wall; cameras "left", "right" (the layered env-map parallax test).
