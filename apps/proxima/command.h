@@ -68,5 +68,6 @@ Command register_bench(CLI::App& root);
 Command register_demo(CLI::App& root);
 Command register_visibility(CLI::App& root);
 Command register_sample(CLI::App& root);
+Command register_reflect(CLI::App& root);
 
 }  // namespace proxima::cli

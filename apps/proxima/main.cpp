@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
       cli::register_bench(root), cli::register_demo(root),
       cli::register_visibility(root),
       cli::register_sample(root),
+      cli::register_reflect(root),
   };
   try {
     root.parse(argc, argv);

@@ -63,6 +63,8 @@ constexpr Minimum kMinimums[] = {
     {"grass", 50000, 0, 0, 1, false},
     {"city", 45000, 0, 0, 1, false},
     {"tree", 100000, 0, 0, 1, false},
+    {"room-teapot", 39800, 1, 1, 2},
+    {"room-parallax", 2176, 1, 0, 2},
 };
 
 TEST(BuiltinScenes, ListNamesTheFourScenes) {

@@ -24,6 +24,10 @@ struct BuiltinSceneInfo {
 //   "table"; paths "walk", "orbit".
 // - bathroom: ~93k triangles, ~50k on 26 reflectors; cameras "door", "mirror"; paths
 //   "walk", "pan".
+// Appended for environment maps with distance (issue 6):
+// - room-teapot: room-reflector with a 39,800-triangle mirror teapot instead of the cylinder.
+// - room-parallax: the room with a mirror cylinder and a red sphere between it and the
+//   checkered front wall; cameras "left", "right" (the layered env-map parallax test).
 std::vector<BuiltinSceneInfo> builtin_scenes();
 
 bool is_builtin_scene(const std::string& name);

@@ -1,0 +1,80 @@
+// Reflections of a frame through environment maps with distance (Wang et al. 2012): the
+// reflector's pixels (rasterized primary visibility) shaded with the shared model, where
+// s·L_refl comes from plain, rectified, average-distance or layered env-map lookups
+// instead of traced rays. Everything else of the model is evaluated as the reference does.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "proxima/core/camera.h"
+#include "proxima/core/image.h"
+#include "proxima/reflect/envmap_lookup.h"
+#include "proxima/scene/scene.h"
+#include "proxima/trace/ray_scene.h"
+
+namespace proxima {
+
+enum class EnvmapMethod {
+  Plain,      // direction lookup (classic environment mapping)
+  Rectified,  // §2.2 per-pixel bisection on the distance map
+  Average,    // §2.3 average distance d̄ of the whole map
+  Layered,    // §2.4 one map per environment object, first hit near → far
+};
+
+// "envmap", "rectified", "average", "layered" (the CLI's --method names).
+const char* method_name(EnvmapMethod method);
+
+// Objects with a reflective material (specular > 0) on any triangle, in id order.
+std::vector<uint32_t> reflective_objects(const Scene& scene);
+
+// Center of the objects' combined bounds: the projection center of their env map.
+vec3 projection_center(const Scene& scene, std::span<const uint32_t> objects);
+
+// The reflector pixels of a frame: rasterized (raster/) triangle and barycentrics at the
+// pixel centers, kept where the visible object is one of `reflectors`.
+struct ReflectorPixels {
+  ImageU32 triangle;   // 1 channel: triangle id, kNoTriangle where not a reflector pixel
+  ImageF barycentric;  // 2 channels: Embree (u, v)
+  size_t count = 0;    // reflector pixels
+};
+ReflectorPixels rasterize_reflector_pixels(const Scene& scene, const Camera& camera,
+                                           std::span<const uint32_t> reflectors);
+
+// What a method reads: `map` for Plain / Rectified / Average (with its d̄ for Average),
+// `layers` (sorted near → far, build_layers) for Layered.
+struct EnvmapInputs {
+  EnvmapMethod method = EnvmapMethod::Rectified;
+  const DistanceCubeMap* map = nullptr;
+  float average_distance = kDistanceInf;
+  std::span<const EnvmapLayer> layers;
+  RectifyOptions rectify;
+  int area_light_samples = 4;  // n×n per area light for the reflector's own direct light
+  int glossy_rays = 16;        // lobe samples for gloss > 0 (one lookup each)
+  uint64_t seed = 1;           // as the reference: derive_seed(seed, pixel index, 0)
+};
+
+struct EnvmapStats {
+  size_t pixels = 0;        // reflector pixels shaded
+  size_t lookups = 0;       // reflection lookups (pixels × lobe rays)
+  size_t map_samples = 0;   // filtered cube-map samples taken by them
+  size_t edge_lookups = 0;  // lookups that ended as a miss (edge rule / empty)
+};
+
+struct EnvmapFrame {
+  ImageF color;     // 3 channels, linear RGB; reflector pixels only, 0 elsewhere
+  ImageU32 object;  // object the pixel's first lookup that found a surface came from;
+                    // kNoObject elsewhere and where every lookup missed
+  EnvmapStats stats;
+};
+
+// Shades every reflector pixel of `pixels` (from this camera): L = emission + (1 − s)·ρ·
+// (ambient + E/π) with Embree shadows + s·mean over the lobe of the method's lookup.
+// Random numbers per pixel as the reference's (k = 1), so the lobe directions and area
+// light samples match it. Deterministic for any thread count. `rays` must hold `scene`.
+EnvmapFrame shade_reflector_pixels(const Scene& scene, const RayScene& rays, const Camera& camera,
+                                   const ReflectorPixels& pixels, const EnvmapInputs& inputs);
+
+}  // namespace proxima

@@ -1,0 +1,150 @@
+// Reflector shading through environment maps with distance — Wang, Tang, Sun, Ma,
+// "Environment mapping with position rectification", J. Image and Graphics 17(3), 2012
+// (papers/000_…, line 188), Fig. 1's per-pixel stage.
+//
+// Paper symbol ↔ variable:
+//   x     the reflector's surface point at a pixel      sp.p
+//   l̂     reflected view direction (mirror or a lobe ray) dir passed to lookup()
+//   L_env the environment map (with distance in alpha)  inputs.map / inputs.layers[i].map
+// The paper shades mirrors only (s = 1, no shadows); here the lookup replaces the reference's
+// reflected radiance L_refl inside the shared model, so s < 1 blends and glossy lobes work
+// as in docs/shading.md (one lookup per lobe ray).
+#include "proxima/reflect/envmap_reflection.h"
+
+#include <algorithm>
+#include <atomic>
+#include <vector>
+
+#include "proxima/core/parallel.h"
+#include "proxima/core/rng.h"
+#include "proxima/raster/rasterizer.h"
+#include "proxima/reflect/direct_light.h"
+#include "proxima/scene/shading.h"
+
+namespace proxima {
+namespace {
+
+constexpr int kTileSize = 16;
+
+EnvLookup lookup(const EnvmapInputs& in, const Environment& env, vec3 x, vec3 dir) {
+  switch (in.method) {
+    case EnvmapMethod::Plain:
+      return plain_lookup(*in.map, env, dir);
+    case EnvmapMethod::Rectified:
+      return rectified_lookup(*in.map, env, x, dir, in.rectify);
+    case EnvmapMethod::Average:
+      return average_lookup(*in.map, env, x, dir, in.average_distance);
+    case EnvmapMethod::Layered:
+      return layered_lookup(in.layers, env, x, dir, in.rectify);
+  }
+  return {};
+}
+
+}  // namespace
+
+const char* method_name(EnvmapMethod method) {
+  switch (method) {
+    case EnvmapMethod::Plain:
+      return "envmap";
+    case EnvmapMethod::Rectified:
+      return "rectified";
+    case EnvmapMethod::Average:
+      return "average";
+    case EnvmapMethod::Layered:
+      return "layered";
+  }
+  return "?";
+}
+
+std::vector<uint32_t> reflective_objects(const Scene& scene) {
+  std::vector<uint32_t> out;
+  for (uint32_t o = 0; o < uint32_t(scene.objects.size()); ++o) {
+    const Object& obj = scene.objects[o];
+    for (uint32_t t = obj.first_triangle; t < obj.first_triangle + obj.triangle_count; ++t)
+      if (scene.materials[scene.triangle_material[t]].reflective()) {
+        out.push_back(o);
+        break;
+      }
+  }
+  return out;
+}
+
+vec3 projection_center(const Scene& scene, std::span<const uint32_t> objects) {
+  Bounds3 b;
+  for (uint32_t o : objects) b.extend(object_bounds(scene, o));
+  return b.center();
+}
+
+ReflectorPixels rasterize_reflector_pixels(const Scene& scene, const Camera& camera,
+                                           std::span<const uint32_t> reflectors) {
+  RasterOptions ro;
+  ro.outputs = kRasterDepthId | kRasterBarycentric | kRasterObject;
+  RasterImages g = rasterize(scene, camera, ro);
+  ReflectorPixels out{std::move(g.triangle), std::move(g.barycentric), 0};
+  for (size_t i = 0; i < g.object.data().size(); ++i) {
+    const uint32_t o = g.object.data()[i];
+    if (std::find(reflectors.begin(), reflectors.end(), o) != reflectors.end())
+      ++out.count;
+    else
+      out.triangle.data()[i] = kNoTriangle;
+  }
+  return out;
+}
+
+EnvmapFrame shade_reflector_pixels(const Scene& scene, const RayScene& rays, const Camera& camera,
+                                   const ReflectorPixels& pixels, const EnvmapInputs& in) {
+  const int w = camera.width, h = camera.height;
+  EnvmapFrame frame{ImageF(w, h, 3, 0.0f), ImageU32(w, h, 1, kNoObject), {}};
+  const DirectLight light(scene, rays, in.area_light_samples);
+  std::atomic<size_t> n_pixels{0}, n_lookups{0}, n_samples{0}, n_edges{0};
+  parallel_for_tiles(w, h, kTileSize, [&](const Tile& tile) {
+    std::vector<vec2> lobe(size_t(in.glossy_rays));
+    size_t tp = 0, tl = 0, ts = 0, te = 0;
+    uint32_t first_object = kNoObject;
+    auto trace = [&](vec3 x, vec3 dir) {
+      EnvLookup r = lookup(in, scene.environment, x, dir);
+      if (first_object == kNoObject && !r.miss) first_object = r.object;
+      ++tl;
+      ts += size_t(r.steps);
+      te += r.miss;
+      return r.color;
+    };
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x) {
+        const uint32_t t = pixels.triangle.at(x, y);
+        if (t == kNoTriangle) continue;
+        ++tp;
+        first_object = kNoObject;
+        const float u = pixels.barycentric.at(x, y, 0), v = pixels.barycentric.at(x, y, 1);
+        const vec3 view = triangle_point(scene, t, u, v) - camera.position;
+        SurfacePoint sp = surface_point_seen(scene, t, u, v, view);
+        // The reference's stream for this pixel (k = 1): area-light jitter, then the lobe.
+        Pcg32 rng(derive_seed(in.seed, uint64_t(y) * uint64_t(w) + uint64_t(x), 0));
+        ShadingTerms terms = light.local_terms(sp, rng);
+        const Material& m = scene.materials[scene.triangle_material[t]];
+        if (m.specular > 0.0f) {
+          const vec3 mirror = reflect(glm::normalize(view), sp.n);
+          const float half_angle = glossy_lobe_half_angle(m.gloss);
+          if (half_angle > 0.0f) {
+            stratified_samples_2d(lobe, rng);
+            vec3 sum(0.0f);
+            for (vec2 s : lobe) sum += trace(sp.p, glossy_lobe_direction(mirror, sp.ng, half_angle, s));
+            terms.reflected = sum / float(lobe.size());
+          } else {
+            terms.reflected = trace(sp.p, glossy_lobe_direction(mirror, sp.ng, 0.0f, vec2(0.0f)));
+          }
+        }
+        const vec3 color = combine_shading(terms);
+        for (int c = 0; c < 3; ++c) frame.color.at(x, y, c) = color[c];
+        frame.object.at(x, y) = first_object;
+      }
+    n_pixels += tp;
+    n_lookups += tl;
+    n_samples += ts;
+    n_edges += te;
+  });
+  frame.stats = {n_pixels.load(), n_lookups.load(), n_samples.load(), n_edges.load()};
+  return frame;
+}
+
+}  // namespace proxima
