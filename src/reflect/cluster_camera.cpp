@@ -72,18 +72,14 @@ std::optional<ClusterCamera> build_cluster_camera(const ClusterCameraInput& in) 
                                                             : glm::cross(plane.normal, vec3(0, 1, 0)));
   plane.tv = glm::cross(plane.normal, plane.tu);
 
-  float front = -kInf;
   bool same_normals = true;
   for (size_t i = 0; i < in.points.size(); ++i) {
     float dist = glm::dot(in.points[i] - plane.point, plane.normal);
-    front = std::max(front, dist);
     same_normals = same_normals && glm::dot(in.normals[i], plane.normal) >= 1.0f - 1e-6f;
     if (std::abs(dist) > in.plane_tolerance) same_normals = false;
   }
   out.planar = same_normals;
-  // Near plane: the fitting plane pushed in front of every cluster point, so the reflector's
-  // own surface stays out of its depth image.
-  out.clip_offset = (out.planar ? 0.0f : front) + 0.5f * in.plane_tolerance;
+  out.clip_offset = 0.5f * in.plane_tolerance;
 
   // Step 3a: mirrored eye.
   const float eye_dist = glm::dot(in.eye - plane.point, plane.normal);
@@ -141,14 +137,23 @@ std::optional<ClusterCamera> build_cluster_camera(const ClusterCameraInput& in) 
       f = std::min(1.0f, 2.0f * f);
       continue;
     }
-    if (!in_front) return std::nullopt;
+    if (!in_front) {
+      // Rays nearly parallel to the plane: keep the widest frustum allowed; rays outside
+      // it fall back to the environment. Plane points inside it are at least the centre's
+      // distance to the plane away, at under 80° to the axis.
+      tan_x = tan_y = max_tan;
+      for (int k = 0; k < 4; ++k) image_corner[k] = vec2((k == 1 || k == 2) ? max_tan : -max_tan, k >= 2 ? max_tan : -max_tan);
+      min_z = 0.15f * glm::dot(plane.point - center, plane.normal);
+    }
     tan_x = std::clamp(tan_x, 1e-6f, max_tan);
     tan_y = std::clamp(tan_y, 1e-6f, max_tan);
 
     // Step 5: the window's image (a quadrilateral) gets about (window area / p²)·scale²
     // texels, i.e. one texel per footprint p at scale 1; square pixels.
+    const double pixels = double(in.pixel_count > 0 ? in.pixel_count : in.points.size());
     double texels = double(in.resolution_scale) * double(in.resolution_scale) *
-                    double(window.max.x - window.min.x) * double(window.max.y - window.min.y) / (double(p) * double(p));
+                    std::min(4.0 * pixels, double(window.max.x - window.min.x) *
+                                               double(window.max.y - window.min.y) / (double(p) * double(p)));
     double quad_area = 0.0;  // shoelace, at unit focal length
     for (int k = 0; k < 4; ++k) {
       vec2 a = image_corner[k], b = image_corner[(k + 1) % 4];

@@ -5,8 +5,10 @@
 // The printed scale a_R/n_v would give every reflector of a 20-reflector view a single bin
 // (≈ 20 clusters), far from the 107–148 clusters the thesis reports; its text says bins
 // grow with a reflector's screen share and shrink with the number of reflectors, and caps
-// a reflector at 13 × 8 bins. We use min(1, a_R·n_v): a reflector's share relative to
-// the mean share, capped at the full 13 × 8.
+// a reflector at 13 × 8 bins. We scale the bin *count* (θ bins × φ bins) with a_R·n_v, a
+// reflector's share relative to the mean share: sqrt(a_R·n_v) per axis, at most 1, and at
+// least options.min_bin_scale — a vase beside a floor holding 85% of the reflective pixels
+// would otherwise get one cluster whose rays span more than any pinhole frustum holds.
 #include "proxima/reflect/reflection_clustering.h"
 
 #include <algorithm>
@@ -45,7 +47,7 @@ ReflectionClusters cluster_reflections(std::span<const vec3> normals, std::span<
   std::map<uint32_t, std::pair<int, int>> bins_of;  // reflector → (θ bins, φ bins)
   for (const auto& [r, count] : pixels_of) {
     double share = double(count) / double(n);
-    double scale = std::min(1.0, share * visible);
+    double scale = std::clamp(std::sqrt(share * visible), double(std::clamp(options.min_bin_scale, 0.0f, 1.0f)), 1.0);
     bins_of[r] = {bin_count(options.max_theta_bins, scale), bin_count(options.max_phi_bins, scale)};
   }
 

@@ -6,7 +6,9 @@
 // Algorithm 7 stops at the first step with depthR ≥ depthDI. Taken literally that also
 // "hits" a nearer object the ray only passes behind; a hit here additionally needs the ray
 // to have been in front of that surface one step earlier (within the surface's own depth
-// change when the two texels are continuous), which tells silhouettes from surfaces.
+// change when the two texels are continuous), which tells silhouettes from surfaces; and
+// since a step spans two texels, a ray that reaches the previous texel's surface within
+// the step hits it even when the new texel holds a nearer occluder.
 #include "proxima/reflect/depth_image_march.h"
 
 #include <algorithm>
@@ -53,6 +55,7 @@ std::optional<DepthImageHit> march_depth_image(const Camera& camera, const Image
   float prev_alpha = a0;
   float prev_ray = ray_depth(a0);
   float prev_surface = texel_depth(a0);
+  std::optional<DepthImageHit> fill;
   for (int i = 1; i <= steps; ++i) {
     const float alpha = a0 + (a1 - a0) * float(i) / float(steps);
     const float ray = ray_depth(alpha);
@@ -61,6 +64,8 @@ std::optional<DepthImageHit> march_depth_image(const Camera& camera, const Image
       const bool continuous = std::isfinite(prev_surface) &&
                               std::abs(surface - prev_surface) <= options.continuity * surface;
       const float slack = continuous ? std::abs(surface - prev_surface) : 0.0f;
+      if (options.fill_behind && !fill && !continuous && prev_ray < prev_surface && std::isfinite(prev_surface))
+        fill = DepthImageHit{pb + prev_alpha * d, prev_surface, true};
       if (prev_ray <= surface + slack) {
         // Where the ray reaches the stored depth (1/z is linear in α), kept inside the step.
         float hit_alpha = alpha;
@@ -68,11 +73,18 @@ std::optional<DepthImageHit> march_depth_image(const Camera& camera, const Image
         return DepthImageHit{pb + hit_alpha * d, surface};
       }
     }
+    // A step spans two texels: the ray may reach the previous texel's surface before it
+    // enters a nearer one (a silhouette just behind the hit).
+    if (prev_ray <= prev_surface && ray >= prev_surface) {
+      float hit_alpha = prev_alpha;
+      if (inv_ze != inv_zb) hit_alpha = std::clamp((1.0f / prev_surface - inv_zb) / (inv_ze - inv_zb), prev_alpha, alpha);
+      return DepthImageHit{pb + hit_alpha * d, prev_surface};
+    }
     prev_alpha = alpha;
     prev_ray = ray;
     prev_surface = surface;
   }
-  return std::nullopt;
+  return fill;
 }
 
 }  // namespace proxima

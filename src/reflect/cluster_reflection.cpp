@@ -78,6 +78,17 @@ vec3 lookup_color(const ImageF& color, const ImageF& depth, vec2 s, float hit_de
   return vec3(color.at(x, y, 0), color.at(x, y, 1), color.at(x, y, 2));
 }
 
+// Whether the surface point at continuous pixel `s`, depth `z`, on `triangle`, shows in the
+// image: some texel of the 3×3 around `s` holds that triangle or a depth ≥ 0.99·z.
+bool visible_near(const RasterImages& image, vec2 s, float z, uint32_t triangle) {
+  const int w = image.depth.width(), h = image.depth.height();
+  const int cx = int(s.x), cy = int(s.y);
+  for (int y = std::max(0, cy - 1); y <= std::min(h - 1, cy + 1); ++y)
+    for (int x = std::max(0, cx - 1); x <= std::min(w - 1, cx + 1); ++x)
+      if (image.triangle.at(x, y) == triangle || image.depth.at(x, y) >= 0.99f * z) return true;
+  return false;
+}
+
 // Ray parameters [t0, t1] inside the cluster image's volume: in front of the near (clip)
 // plane, within the camera's depth range and within the far distance. False when empty.
 bool clip_ray(const ClusterCamera& k, vec3 origin, vec3 dir, float far_distance, float& t0, float& t1) {
@@ -266,6 +277,8 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
   ReflectionClusters clusters = cluster_reflections(frame.normal, frame.reflector, options.clustering);
   const size_t nc = clusters.count();
   st.clusters = nc;
+  st.clustering_ms = watch.elapsed_ms();
+  watch.restart();
   std::vector<int32_t> sample_at(frame.base.pixel_count(), -1);
   for (size_t i = 0; i < n; ++i) sample_at[frame.pixel[i]] = int32_t(i);
   std::vector<double> footprint_sum(nc, 0.0);
@@ -315,12 +328,16 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
       in.max_image_side = options.max_image_side;
       in.plane_tolerance = epsilon;
       cameras[c] = build_cluster_camera(in);
-      st.planar_clusters += cameras[c] && cameras[c]->planar;
+      if (cameras[c] && cameras[c]->planar) {
+        ++st.planar_clusters;
+        st.planar_samples += points.size();
+      }
     }
   }
   st.cameras_ms = watch.elapsed_ms();
 
-  std::vector<uint8_t> fallback(n, 0), occlusion_error(n, 0);
+  out.cluster = clusters.cluster_of;
+  out.flags.assign(n, 0);
   RasterImages images;
   ImageF color;
   for (size_t c = 0; c < nc; ++c) {
@@ -328,7 +345,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     st.max_cluster_samples = std::max<uint64_t>(st.max_cluster_samples, members.size());
     if (!cameras[c]) {
       for (uint32_t i : members) {
-        fallback[i] = 1;
+        out.flags[i] |= kEnvFallback;
         vec3 sum(0.0f);
         for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r)
           sum += environment_radiance(scene.environment, frame.direction[r]);
@@ -344,6 +361,14 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     RasterOptions ro;
     ro.outputs = kRasterDepth | kRasterTriangle | kRasterBarycentric;
     ro.object_bounds = object_bounds;
+    // A curved cluster's own reflector bulges in front of its fitting plane and would only
+    // hide what its rays hit; it is left out (convex reflectors do not see themselves).
+    std::vector<uint32_t> others;
+    if (!k.planar) {
+      for (uint32_t o = 0; o < scene.objects.size(); ++o)
+        if (o != clusters.reflector[c]) others.push_back(o);
+      ro.objects = others;
+    }
     RasterStats rs = rasterize(scene, cam, ro, images, [&](const Fragment& fr) {
       vec3 x = unproject(cam, vec2(float(fr.x) + 0.5f, float(fr.y) + 0.5f), fr.depth);
       return glm::dot(x - k.plane_point, k.plane_normal) > k.clip_offset;
@@ -368,6 +393,10 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     watch.restart();
     const float far = far_distance[c];
     const bool glossy = cluster_gloss[c] > 0.0f;
+    MarchOptions march;
+    march.fill_behind = true;
+    std::vector<uint8_t> ray_occluded(frame.first_ray[members.back() + 1] - frame.first_ray[members.front()], 0);
+    const uint32_t ray_base = frame.first_ray[members.front()];
     parallel_for(members.size(), 64, [&](size_t b, size_t e) {
       for (size_t m = b; m < e; ++m) {
         const uint32_t i = members[m];
@@ -377,8 +406,10 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
           const vec3 env = environment_radiance(scene.environment, dir);
           float t0, t1;
           std::optional<DepthImageHit> hit;
-          if (clip_ray(k, o, dir, far, t0, t1)) hit = march_depth_image(cam, images.depth, o + t0 * dir, o + t1 * dir);
+          if (clip_ray(k, o, dir, far, t0, t1))
+            hit = march_depth_image(cam, images.depth, o + t0 * dir, o + t1 * dir, march);
           if (hit) {
+            if (hit->filled) out.flags[i] |= kBehindFill;
             vec3 c_hit = lookup_color(color, images.depth, hit->pixel, hit->depth);
             if (glossy) {
               float t = glm::length(unproject(cam, hit->pixel, hit->depth) - o);
@@ -388,7 +419,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
             sum += c_hit;
           } else {
             sum += env;
-            fallback[i] = 1;
+            out.flags[i] |= kEnvFallback;
           }
           // Occlusion error: the surface Embree hits is not what the image holds there.
           if (reference && reference->hit_triangle[r] != kNoTriangle) {
@@ -398,21 +429,29 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
                           pr->pixel.x < 0.0f || pr->pixel.y < 0.0f || pr->pixel.x >= float(cam.width) ||
                           pr->pixel.y >= float(cam.height);
             if (!absent && pr->depth <= cam.far) {
-              int tx = int(pr->pixel.x), ty = int(pr->pixel.y);
-              absent = images.triangle.at(tx, ty) != reference->hit_triangle[r] &&
-                       images.depth.at(tx, ty) < 0.99f * pr->depth;
+              // Hidden only if no texel within one of its projection holds the surface or
+              // something at its depth or beyond (resolution is not occlusion).
+              absent = !visible_near(images, pr->pixel, pr->depth, reference->hit_triangle[r]);
             }
-            if (absent && (!pr || pr->depth <= cam.far)) occlusion_error[i] = 1;
+            if (absent && (!pr || pr->depth <= cam.far)) {
+              out.flags[i] |= kOcclusionError;
+              ray_occluded[r - ray_base] = 1;
+            }
           }
         }
         out.radiance[i] = sum / float(frame.first_ray[i + 1] - frame.first_ray[i]);
       }
     });
     st.intersection_ms += watch.elapsed_ms();
+    for (uint32_t i : members) {
+      st.rays += frame.first_ray[i + 1] - frame.first_ray[i];
+      for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) st.occlusion_error_rays += ray_occluded[r - ray_base];
+    }
   }
-  for (size_t i = 0; i < n; ++i) {
-    st.env_fallback_samples += fallback[i];
-    st.occlusion_error_samples += occlusion_error[i];
+  for (uint8_t flag : out.flags) {
+    st.env_fallback_samples += (flag & kEnvFallback) != 0;
+    st.occlusion_error_samples += (flag & kOcclusionError) != 0;
+    st.behind_fill_samples += (flag & kBehindFill) != 0;
   }
   return out;
 }

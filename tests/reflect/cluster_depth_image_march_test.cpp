@@ -53,6 +53,14 @@ TEST(ClusterDepthImageMarch, RayPassingBehindAnObjectMissesIt) {
   // Across the plate from left to right at depth 6 → 8, ending before the wall.
   const vec3 a = unproject(kCamera, vec2(10.5f, 64.5f), 6.0f), b = unproject(kCamera, vec2(120.5f, 64.5f), 8.0f);
   EXPECT_FALSE(march_depth_image(kCamera, depth, a, b).has_value());
+  // With fill_behind it reports the wall it was last in front of, at the plate's edge.
+  MarchOptions fill;
+  fill.fill_behind = true;
+  auto filled = march_depth_image(kCamera, depth, a, b, fill);
+  ASSERT_TRUE(filled.has_value());
+  EXPECT_TRUE(filled->filled);
+  EXPECT_FLOAT_EQ(filled->depth, 10.0f);
+  EXPECT_NEAR(filled->pixel.x, 40.0f, 1.5f);
   // The same ray continued to depth 12 hits the wall, right of the plate.
   const vec3 c = unproject(kCamera, vec2(120.5f, 64.5f), 12.0f);
   auto wall = march_depth_image(kCamera, depth, a, c);

@@ -19,6 +19,7 @@ struct ClusterCameraInput {
   vec3 eye{0.0f};                 // e
   float pixel_footprint = 0.0f;   // p: mean distance between neighbouring pixels' points (> 0)
   float resolution_scale = 1.0f;  // texels per footprint along each axis (Table 17)
+  size_t pixel_count = 0;         // pixels of the cluster (0 = points.size()); caps the texels
   int max_image_side = 2048;      // cap on width and height
   float plane_tolerance = 0.0f;   // coplanarity tolerance in meters (≥ 0)
 };
@@ -28,7 +29,8 @@ struct ClusterCamera {
   vec3 plane_point{0.0f};    // P_c = mean P_i
   vec3 plane_normal{0.0f};   // n_c = normalized mean n_i (faces the eye's side)
   float clip_offset = 0.0f;  // near plane: only points x with dot(x − P_c, n_c) > clip_offset
-                             // belong to the depth image (the front-most P_i, 0 when planar)
+                             // belong to the depth image (half the plane tolerance: the
+                             // fitting plane, clear of a planar reflector's own surface)
   vec3 mirrored_eye{0.0f};   // e0
   float f = 1.0f;            // d_n / d_f (Eq. 6), in (0, 1]; 1 for a planar cluster
   float d_n = 0.0f;          // diagonal of the start points' box on the plane, seen from e0
@@ -36,7 +38,9 @@ struct ClusterCamera {
   bool planar = false;       // every P_i within plane_tolerance of the plane, n_i = n_c
 };
 
-// Builds the cluster camera. e_c = e0 + (P_c − e0)·(1 − f): e0 itself for a planar cluster
+// Builds the cluster camera. Texels ≈ scale² · min(window area / p², 4 · pixels): one
+// texel per footprint, but no more than a few per pixel of the cluster (a curved or glossy
+// cluster's window is much larger than its pixels' footprints and holds a minified scene). e_c = e0 + (P_c − e0)·(1 − f): e0 itself for a planar cluster
 // (every reflection ray then passes through e0), nearer the plane for a convex one. f is
 // raised (towards e0) when the window would need a half field of view above 75°.
 // nullopt when the cluster is empty or the eye lies on its fitting plane.

@@ -102,14 +102,28 @@ struct ClusterFrameStats {
   uint64_t env_fallback_samples = 0;    // samples with a ray that found no hit in its image
   uint64_t occlusion_error_samples = 0; // samples with a ray whose Embree hit is absent
                                         // from the cluster image (needs the reference)
+  uint64_t behind_fill_samples = 0;     // samples with a ray answered by fill_behind
+  uint64_t rays = 0;
+  uint64_t occlusion_error_rays = 0;
   uint64_t planar_clusters = 0;
-  double cameras_ms = 0.0;              // clustering + cluster cameras (steps 2, 3a)
+  uint64_t planar_samples = 0;          // samples in planar clusters
+  double clustering_ms = 0.0;           // step 2
+  double cameras_ms = 0.0;              // pixel footprints + cluster cameras (step 3a)
   double depth_images_ms = 0.0;         // rasterization + texel shading (step 3b)
   double intersection_ms = 0.0;         // marching + blending over the lobe (step 3c)
 };
 
+// Per-sample flags of ClusterReflections::flags.
+enum ClusterSampleFlag : uint8_t {
+  kEnvFallback = 1u << 0,     // a ray found no hit in its cluster image (environment used)
+  kOcclusionError = 1u << 1,  // a ray's Embree hit is absent from its cluster image
+  kBehindFill = 1u << 2,      // a ray went behind a surface for good (MarchOptions::fill_behind)
+};
+
 struct ClusterReflections {
-  std::vector<vec3> radiance;  // per sample: mean over its rays (G(d_i, g))
+  std::vector<vec3> radiance;     // per sample: mean over its rays (G(d_i, g))
+  std::vector<uint32_t> cluster;  // per sample: its cluster
+  std::vector<uint8_t> flags;     // per sample: ClusterSampleFlag bits
   ClusterFrameStats stats;
 };
 

@@ -12,8 +12,10 @@
 namespace proxima {
 
 struct DepthImageHit {
-  vec2 pixel;   // continuous pixel coordinates of the hit in the depth image
-  float depth;  // −z_cam of the hit (the stored surface depth there)
+  vec2 pixel;           // continuous pixel coordinates of the hit in the depth image
+  float depth;          // −z_cam of the hit (the stored surface depth there)
+  bool filled = false;  // no crossing: the surface the ray was last in front of before it
+                        // went behind a nearer one (MarchOptions::fill_behind)
 };
 
 struct MarchOptions {
@@ -21,6 +23,10 @@ struct MarchOptions {
   // fraction; across a larger jump (a silhouette) a ray found behind the nearer texel
   // passes behind it instead of hitting it.
   float continuity = 0.1f;
+  // A ray that goes behind a nearer surface and never comes out again hit something the
+  // image does not hold. With fill_behind it returns the surface it was last in front of
+  // (the background at the silhouette, flagged `filled`) instead of nothing.
+  bool fill_behind = false;
 };
 
 // First hit of the segment begin → end with the surface stored in `depth` (1 channel,
@@ -28,7 +34,7 @@ struct MarchOptions {
 // A hit is a step where the ray goes from in front of the stored surface to behind it;
 // a ray that appears behind a surface across a silhouette passes behind it. Parts of the
 // segment outside the image are skipped. Both ends must be in front of the camera
-// (depth > 0), else nullopt; nullopt when nothing is hit.
+// (depth > 0), else nullopt; nullopt when nothing is hit (see fill_behind).
 std::optional<DepthImageHit> march_depth_image(const Camera& camera, const ImageF& depth, vec3 begin, vec3 end,
                                                const MarchOptions& options = {});
 

@@ -14,6 +14,10 @@ namespace proxima {
 struct ClusteringOptions {
   int max_theta_bins = 13;  // MAXTHETABINS: azimuth bins over 360° for a full-share reflector
   int max_phi_bins = 8;     // MAXPHIBINS: polar bins over 180°
+  // Lower bound of the per-reflector bin scale: a curved reflector with a small screen
+  // share still gets ≥ this fraction of the bins per axis, so that a cluster's normals span
+  // at most ~55° × 45° and its reflection rays fit one pinhole frustum. 0 = no bound.
+  float min_bin_scale = 0.5f;
 };
 
 // Clusters as index lists: cluster c owns members[offsets[c] .. offsets[c+1]), ascending
@@ -32,8 +36,9 @@ struct ReflectionClusters {
 };
 
 // Clusters samples by their unit normals and reflector ids (normals.size() == reflectors.size()).
-// Per reflector R: a_R = its samples / all samples, n_v = reflectors with samples; bins are
-// ceil(MAX·min(1, a_R·n_v)), at least 1 (docs/cluster_reflections.md explains the scale).
+// Per reflector R: a_R = its samples / all samples, n_v = reflectors with samples; bins per
+// axis are ceil(MAX·clamp(sqrt(a_R·n_v), min_bin_scale, 1)), at least 1
+// (docs/cluster_reflections.md explains the scale).
 // Angles are taken in a fixed generic frame so axis-aligned normals (walls, floors) sit
 // inside a bin rather than on a bin border or at the pole. Options < 1 are treated as 1.
 ReflectionClusters cluster_reflections(std::span<const vec3> normals, std::span<const uint32_t> reflectors,
