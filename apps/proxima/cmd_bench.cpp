@@ -13,11 +13,9 @@
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
 #include "proxima/core/timer.h"
-#include "proxima/raster/raster_bench.h"
-#include "proxima/scene/builtin_scenes.h"
+#include "proxima/eval/raster_agreement.h"
 #include "proxima/scene/load.h"
 #include "proxima/trace/ray_scene.h"
-#include "proxima/trace/reference_renderer.h"
 
 namespace proxima::cli {
 
@@ -168,19 +166,11 @@ int run_raster(const BenchFlags& f) {
   double min_agreement = 100.0;
   size_t other_total = 0;
   if (!f.skip_agreement) {
-    for (const BuiltinSceneInfo& info : builtin_scenes()) {
-      Scene s = make_builtin_scene(info.name);
-      RayScene rays(s);
-      for (const NamedCamera& nc : s.cameras) {
-        Camera c = nc.camera;
-        c.width = c.height = 512;
-        ImageU32 reference = trace_item_buffer(s, rays, c).triangle;
-        ImageU32 raster = rasterize(s, c).triangle;
-        IdAgreement a = compare_id_buffers(s, c, raster, reference);
-        min_agreement = std::min(min_agreement, a.agreement_pct());
-        other_total += a.other;
-        agree.rows.push_back({info.name, nc.name, a.agreement_pct(), double(a.edge), double(a.depth), double(a.other)});
-      }
+    for (const CameraAgreement& c : raster_agreement_on_builtins(512)) {
+      const IdAgreement& a = c.agreement;
+      min_agreement = std::min(min_agreement, a.agreement_pct());
+      other_total += a.other;
+      agree.rows.push_back({c.scene, c.camera, a.agreement_pct(), double(a.edge), double(a.depth), double(a.other)});
     }
     results.metrics["id_agreement_pct"] = min_agreement;
     results.metrics["id_disagreements_other"] = double(other_total);

@@ -63,6 +63,7 @@ Command register_info(CLI::App& root);
 Command register_render(CLI::App& root);
 Command register_bench(CLI::App& root);
 Command register_demo(CLI::App& root);
+Command register_visibility(CLI::App& root);
 Command register_reflect_cluster(CLI::App& root);
 
 }  // namespace proxima::cli

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   std::vector<cli::Command> commands = {
       cli::register_scenes(root), cli::register_info(root), cli::register_render(root),
       cli::register_bench(root), cli::register_demo(root),
+      cli::register_visibility(root),
       cli::register_reflect_cluster(root),
   };
   try {

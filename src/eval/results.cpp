@@ -2,11 +2,14 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <sstream>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
 #include "proxima/core/atomic_file.h"
+#include "proxima/core/error.h"
 
 #ifndef PROXIMA_COMMIT
 #define PROXIMA_COMMIT "unknown"
@@ -27,6 +30,8 @@ nlohmann::json number_or_null(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
 }
 
+}  // namespace
+
 std::string format_cell(const std::variant<std::string, double>& cell) {
   if (const auto* s = std::get_if<std::string>(&cell)) return *s;
   double v = std::get<double>(cell);
@@ -44,14 +49,12 @@ std::string format_cell(const std::variant<std::string, double>& cell) {
   return s;
 }
 
-}  // namespace
-
 void write_results_json(const std::filesystem::path& path, const Results& results) {
   nlohmann::json j;
   j["command"] = results.command;
   j["threads"] = results.threads;
-  j["build"] = build_type();
-  j["commit"] = build_commit();
+  j["build"] = results.build.empty() ? std::string(build_type()) : results.build;
+  j["commit"] = results.commit.empty() ? std::string(build_commit()) : results.commit;
   nlohmann::json metrics = nlohmann::json::object();
   for (const auto& [name, value] : results.metrics) metrics[name] = number_or_null(value);
   j["metrics"] = metrics;
@@ -70,7 +73,62 @@ void write_results_json(const std::filesystem::path& path, const Results& result
   }
   j["tables"] = tables;
   j["images"] = results.images;
+  j["machine"] = {{"cpu", results.cpu.empty() ? cpu_model() : results.cpu},
+                  {"hardware_threads", std::thread::hardware_concurrency()}};
+  nlohmann::json sections = nlohmann::json::array();
+  for (const Section& s : results.sections)
+    sections.push_back({{"id", s.id}, {"title", s.title}, {"text", s.text}, {"tables", s.tables},
+                        {"images", s.images}, {"commands", s.commands}});
+  j["sections"] = sections;
   write_text_file(path, j.dump(2) + "\n");
+}
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) {
+      size_t colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(' ', colon + 1));
+    }
+  return "unknown";
+}
+
+Results read_results_json(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) fail_input(path.string() + ": cannot open");
+  try {
+    nlohmann::json j = nlohmann::json::parse(in);
+    auto number = [](const nlohmann::json& v) { return v.is_null() ? std::nan("") : v.get<double>(); };
+    Results r;
+    r.command = j.at("command").get<std::vector<std::string>>();
+    r.threads = j.at("threads").get<int>();
+    r.build = j.value("build", std::string());
+    r.commit = j.value("commit", std::string());
+    if (j.contains("machine")) r.cpu = j["machine"].value("cpu", std::string());
+    for (const auto& [name, value] : j.at("metrics").items()) r.metrics[name] = number(value);
+    for (const auto& t : j.at("tables")) {
+      Table table{t.at("title").get<std::string>(), t.at("columns").get<std::vector<std::string>>(), {}};
+      for (const auto& row : t.at("rows")) {
+        std::vector<std::variant<std::string, double>> cells;
+        for (const auto& cell : row) {
+          if (cell.is_string()) cells.emplace_back(cell.get<std::string>());
+          else cells.emplace_back(number(cell));
+        }
+        table.rows.push_back(std::move(cells));
+      }
+      r.tables.push_back(std::move(table));
+    }
+    r.images = j.value("images", std::map<std::string, std::string>{});
+    for (const auto& s : j.value("sections", nlohmann::json::array()))
+      r.sections.push_back({s.at("id").get<std::string>(), s.at("title").get<std::string>(),
+                            s.value("text", std::string()), s.value("tables", std::vector<std::string>{}),
+                            s.value("images", std::vector<std::string>{}),
+                            s.value("commands", std::vector<std::string>{})});
+    return r;
+  } catch (const nlohmann::json::exception& e) {
+    fail_input(path.string() + ": malformed results.json: " + e.what());
+  }
 }
 
 std::string markdown_table(const Table& table) {

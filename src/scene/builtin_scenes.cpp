@@ -14,6 +14,7 @@
 
 #include "proxima/core/error.h"
 #include "proxima/scene/procedural.h"
+#include "proxima/scene/visibility_models.h"
 
 namespace proxima {
 namespace {
@@ -571,6 +572,13 @@ constexpr Entry kScenes[] = {
      make_living_room},
     {"bathroom", "bathroom with mirror, glossy tiles and chrome fixtures, ~90k triangles",
      make_bathroom},
+    {"rooms", "visibility test: 2 rooms joined by a door, 20 polygons", make_vis_rooms},
+    {"maze", "visibility test: maze with off-axis walls, ~325 polygons", make_vis_maze},
+    {"arena", "visibility test: game arena with blocks and platforms, ~667 polygons", make_vis_arena},
+    {"vcity", "visibility test: city of 225 box buildings, 1,126 polygons", make_vis_vcity},
+    {"floor", "visibility test: office floor, 60 offices, ~1,750 polygons", make_vis_floor},
+    {"building", "visibility test: 5 office floors with a stairwell, ~9,700 polygons (proxima visibility --floors N)",
+     [] { return make_vis_building(5); }},
 };
 
 }  // namespace

@@ -152,6 +152,20 @@ TEST(Cli, BenchRasterWritesTheNamedMetrics) {
   for (const char* m : {"llvmpipe_ms_depth_id", "speedup_vs_llvmpipe"}) EXPECT_TRUE(j["metrics"].contains(m)) << m;
 }
 
+TEST(Cli, DemoWritesResultsAndAReportShowingThem) {
+  TempDir dir;
+  RunResult r = run_cli("demo --width 32 --height 32 --out " + dir.path.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(dir.path / "results.json");
+  nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_GE(j["metrics"]["id_agreement_pct"].get<double>(), 99.9);
+  for (const auto& [role, file] : j["images"].items())
+    EXPECT_TRUE(std::filesystem::exists(dir.path / file.get<std::string>())) << role;
+  std::ifstream page(dir.path / "index.html");
+  std::string html((std::istreambuf_iterator<char>(page)), std::istreambuf_iterator<char>());
+  for (const auto& s : j["sections"]) EXPECT_NE(html.find(s["title"].get<std::string>()), std::string::npos);
+}
+
 TEST(Cli, CameraAndPathFlagsAreValidated) {
   TempDir dir;
   RunResult r = run_cli("render --scene cornell --camera 99 --width 16 --height 16 --out " + dir.path.string());

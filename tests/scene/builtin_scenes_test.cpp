@@ -62,8 +62,9 @@ constexpr Minimum kMinimums[] = {
 
 TEST(BuiltinScenes, ListNamesTheFourScenes) {
   std::vector<BuiltinSceneInfo> list = builtin_scenes();
-  ASSERT_EQ(list.size(), 4u);
-  for (size_t i = 0; i < list.size(); ++i) {
+  // The four interiors come first; other modules append their test scenes after them.
+  ASSERT_GE(list.size(), 4u);
+  for (size_t i = 0; i < 4; ++i) {
     EXPECT_EQ(list[i].name, kMinimums[i].name);
     EXPECT_FALSE(list[i].description.empty());
     EXPECT_TRUE(is_builtin_scene(list[i].name));

@@ -1,0 +1,35 @@
+// Spatial subdivision (Funkhouser, section 3): a BSP over the input polygons, built directly
+// as a winged-pair cell complex. docs/visibility.md documents the heuristic and tolerances.
+#pragma once
+
+#include <cstddef>
+
+#include "proxima/visibility/polygons.h"
+#include "proxima/visibility/winged_pair.h"
+
+namespace proxima::visibility {
+
+struct BspOptions {
+  int candidates = 16;         // polygon planes scored per split (evenly spaced over the cell's)
+  double split_weight = 4.0;   // score = split_weight · fragments split + |front − back|
+  double epsilon = 1e-6;       // plane-side tolerance, relative to the model scale
+  double box_margin = 0.25;    // outer box = polygon bounds grown by this × scale on each side
+};
+
+struct BspStats {
+  size_t polygons = 0;
+  size_t splits = 0;              // BSP nodes (cells split by a polygon plane)
+  size_t fragments_split = 0;     // polygon fragments cut by a split plane
+  size_t rejected_planes = 0;     // splits skipped as inconsistent within the tolerance
+  size_t unplaced_fragments = 0;  // fragments that could not be put on a face (degenerate)
+  double build_ms = 0.0;
+};
+
+// Builds the winged pair of the polygons inside an outer box. Every cell is convex, every
+// face convex, labeled opaque (with the polygon it lies on) or transparent; opaque faces
+// tile the polygons. Never throws on degenerate input (coplanar, duplicate, sliver,
+// T-junction polygons): what cannot be placed consistently is counted in stats.
+WingedPair build_winged_pair(const ModelPolygons& model, const BspOptions& options = {},
+                             BspStats* stats = nullptr);
+
+}  // namespace proxima::visibility

@@ -1,0 +1,581 @@
+// Spatial subdivision of Funkhouser, "A visibility algorithm for hybrid geometry- and
+// image-based modeling and rendering" (Computers & Graphics 1999), section 3: a BSP whose
+// cells are split by the planes of input polygons, maintained as a winged-pair cell complex.
+//
+// Symbols: a cell C is split by the plane H of a polygon P; faces of C crossing H are split
+// along H ∩ face (their crossing edges split globally, so neighbor cells keep a conforming
+// boundary); the new face S = C ∩ H separates the two child cells; the fragments of input
+// polygons lying on H subdivide S into faces "entirely inside or outside every input
+// polygon" (opaque, labeled with the polygon, or transparent). Recursion ends when no
+// polygon fragment intersects a cell's interior. Split-plane choice follows Naylor's
+// scoring (paper ref. [29]): among evenly spaced candidate polygons of a cell, the plane
+// minimizing split_weight · (fragments split) + |front − back|.
+//
+// Robustness: one tolerance eps = options.epsilon · model scale for every side decision;
+// each vertex is classified once per plane (stamped cache), so faces sharing a vertex never
+// disagree; a split whose classification is inconsistent within eps (a face touching H at
+// an isolated vertex while crossing it, an edge on H between faces on one side, a broken
+// cross-section loop) is rejected and counted instead of producing a non-manifold result.
+#include "proxima/visibility/bsp_build.h"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+#include <utility>
+
+#include "proxima/core/timer.h"
+
+namespace proxima::visibility {
+namespace {
+
+uint64_t edge_key(uint32_t a, uint32_t b) {
+  return a < b ? (uint64_t(a) << 32) | b : (uint64_t(b) << 32) | a;
+}
+
+struct BuildFace {
+  std::vector<uint32_t> loop;  // vertex ids, counter-clockwise seen from the front
+  Plane plane;
+  uint32_t cell[2] = {kNone, kNone};
+  uint32_t polygon = kNone;
+};
+
+struct Fragment {
+  std::vector<dvec3> v;  // convex, the input polygon's winding
+  uint32_t polygon = kNone;
+};
+
+enum class Pattern { kFront, kBack, kCrossing, kInvalid };
+
+class Builder {
+ public:
+  Builder(const ModelPolygons& model, const BspOptions& options, BspStats& stats)
+      : model_(model), options_(options), stats_(stats),
+        eps_(options.epsilon * model.scale),
+        eps_area_(1e-3 * eps_ * eps_) {}
+
+  WingedPair run();
+
+ private:
+  uint32_t add_vertex(const dvec3& p) {
+    verts_.push_back(p);
+    side_.push_back(0);
+    stamp_of_.push_back(stamp_);
+    return uint32_t(verts_.size() - 1);
+  }
+
+  // Side of vertex v of the current plane (classified once per plane, then cached).
+  int8_t side(uint32_t v) {
+    if (stamp_of_[v] != stamp_) {
+      double d = plane_.distance(verts_[v]);
+      side_[v] = d > eps_ ? 1 : (d < -eps_ ? -1 : 0);
+      stamp_of_[v] = stamp_;
+    }
+    return side_[v];
+  }
+
+  void begin_plane(const Plane& h) {
+    plane_ = h;
+    ++stamp_;
+  }
+
+  Pattern pattern(uint32_t f);
+  void split_edge(uint32_t a, uint32_t b);
+  uint32_t split_face(uint32_t f);
+  uint32_t split_cell(uint32_t c, const Plane& h, uint32_t* back_cell);
+  void carve(uint32_t s, const std::vector<Fragment>& coplanar);
+  uint32_t choose_splitter(const std::vector<Fragment>& frags);
+  void make_box();
+  WingedPair export_structure() const;
+
+  const ModelPolygons& model_;
+  const BspOptions& options_;
+  BspStats& stats_;
+  const double eps_, eps_area_;
+
+  std::vector<dvec3> verts_;
+  std::vector<int8_t> side_;
+  std::vector<uint32_t> stamp_of_;
+  uint32_t stamp_ = 1;
+  Plane plane_;
+
+  std::vector<BuildFace> faces_;
+  std::vector<std::vector<uint32_t>> cells_;  // faces of each cell
+  std::unordered_map<uint64_t, std::vector<uint32_t>> edge_faces_;
+};
+
+// Where face f lies relative to the current plane. A crossing face must meet the plane in
+// exactly two points, each a vertex on it between opposite sides or a crossing edge.
+Pattern Builder::pattern(uint32_t f) {
+  const auto& loop = faces_[f].loop;
+  const size_t n = loop.size();
+  bool plus = false, minus = false;
+  for (uint32_t v : loop) {
+    int8_t s = side(v);
+    plus |= s > 0;
+    minus |= s < 0;
+  }
+  if (!plus && !minus) return Pattern::kInvalid;
+  if (!minus) return Pattern::kFront;
+  if (!plus) return Pattern::kBack;
+  int meets = 0;
+  for (size_t i = 0; i < n; ++i) {
+    int8_t s = side(loop[i]), t = side(loop[(i + 1) % n]);
+    if (s == 0) {
+      int8_t p = side(loop[(i + n - 1) % n]);
+      if (p * t >= 0) return Pattern::kInvalid;
+      ++meets;
+    } else if (s * t < 0) {
+      ++meets;
+    }
+  }
+  return meets == 2 ? Pattern::kCrossing : Pattern::kInvalid;
+}
+
+// Splits edge (a, b), whose ends lie strictly on opposite sides, at the plane; the new
+// vertex enters the loop of every face around the edge (in every cell).
+void Builder::split_edge(uint32_t a, uint32_t b) {
+  const uint32_t lo = std::min(a, b), hi = std::max(a, b);
+  const double dlo = plane_.distance(verts_[lo]), dhi = plane_.distance(verts_[hi]);
+  const uint32_t m = add_vertex(verts_[lo] + (verts_[hi] - verts_[lo]) * (dlo / (dlo - dhi)));
+  side_[m] = 0;
+  auto node = edge_faces_.extract(edge_key(a, b));
+  std::vector<uint32_t> around = node.empty() ? std::vector<uint32_t>{} : std::move(node.mapped());
+  for (uint32_t g : around) {
+    auto& loop = faces_[g].loop;
+    const size_t n = loop.size();
+    for (size_t i = 0; i < n; ++i) {
+      uint32_t u = loop[i], w = loop[(i + 1) % n];
+      if ((u == a && w == b) || (u == b && w == a)) {
+        loop.insert(loop.begin() + long(i) + 1, m);
+        break;
+      }
+    }
+  }
+  edge_faces_[edge_key(a, m)] = around;
+  edge_faces_[edge_key(m, b)] = std::move(around);
+}
+
+// Splits a crossing face along the plane: f keeps the front part, the returned new face is
+// the back part; both keep f's plane, label and cells (the cells gain the new face).
+uint32_t Builder::split_face(uint32_t f) {
+  std::vector<std::pair<uint32_t, uint32_t>> crossing;
+  {
+    const auto& loop = faces_[f].loop;
+    for (size_t i = 0; i < loop.size(); ++i) {
+      uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
+      if (side(a) * side(b) < 0) crossing.push_back({a, b});
+    }
+  }
+  for (auto [a, b] : crossing) split_edge(a, b);
+
+  const std::vector<uint32_t> loop = faces_[f].loop;
+  const size_t n = loop.size();
+  size_t i0 = 0, i1 = 0;  // the vertex on the plane entering the back side / the front side
+  for (size_t i = 0; i < n; ++i) {
+    if (side(loop[i]) != 0) continue;
+    if (side(loop[(i + n - 1) % n]) > 0) i0 = i;
+    else i1 = i;
+  }
+  std::vector<uint32_t> front, back;
+  for (size_t i = i1;; i = (i + 1) % n) {
+    front.push_back(loop[i]);
+    if (i == i0) break;
+  }
+  for (size_t i = i0;; i = (i + 1) % n) {
+    back.push_back(loop[i]);
+    if (i == i1) break;
+  }
+  const uint32_t g = uint32_t(faces_.size());
+  BuildFace copy = faces_[f];
+  copy.loop = back;
+  faces_.push_back(std::move(copy));
+  faces_[f].loop = std::move(front);
+  for (size_t k = 0; k + 1 < back.size(); ++k) {
+    for (uint32_t& x : edge_faces_[edge_key(back[k], back[k + 1])])
+      if (x == f) x = g;
+  }
+  edge_faces_[edge_key(loop[i0], loop[i1])] = {f, g};
+  for (uint32_t c : faces_[g].cell)
+    if (c != kNone) cells_[c].push_back(g);
+  return g;
+}
+
+// Splits cell c by plane h. c keeps the front part; *back_cell receives the new back cell.
+// Returns the new separating face, or kNone when h does not split c consistently (c may
+// then have gained collinear vertices and coplanar face splits, which keep it valid).
+uint32_t Builder::split_cell(uint32_t c, const Plane& h, uint32_t* back_cell) {
+  begin_plane(h);
+  const std::vector<uint32_t> original = cells_[c];
+  bool plus = false, minus = false;
+  for (uint32_t f : original)
+    for (uint32_t v : faces_[f].loop) {
+      plus |= side(v) > 0;
+      minus |= side(v) < 0;
+    }
+  if (!plus || !minus) return kNone;
+
+  auto in_cell = [&](uint32_t f) { return faces_[f].cell[0] == c || faces_[f].cell[1] == c; };
+  std::vector<Pattern> patterns;
+  for (uint32_t f : original) {
+    patterns.push_back(pattern(f));
+    if (patterns.back() == Pattern::kInvalid) {
+      ++stats_.rejected_planes;
+      return kNone;
+    }
+  }
+  // Cross-section edges already on the plane: between a front and a back face of c.
+  std::vector<std::pair<uint32_t, uint32_t>> section;
+  for (size_t i = 0; i < original.size(); ++i) {
+    if (patterns[i] == Pattern::kCrossing) continue;
+    const auto& loop = faces_[original[i]].loop;
+    for (size_t k = 0; k < loop.size(); ++k) {
+      uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
+      if (side(a) != 0 || side(b) != 0) continue;
+      for (uint32_t g : edge_faces_[edge_key(a, b)]) {
+        if (g == original[i] || !in_cell(g)) continue;
+        auto it = std::find(original.begin(), original.end(), g);
+        if (it == original.end()) continue;
+        Pattern pg = patterns[size_t(it - original.begin())];
+        if (pg == patterns[i] || pg == Pattern::kCrossing) {
+          ++stats_.rejected_planes;
+          return kNone;
+        }
+        if (patterns[i] == Pattern::kFront) section.push_back({a, b});
+      }
+    }
+  }
+  for (size_t i = 0; i < original.size(); ++i) {
+    if (patterns[i] != Pattern::kCrossing) continue;
+    uint32_t g = split_face(original[i]);
+    section.push_back({faces_[g].loop.front(), faces_[g].loop.back()});
+  }
+
+  // Chain the cross-section edges into one loop.
+  std::unordered_map<uint32_t, std::pair<uint32_t, uint32_t>> next;
+  for (auto [a, b] : section) {
+    for (auto [u, w] : {std::pair{a, b}, std::pair{b, a}}) {
+      auto [it, fresh] = next.try_emplace(u, w, kNone);
+      if (!fresh) {
+        if (it->second.second != kNone) {
+          ++stats_.rejected_planes;
+          return kNone;
+        }
+        it->second.second = w;
+      }
+    }
+  }
+  std::vector<uint32_t> loop;
+  const uint32_t start = section.empty() ? kNone : section.front().first;
+  uint32_t prev = kNone, cur = start;
+  while (cur != kNone && loop.size() <= section.size()) {
+    loop.push_back(cur);
+    auto [p, q] = next[cur];
+    prev = std::exchange(cur, (p == kNone || q == kNone) ? kNone : (p != prev ? p : q));
+    if (cur == start) break;
+  }
+  if (loop.size() < 3 || loop.size() != section.size() || cur != start) {
+    ++stats_.rejected_planes;
+    return kNone;
+  }
+  std::vector<dvec3> pts;
+  for (uint32_t v : loop) pts.push_back(verts_[v]);
+  if (glm::dot(newell_normal(pts), h.normal) < 0.0) std::reverse(loop.begin(), loop.end());
+
+  // Partition the faces of c; the back ones move to the new cell.
+  const uint32_t back = uint32_t(cells_.size());
+  cells_.emplace_back();
+  std::vector<uint32_t> front_faces;
+  for (uint32_t f : cells_[c]) {
+    bool is_back = false;
+    for (uint32_t v : faces_[f].loop)
+      if (side(v) != 0) {
+        is_back = side(v) < 0;
+        break;
+      }
+    if (is_back) {
+      for (uint32_t& x : faces_[f].cell)
+        if (x == c) x = back;
+      cells_[back].push_back(f);
+    } else {
+      front_faces.push_back(f);
+    }
+  }
+  cells_[c] = std::move(front_faces);
+
+  const uint32_t s = uint32_t(faces_.size());
+  BuildFace face;
+  face.loop = std::move(loop);
+  face.plane = h;
+  face.cell[0] = back;
+  face.cell[1] = c;
+  for (size_t k = 0; k < face.loop.size(); ++k)
+    edge_faces_[edge_key(face.loop[k], face.loop[(k + 1) % face.loop.size()])].push_back(s);
+  faces_.push_back(std::move(face));
+  cells_[c].push_back(s);
+  cells_[back].push_back(s);
+  *back_cell = back;
+  return s;
+}
+
+// Subdivides the new face s by the edge lines of the fragments lying on its plane: the
+// pieces inside a fragment become opaque faces of its polygon (the first polygon wins
+// where coplanar polygons overlap).
+void Builder::carve(uint32_t s, const std::vector<Fragment>& coplanar) {
+  std::vector<uint32_t> pieces = {s};
+  for (const Fragment& frag : coplanar) {
+    std::vector<uint32_t> inside;
+    for (uint32_t p : pieces)
+      if (faces_[p].polygon == kNone) inside.push_back(p);
+    const dvec3 n = glm::normalize(newell_normal(frag.v));
+    for (size_t k = 0; k < frag.v.size() && !inside.empty(); ++k) {
+      const dvec3& a = frag.v[k];
+      const dvec3& b = frag.v[(k + 1) % frag.v.size()];
+      dvec3 out = glm::cross(b - a, n);  // outward in the fragment's plane
+      double len = glm::length(out);
+      if (len <= eps_area_) continue;
+      Plane e{out / len, -glm::dot(out / len, a)};
+      begin_plane(e);
+      std::vector<uint32_t> kept;
+      for (uint32_t p : inside) {
+        switch (pattern(p)) {
+          case Pattern::kBack: kept.push_back(p); break;
+          case Pattern::kFront: break;
+          case Pattern::kCrossing: {
+            uint32_t g = split_face(p);
+            pieces.push_back(g);
+            kept.push_back(g);
+            break;
+          }
+          case Pattern::kInvalid: kept.push_back(p); ++stats_.rejected_planes; break;
+        }
+      }
+      inside = std::move(kept);
+    }
+    for (uint32_t p : inside) faces_[p].polygon = frag.polygon;
+  }
+}
+
+uint32_t Builder::choose_splitter(const std::vector<Fragment>& frags) {
+  const size_t k = std::min<size_t>(size_t(std::max(1, options_.candidates)), frags.size());
+  uint32_t best = frags.front().polygon;
+  double best_score = INFINITY;
+  for (size_t c = 0; c < k; ++c) {
+    const uint32_t poly = frags[c * frags.size() / k].polygon;
+    const Plane& h = model_.polygons[poly].plane;
+    size_t front = 0, back = 0, split = 0;
+    for (const Fragment& f : frags) {
+      bool plus = false, minus = false;
+      for (const dvec3& p : f.v) {
+        double d = h.distance(p);
+        plus |= d > eps_;
+        minus |= d < -eps_;
+      }
+      if (plus && minus) ++split;
+      else if (plus) ++front;
+      else if (minus) ++back;
+    }
+    double score = options_.split_weight * double(split) +
+                   std::abs(double(front) - double(back));
+    if (score < best_score) {
+      best_score = score;
+      best = poly;
+    }
+  }
+  return best;
+}
+
+void Builder::make_box() {
+  Bounds3 b;
+  for (const InputPolygon& p : model_.polygons)
+    for (const dvec3& v : p.vertices) b.extend(vec3(v));
+  const dvec3 margin(options_.box_margin * model_.scale + 1e-9);
+  const dvec3 lo = b.empty() ? dvec3(-1.0) : dvec3(b.min) - margin;
+  const dvec3 hi = b.empty() ? dvec3(1.0) : dvec3(b.max) + margin;
+  for (int i = 0; i < 8; ++i)
+    add_vertex({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
+  // Corner bits (x, y, z); each face listed counter-clockwise seen from outside.
+  const uint32_t quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  const dvec3 normals[6] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+  cells_.emplace_back();
+  for (int f = 0; f < 6; ++f) {
+    BuildFace face;
+    face.loop.assign(quads[f], quads[f] + 4);
+    face.plane.normal = normals[f];
+    face.plane.offset = -glm::dot(normals[f], verts_[quads[f][0]]);
+    face.cell[0] = 0;  // inside the box is behind every outward face
+    for (int k = 0; k < 4; ++k)
+      edge_faces_[edge_key(quads[f][k], quads[f][(k + 1) % 4])].push_back(uint32_t(f));
+    faces_.push_back(face);
+    cells_[0].push_back(uint32_t(f));
+  }
+}
+
+// Sutherland–Hodgman split of a convex fragment by a plane (vertices within eps on both).
+void clip_fragment(const Fragment& f, const Plane& h, double eps, Fragment& front, Fragment& back) {
+  const size_t n = f.v.size();
+  for (size_t i = 0; i < n; ++i) {
+    const dvec3& a = f.v[i];
+    const dvec3& b = f.v[(i + 1) % n];
+    double da = h.distance(a), db = h.distance(b);
+    int sa = da > eps ? 1 : (da < -eps ? -1 : 0), sb = db > eps ? 1 : (db < -eps ? -1 : 0);
+    if (sa >= 0) front.v.push_back(a);
+    if (sa <= 0) back.v.push_back(a);
+    if (sa * sb < 0) {
+      dvec3 x = a + (b - a) * (da / (da - db));
+      front.v.push_back(x);
+      back.v.push_back(x);
+    }
+  }
+  front.polygon = back.polygon = f.polygon;
+}
+
+WingedPair Builder::run() {
+  Stopwatch watch;
+  make_box();
+  std::vector<Fragment> all;
+  for (uint32_t p = 0; p < model_.polygons.size(); ++p) all.push_back({model_.polygons[p].vertices, p});
+  auto big_enough = [&](const Fragment& f) {
+    return f.v.size() >= 3 && glm::length(newell_normal(f.v)) > 2.0 * eps_area_;
+  };
+  std::vector<std::pair<uint32_t, std::vector<Fragment>>> stack;
+  stack.push_back({0, std::move(all)});
+  while (!stack.empty()) {
+    auto [c, frags] = std::move(stack.back());
+    stack.pop_back();
+    if (frags.empty()) continue;
+    const uint32_t poly = choose_splitter(frags);
+    const Plane& h = model_.polygons[poly].plane;
+    std::vector<Fragment> coplanar, front, back;
+    for (const Fragment& f : frags) {
+      bool plus = false, minus = false;
+      for (const dvec3& p : f.v) {
+        double d = h.distance(p);
+        plus |= d > eps_;
+        minus |= d < -eps_;
+      }
+      if (!plus && !minus) coplanar.push_back(f);
+      else if (!minus) front.push_back(f);
+      else if (!plus) back.push_back(f);
+      else {
+        Fragment fp, bp;
+        clip_fragment(f, h, eps_, fp, bp);
+        ++stats_.fragments_split;
+        if (big_enough(fp)) front.push_back(std::move(fp));
+        if (big_enough(bp)) back.push_back(std::move(bp));
+      }
+    }
+    uint32_t back_cell = kNone;
+    const uint32_t s = coplanar.empty() ? kNone : split_cell(c, h, &back_cell);
+    if (s == kNone) {
+      // The plane does not cut this cell consistently: its fragments stay unplaced, the
+      // others stay whole in the cell (progress: at least the splitter's own are gone).
+      stats_.unplaced_fragments += std::max<size_t>(1, coplanar.size());
+      std::vector<Fragment> rest;
+      for (Fragment& f : frags) {
+        bool on = false;
+        for (const Fragment& q : coplanar) on |= q.polygon == f.polygon;
+        if (!on && f.polygon != poly) rest.push_back(std::move(f));
+      }
+      stack.push_back({c, std::move(rest)});
+      continue;
+    }
+    ++stats_.splits;
+    carve(s, coplanar);
+    stack.push_back({back_cell, std::move(back)});
+    stack.push_back({c, std::move(front)});
+  }
+  WingedPair wp = export_structure();
+  stats_.build_ms = watch.elapsed_ms();
+  return wp;
+}
+
+// The build structure → winged-pair records (pairs, clock, spin), compacted.
+WingedPair Builder::export_structure() const {
+  WingedPair wp;
+  wp.scale = model_.scale;
+  wp.polygon_count = uint32_t(model_.polygons.size());
+  std::vector<uint32_t> vmap(verts_.size(), kNone);
+  std::unordered_map<uint64_t, uint32_t> emap;
+  std::vector<std::vector<uint32_t>> edge_pairs;
+  for (uint32_t f = 0; f < faces_.size(); ++f) {
+    const auto& loop = faces_[f].loop;
+    const uint32_t base = uint32_t(wp.pairs.size()), n = uint32_t(loop.size());
+    Face face;
+    face.cell[0] = faces_[f].cell[0];
+    face.cell[1] = faces_[f].cell[1];
+    face.polygon = faces_[f].polygon;
+    face.plane = faces_[f].plane;
+    face.pair = base;
+    wp.faces.push_back(face);
+    for (uint32_t v : loop) {
+      if (vmap[v] == kNone) {
+        vmap[v] = uint32_t(wp.vertices.size());
+        wp.vertices.push_back({verts_[v], kNone});
+      }
+    }
+    for (uint32_t i = 0; i < n; ++i) {
+      uint32_t a = vmap[loop[i]], b = vmap[loop[(i + 1) % n]];
+      auto [it, fresh] = emap.try_emplace(edge_key(a, b), uint32_t(wp.edges.size()));
+      if (fresh) {
+        Edge e;
+        e.vertex[0] = a;
+        e.vertex[1] = b;
+        e.pair = base + i;
+        wp.edges.push_back(e);
+        edge_pairs.emplace_back();
+        if (wp.vertices[a].edge == kNone) wp.vertices[a].edge = it->second;
+        if (wp.vertices[b].edge == kNone) wp.vertices[b].edge = it->second;
+      }
+      Pair p;
+      p.face = f;
+      p.edge = it->second;
+      p.direction = wp.edges[it->second].vertex[0] == a ? 1 : 0;
+      p.clock[0] = base + (i + 1) % n;
+      p.clock[1] = base + (i + n - 1) % n;
+      edge_pairs[it->second].push_back(uint32_t(wp.pairs.size()));
+      wp.pairs.push_back(p);
+    }
+  }
+  // Spin: faces around each edge sorted by angle about vertex[1] − vertex[0].
+  for (uint32_t e = 0; e < wp.edges.size(); ++e) {
+    auto& list = edge_pairs[e];
+    const dvec3 p0 = wp.vertices[wp.edges[e].vertex[0]].position;
+    const dvec3 u = glm::normalize(wp.vertices[wp.edges[e].vertex[1]].position - p0);
+    const dvec3 x = glm::normalize(std::abs(u.x) < 0.9 ? glm::cross(u, dvec3(1, 0, 0))
+                                                       : glm::cross(u, dvec3(0, 1, 0)));
+    const dvec3 y = glm::cross(u, x);
+    std::vector<std::pair<double, uint32_t>> order;
+    for (uint32_t p : list) {
+      const Pair& pr = wp.pairs[p];
+      // Into the face: left of the counter-clockwise walk, seen from the front.
+      dvec3 into = glm::cross(wp.faces[pr.face].plane.normal, pr.direction ? u : -u);
+      order.push_back({std::atan2(glm::dot(into, y), glm::dot(into, x)), p});
+    }
+    std::sort(order.begin(), order.end());
+    for (size_t i = 0; i < order.size(); ++i) {
+      wp.pairs[order[i].second].spin[0] = order[(i + 1) % order.size()].second;
+      wp.pairs[order[i].second].spin[1] = order[(i + order.size() - 1) % order.size()].second;
+    }
+  }
+  for (uint32_t c = 0; c < cells_.size(); ++c) {
+    Cell cell;
+    cell.face = cells_[c].empty() ? kNone : cells_[c].front();
+    wp.cells.push_back(cell);
+  }
+  finalize(wp);
+  return wp;
+}
+
+}  // namespace
+
+WingedPair build_winged_pair(const ModelPolygons& model, const BspOptions& options, BspStats* stats) {
+  BspStats local;
+  BspStats& s = stats ? *stats : local;
+  s = BspStats{};
+  s.polygons = model.polygons.size();
+  Builder builder(model, options, s);
+  return builder.run();
+}
+
+}  // namespace proxima::visibility

@@ -1,0 +1,50 @@
+// Embree oracle for the visibility maps of Funkhouser's beam tracer (section 4): the map's
+// label per pixel center versus the item buffer, split into samples near map edges and
+// interior samples, plus a depth check of disagreeing interior labels.
+#include "proxima/visibility/oracle.h"
+
+#include "proxima/trace/reference_renderer.h"
+
+namespace proxima::visibility {
+
+OracleCounts& OracleCounts::operator+=(const OracleCounts& o) {
+  samples += o.samples;
+  agree += o.agree;
+  interior += o.interior;
+  interior_agree += o.interior_agree;
+  occluded_label += o.occluded_label;
+  return *this;
+}
+
+OracleCounts compare_with_ray_casts(const VisibilityMap& map, const ModelPolygons& model,
+                                    const Scene& scene, const RayScene& rays, const Camera& camera) {
+  const ImageU32 labels = rasterize_map(map);
+  const ImageU8 near_edge = map_edge_mask(map, 1.0);
+  const ItemBuffer item = trace_item_buffer(scene, rays, camera);
+  OracleCounts c;
+  const dvec3 eye(camera.position);
+  for (int y = 0; y < map.height; ++y)
+    for (int x = 0; x < map.width; ++x) {
+      const uint32_t tri = item.triangle.at(x, y);
+      const uint32_t truth = tri == kNoTriangle ? kNone : model.triangle_polygon[tri];
+      const uint32_t label = labels.at(x, y);
+      ++c.samples;
+      c.agree += label == truth;
+      if (near_edge.at(x, y)) continue;
+      ++c.interior;
+      c.interior_agree += label == truth;
+      if (label == truth || label == kNone || truth == kNone) continue;
+      // The labeled polygon is occluded if the ray hits something before reaching its plane.
+      const Ray ray = ray_through(camera, vec2(float(x) + 0.5f, float(y) + 0.5f));
+      const Plane& pl = model.polygons[label].plane;
+      const double denom = glm::dot(pl.normal, dvec3(ray.dir));
+      if (std::abs(denom) < 1e-12) continue;
+      const double t_label = -pl.distance(eye) / denom;
+      const double t_hit = glm::length(dvec3(item.position.at(x, y, 0), item.position.at(x, y, 1),
+                                             item.position.at(x, y, 2)) - eye);
+      c.occluded_label += t_hit < t_label - 1e-4 * model.scale;
+    }
+  return c;
+}
+
+}  // namespace proxima::visibility

@@ -1,0 +1,373 @@
+// Beam tracing of Funkhouser, "A visibility algorithm for hybrid geometry- and image-based
+// modeling and rendering", section 4 (Figure 6: TraceBeams). Symbols: V = camera eye, C =
+// current cell, B = current beam = the pyramid from V through the current convex region R
+// of the visibility map M; F_i = boundary faces of C seen from inside (V on C's side of
+// their plane). R_i = R ∩ projection(F_i); a transparent F_i recurses into the neighbor
+// cell C_i with R_i (the trimmed beam B_i), an opaque F_i ends a final region of M.
+// Regions carry, per boundary edge, the winged-pair edge it lies on, so the planar map's
+// edges, adjacency and silhouettes (orientation of the opaque faces around the edge,
+// found by spin references) come out of the traversal.
+#include "proxima/visibility/visibility_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+#include "proxima/core/error.h"
+#include "proxima/core/timer.h"
+
+namespace proxima::visibility {
+namespace {
+
+struct LVert {
+  dvec2 p;
+  uint32_t label;  // source of the edge from this vertex to the next
+};
+using LPoly = std::vector<LVert>;
+
+double cross2(const dvec2& a, const dvec2& b) { return a.x * b.y - a.y * b.x; }
+
+double shoelace(const LPoly& poly) {
+  double a = 0.0;
+  for (size_t i = 0; i < poly.size(); ++i) a += cross2(poly[i].p, poly[(i + 1) % poly.size()].p);
+  return 0.5 * a;
+}
+
+// Keeps the part of `poly` left of the directed line a → b; new edges along the line get `label`.
+LPoly clip_left(const LPoly& poly, const dvec2& a, const dvec2& b, uint32_t label) {
+  LPoly out;
+  const size_t n = poly.size();
+  const dvec2 d = b - a;
+  const double tol = 1e-12 * std::max(1.0, glm::dot(d, d));
+  for (size_t i = 0; i < n; ++i) {
+    const LVert& cur = poly[i];
+    const LVert& nxt = poly[(i + 1) % n];
+    double sc = cross2(d, cur.p - a), sn = cross2(d, nxt.p - a);
+    bool cin = sc >= -tol, nin = sn >= -tol;
+    if (cin) out.push_back(cur);
+    if (cin != nin) {
+      dvec2 x = cur.p + (nxt.p - cur.p) * (sc / (sc - sn));
+      out.push_back({x, cin ? label : cur.label});
+    }
+  }
+  return out;
+}
+
+struct Camera64 {
+  dvec3 eye, right, up, forward;
+  double f, cx, cy;
+};
+
+class Tracer {
+ public:
+  Tracer(const WingedPair& wp, const Camera& cam) : wp_(wp) {
+    c_.eye = dvec3(cam.position);
+    c_.right = dvec3(camera_right(cam));
+    c_.up = dvec3(camera_up(cam));
+    c_.forward = dvec3(camera_forward(cam));
+    c_.f = double(focal_length_px(cam));
+    c_.cx = 0.5 * cam.width;
+    c_.cy = 0.5 * cam.height;
+    zmin_ = 1e-6 * wp.scale;
+    eye_tol_ = 1e-9 * wp.scale;
+  }
+
+  void trace(uint32_t start, const LPoly& frame, VisibilityMap& map) {
+    struct Item {
+      uint32_t cell;
+      LPoly region;
+    };
+    std::vector<Item> stack = {{start, frame}};
+    while (!stack.empty()) {
+      Item item = std::move(stack.back());
+      stack.pop_back();
+      ++map.stats.cells_visited;
+      for (uint32_t f : wp_.faces_of_cell(item.cell)) {
+        const Face& face = wp_.faces[f];
+        const double d = face.plane.distance(c_.eye);
+        if (face.cell[1] == item.cell ? d <= eye_tol_ : d >= -eye_tol_) continue;  // not seen from inside
+        LPoly q = project_face(f);
+        if (q.size() < 3) continue;
+        LPoly r = q;
+        for (size_t k = 0; k < item.region.size() && r.size() >= 3; ++k)
+          r = clip_left(r, item.region[k].p, item.region[(k + 1) % item.region.size()].p, item.region[k].label);
+        if (r.size() < 3 || shoelace(r) <= 1e-9) continue;
+        ++map.stats.beams;
+        const uint32_t next = wp_.cell_across(f, item.cell);
+        if (!face.opaque() && next != kNone) {
+          stack.push_back({next, std::move(r)});
+          continue;
+        }
+        MapRegion region;
+        region.face = f;
+        region.polygon = face.polygon;
+        for (const LVert& v : r) {
+          region.vertices.push_back(v.p);
+          region.edge_source.push_back(v.label);
+        }
+        map.regions.push_back(std::move(region));
+      }
+    }
+  }
+
+  // The face clipped to depth ≥ zmin, projected to pixels, counter-clockwise (positive
+  // shoelace area); edges labeled with their winged-pair edges.
+  LPoly project_face(uint32_t f) const {
+    auto verts = wp_.face_vertices(f);
+    auto edges = wp_.face_edges(f);
+    const size_t n = verts.size();
+    std::vector<std::pair<dvec3, uint32_t>> cam;  // (camera-space right/up/depth, label)
+    for (size_t i = 0; i < n; ++i) {
+      dvec3 d = wp_.vertices[verts[i]].position - c_.eye;
+      cam.push_back({{glm::dot(d, c_.right), glm::dot(d, c_.up), glm::dot(d, c_.forward)}, edges[i]});
+    }
+    std::vector<std::pair<dvec3, uint32_t>> clipped;
+    for (size_t i = 0; i < n; ++i) {
+      const auto& [a, la] = cam[i];
+      const auto& [b, lb] = cam[(i + 1) % n];
+      bool ain = a.z >= zmin_, bin = b.z >= zmin_;
+      if (ain) clipped.push_back({a, la});
+      if (ain != bin) {
+        dvec3 x = a + (b - a) * ((zmin_ - a.z) / (b.z - a.z));
+        clipped.push_back({x, ain ? kImageBorder : la});
+      }
+    }
+    LPoly out;
+    for (const auto& [p, l] : clipped) out.push_back({{c_.cx + c_.f * p.x / p.z, c_.cy - c_.f * p.y / p.z}, l});
+    if (out.size() >= 3 && shoelace(out) < 0.0) {
+      LPoly rev;
+      const size_t m = out.size();
+      for (size_t k = 0; k < m; ++k) rev.push_back({out[m - 1 - k].p, out[(2 * m - 2 - k) % m].label});
+      out = std::move(rev);
+    }
+    return out;
+  }
+
+  // Occluding contour test for winged-pair edge e (spin around it).
+  bool silhouette(uint32_t e) {
+    auto [it, fresh] = silhouette_cache_.try_emplace(e, false);
+    if (!fresh) return it->second;
+    const Edge& edge = wp_.edges[e];
+    const dvec3 p0 = wp_.vertices[edge.vertex[0]].position, p1 = wp_.vertices[edge.vertex[1]].position;
+    const dvec3 m = glm::cross(p1 - c_.eye, p0 - c_.eye);
+    const dvec3 u = p1 - p0;
+    int plus = 0, minus = 0;
+    uint32_t p = edge.pair;
+    do {
+      const Pair& pr = wp_.pairs[p];
+      if (wp_.faces[pr.face].opaque()) {
+        dvec3 into = glm::cross(wp_.faces[pr.face].plane.normal, pr.direction ? u : -u);
+        double s = glm::dot(into, m);
+        plus += s > 0.0;
+        minus += s < 0.0;
+      }
+      p = pr.spin[0];
+    } while (p != edge.pair);
+    it->second = (plus > 0) != (minus > 0);
+    return it->second;
+  }
+
+ private:
+  const WingedPair& wp_;
+  Camera64 c_;
+  double zmin_, eye_tol_;
+  std::unordered_map<uint32_t, bool> silhouette_cache_;
+};
+
+// Vertex welding on the image plane (tolerance 1e-4 px).
+class Welder {
+ public:
+  explicit Welder(std::vector<dvec2>& out) : out_(out) {}
+  uint32_t id(const dvec2& p) {
+    const int64_t kx = std::llround(p.x * 1024.0), ky = std::llround(p.y * 1024.0);
+    for (int64_t dx = -1; dx <= 1; ++dx)
+      for (int64_t dy = -1; dy <= 1; ++dy) {
+        auto it = grid_.find(key(kx + dx, ky + dy));
+        if (it == grid_.end()) continue;
+        for (uint32_t v : it->second)
+          if (glm::length(out_[v] - p) < 1e-4) return v;
+      }
+    out_.push_back(p);
+    grid_[key(kx, ky)].push_back(uint32_t(out_.size() - 1));
+    return uint32_t(out_.size() - 1);
+  }
+
+ private:
+  static uint64_t key(int64_t x, int64_t y) { return (uint64_t(x) << 32) ^ uint64_t(uint32_t(y)); }
+  std::vector<dvec2>& out_;
+  std::unordered_map<uint64_t, std::vector<uint32_t>> grid_;
+};
+
+uint32_t find_root(std::vector<uint32_t>& parent, uint32_t x) {
+  while (parent[x] != x) x = parent[x] = parent[parent[x]];
+  return x;
+}
+
+// Planar map from the regions: segments grouped by source, cut at every vertex on the
+// same source line into elementary edges with their left and right regions.
+void build_planar_map(VisibilityMap& map, Tracer& tracer) {
+  Welder welder(map.vertices);
+  struct Seg {
+    uint32_t a, b, region;
+  };
+  std::unordered_map<uint64_t, std::vector<Seg>> groups;
+  for (uint32_t r = 0; r < map.regions.size(); ++r) {
+    const MapRegion& reg = map.regions[r];
+    const size_t n = reg.vertices.size();
+    for (size_t i = 0; i < n; ++i) {
+      uint32_t a = welder.id(reg.vertices[i]), b = welder.id(reg.vertices[(i + 1) % n]);
+      if (a == b) continue;
+      uint64_t source = reg.edge_source[i];
+      if (source == kImageBorder) {
+        // One group per image side.
+        const dvec2 mid = 0.5 * (reg.vertices[i] + reg.vertices[(i + 1) % n]);
+        source = (uint64_t(1) << 32) | uint64_t(mid.y < 0.5 ? 0 : mid.y > map.height - 0.5 ? 1 : mid.x < 0.5 ? 2 : 3);
+      }
+      groups[source].push_back({a, b, r});
+    }
+  }
+  for (auto& [source, segs] : groups) {
+    const dvec2 o = map.vertices[segs.front().a];
+    const dvec2 dir = glm::normalize(map.vertices[segs.front().b] - o);
+    auto t_of = [&](uint32_t v) { return glm::dot(map.vertices[v] - o, dir); };
+    std::vector<std::pair<double, uint32_t>> stops;
+    for (const Seg& s : segs) {
+      stops.push_back({t_of(s.a), s.a});
+      stops.push_back({t_of(s.b), s.b});
+    }
+    std::sort(stops.begin(), stops.end());
+    stops.erase(std::unique(stops.begin(), stops.end(),
+                            [](const auto& x, const auto& y) { return x.second == y.second; }),
+                stops.end());
+    std::vector<uint32_t> left(stops.size(), kNone), right(stops.size(), kNone);
+    for (const Seg& s : segs) {
+      double ta = t_of(s.a), tb = t_of(s.b);
+      bool forward = tb > ta;
+      double lo = std::min(ta, tb), hi = std::max(ta, tb);
+      for (size_t k = 0; k + 1 < stops.size(); ++k) {
+        double mid = 0.5 * (stops[k].first + stops[k + 1].first);
+        if (mid <= lo || mid >= hi) continue;
+        (forward ? left : right)[k] = s.region;
+      }
+    }
+    const bool border = source >> 32 == 1;
+    for (size_t k = 0; k + 1 < stops.size(); ++k) {
+      if (left[k] == kNone && right[k] == kNone) continue;
+      MapEdge e;
+      e.vertex[0] = stops[k].second;
+      e.vertex[1] = stops[k + 1].second;
+      e.region[0] = left[k];
+      e.region[1] = right[k];
+      e.source = border ? kImageBorder : uint32_t(source);
+      const uint32_t pl = left[k] == kNone ? kNone : map.regions[left[k]].polygon;
+      const uint32_t pr = right[k] == kNone ? kNone : map.regions[right[k]].polygon;
+      e.silhouette = !border && left[k] != kNone && right[k] != kNone && pl != pr && tracer.silhouette(uint32_t(source));
+      map.stats.silhouette_edges += e.silhouette;
+      map.edges.push_back(e);
+    }
+  }
+  // Merge contiguous regions of one polygon.
+  std::vector<uint32_t> parent(map.regions.size());
+  std::iota(parent.begin(), parent.end(), 0u);
+  for (const MapEdge& e : map.edges) {
+    if (e.region[0] == kNone || e.region[1] == kNone) continue;
+    if (map.regions[e.region[0]].polygon != map.regions[e.region[1]].polygon) continue;
+    parent[find_root(parent, e.region[0])] = find_root(parent, e.region[1]);
+  }
+  std::unordered_map<uint32_t, uint32_t> merged_id;
+  std::vector<uint32_t> polys;
+  for (uint32_t r = 0; r < map.regions.size(); ++r) {
+    auto [it, fresh] = merged_id.try_emplace(find_root(parent, r), uint32_t(merged_id.size()));
+    map.regions[r].merged = it->second;
+    if (map.regions[r].polygon != kNone) polys.push_back(map.regions[r].polygon);
+  }
+  std::sort(polys.begin(), polys.end());
+  map.stats.regions = map.regions.size();
+  map.stats.merged_regions = merged_id.size();
+  map.stats.visible_polygons = size_t(std::unique(polys.begin(), polys.end()) - polys.begin());
+}
+
+}  // namespace
+
+VisibilityMap trace_visibility_map(const WingedPair& wp, const Camera& camera) {
+  Stopwatch watch;
+  validate_camera(camera, "camera");
+  VisibilityMap map;
+  map.width = camera.width;
+  map.height = camera.height;
+  const uint32_t start = locate_cell(wp, dvec3(camera.position));
+  if (start == kNone) fail_input("camera at (" + std::to_string(camera.position.x) + ", " +
+                                 std::to_string(camera.position.y) + ", " + std::to_string(camera.position.z) +
+                                 ") is outside the winged pair's outer box");
+  const double w = camera.width, h = camera.height;
+  // The frame, counter-clockwise in pixel coordinates (x right, y down): positive shoelace.
+  LPoly frame = {{{0, 0}, kImageBorder}, {{w, 0}, kImageBorder}, {{w, h}, kImageBorder}, {{0, h}, kImageBorder}};
+  if (shoelace(frame) < 0) std::reverse(frame.begin(), frame.end());
+  Tracer tracer(wp, camera);
+  tracer.trace(start, frame, map);
+  build_planar_map(map, tracer);
+  map.stats.ms = watch.elapsed_ms();
+  return map;
+}
+
+ImageU32 rasterize_map(const VisibilityMap& map) {
+  ImageU32 out(map.width, map.height, 1, kNone);
+  for (const MapRegion& r : map.regions) {
+    double ymin = INFINITY, ymax = -INFINITY;
+    for (const dvec2& p : r.vertices) {
+      ymin = std::min(ymin, p.y);
+      ymax = std::max(ymax, p.y);
+    }
+    const int y0 = std::max(0, int(std::ceil(ymin - 0.5))), y1 = std::min(map.height - 1, int(std::floor(ymax - 0.5)));
+    for (int y = y0; y <= y1; ++y) {
+      const double cy = y + 0.5;
+      double xl = INFINITY, xr = -INFINITY;
+      const size_t n = r.vertices.size();
+      for (size_t i = 0; i < n; ++i) {
+        const dvec2 a = r.vertices[i], b = r.vertices[(i + 1) % n];
+        if ((a.y <= cy && b.y >= cy) || (b.y <= cy && a.y >= cy)) {
+          double x = a.y == b.y ? a.x : a.x + (b.x - a.x) * (cy - a.y) / (b.y - a.y);
+          if (a.y == b.y) {
+            xl = std::min({xl, a.x, b.x});
+            xr = std::max({xr, a.x, b.x});
+          }
+          xl = std::min(xl, x);
+          xr = std::max(xr, x);
+        }
+      }
+      const int x0 = std::max(0, int(std::ceil(xl - 0.5))), x1 = std::min(map.width, int(std::ceil(xr - 0.5)));
+      for (int x = x0; x < x1; ++x) out.at(x, y) = r.polygon;
+    }
+  }
+  return out;
+}
+
+ImageU8 map_edge_mask(const VisibilityMap& map, double radius) {
+  ImageU8 mask(map.width, map.height, 1, 0);
+  for (const MapEdge& e : map.edges) {
+    if (e.source == kImageBorder) continue;
+    const uint32_t pl = e.region[0] == kNone ? kNone - 1 : map.regions[e.region[0]].polygon;
+    const uint32_t pr = e.region[1] == kNone ? kNone - 1 : map.regions[e.region[1]].polygon;
+    if (pl == pr) continue;
+    const dvec2 a = map.vertices[e.vertex[0]], b = map.vertices[e.vertex[1]];
+    const dvec2 d = b - a;
+    const double len2 = std::max(glm::dot(d, d), 1e-300);
+    const int steps = int(std::ceil(std::sqrt(len2) / 0.5)) + 1;
+    const int reach = int(std::ceil(radius)) + 1;
+    for (int s = 0; s <= steps; ++s) {
+      const dvec2 p = a + d * (double(s) / steps);
+      const int px = int(std::floor(p.x)), py = int(std::floor(p.y));
+      for (int y = py - reach; y <= py + reach; ++y)
+        for (int x = px - reach; x <= px + reach; ++x) {
+          if (x < 0 || y < 0 || x >= map.width || y >= map.height) continue;
+          const dvec2 c(x + 0.5, y + 0.5);
+          const double t = std::clamp(glm::dot(c - a, d) / len2, 0.0, 1.0);
+          if (glm::length(c - (a + d * t)) <= radius) mask.at(x, y) = 1;
+        }
+    }
+  }
+  return mask;
+}
+
+}  // namespace proxima::visibility

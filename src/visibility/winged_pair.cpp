@@ -1,0 +1,60 @@
+// Winged-pair traversal helpers (Funkhouser, section 3, Figures 4–5): face loops from clock
+// links, cell face lists from the faces' cell references, point location.
+#include "proxima/visibility/winged_pair.h"
+
+namespace proxima::visibility {
+
+bool finalize(WingedPair& wp) {
+  wp.loop_offset.assign(1, 0);
+  wp.loop_vertex.clear();
+  wp.loop_edge.clear();
+  for (uint32_t f = 0; f < wp.faces.size(); ++f) {
+    uint32_t p = wp.faces[f].pair;
+    for (size_t steps = 0;; ++steps) {
+      if (p >= wp.pairs.size() || steps > wp.pairs.size() || wp.pairs[p].face != f ||
+          wp.pairs[p].edge >= wp.edges.size())
+        return false;
+      const Pair& pr = wp.pairs[p];
+      const Edge& e = wp.edges[pr.edge];
+      wp.loop_vertex.push_back(pr.direction ? e.vertex[0] : e.vertex[1]);
+      wp.loop_edge.push_back(pr.edge);
+      p = pr.clock[0];
+      if (p == wp.faces[f].pair) break;
+    }
+    wp.loop_offset.push_back(uint32_t(wp.loop_vertex.size()));
+  }
+  std::vector<uint32_t> count(wp.cells.size() + 1, 0);
+  for (const Face& f : wp.faces)
+    for (uint32_t c : f.cell) {
+      if (c == kNone) continue;
+      if (c >= wp.cells.size()) return false;
+      ++count[c + 1];
+    }
+  for (size_t c = 0; c < wp.cells.size(); ++c) count[c + 1] += count[c];
+  wp.cell_face_offset = count;
+  wp.cell_face.assign(count.back(), kNone);
+  for (uint32_t f = 0; f < wp.faces.size(); ++f)
+    for (uint32_t c : wp.faces[f].cell)
+      if (c != kNone) wp.cell_face[count[c]++] = f;
+  return true;
+}
+
+uint32_t locate_cell(const WingedPair& wp, const dvec3& p) {
+  const double tol = 1e-9 * wp.scale;
+  for (uint32_t c = 0; c < wp.cells.size(); ++c) {
+    bool inside = true;
+    for (uint32_t f : wp.faces_of_cell(c)) {
+      const Face& face = wp.faces[f];
+      double d = face.plane.distance(p);
+      // The cell is behind (cell[0]) or in front of (cell[1]) the face plane.
+      if (face.cell[0] == c ? d > tol : d < -tol) {
+        inside = false;
+        break;
+      }
+    }
+    if (inside && !wp.faces_of_cell(c).empty()) return c;
+  }
+  return kNone;
+}
+
+}  // namespace proxima::visibility

@@ -1,0 +1,111 @@
+// Beam tracing: a known answer (inside a closed box every pixel sees a wall and no
+// silhouette), a lone quad's silhouettes, and the Embree oracle on rooms and maze
+// viewpoints at a reduced resolution (the ≥ 1024² full-path runs are `proxima visibility`).
+#include "proxima/visibility/visibility_map.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "proxima/core/error.h"
+
+#include "proxima/scene/visibility_models.h"
+#include "proxima/trace/ray_scene.h"
+#include "proxima/visibility/bsp_build.h"
+#include "proxima/visibility/oracle.h"
+
+namespace proxima::visibility {
+namespace {
+
+Scene quad_scene(bool closed_box) {
+  Scene s;
+  Material m;
+  add_material(s, m);
+  auto quad = [&](vec3 c, vec3 u, vec3 v) {
+    Mesh mesh;
+    mesh.positions = {c, c + u, c + u + v, c + v};
+    mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    add_object(s, mesh, "q", 0);
+  };
+  quad({-1, -1, -3}, {2, 0, 0}, {0, 2, 0});
+  if (closed_box) {
+    quad({-1, -1, 3}, {0, 2, 0}, {2, 0, 0});
+    quad({-1, -1, -3}, {0, 2, 0}, {0, 0, 6});
+    quad({1, -1, -3}, {0, 0, 6}, {0, 2, 0});
+    quad({-1, -1, -3}, {0, 0, 6}, {2, 0, 0});
+    quad({-1, 1, -3}, {2, 0, 0}, {0, 0, 6});
+  }
+  return s;
+}
+
+TEST(BeamTrace, InsideAClosedBoxEveryPixelSeesAWall) {
+  Scene s = quad_scene(true);
+  ModelPolygons model = extract_polygons(s);
+  ASSERT_EQ(model.polygons.size(), 6u);
+  WingedPair wp = build_winged_pair(model);
+  Camera cam = look_at({0.2f, 0.1f, 0.5f}, {0.3f, -0.2f, -3.0f}, {0, 1, 0}, 90.0f, 64, 64);
+  VisibilityMap map = trace_visibility_map(wp, cam);
+  EXPECT_EQ(map.stats.visible_polygons, 5u);  // a 90° view down the box misses the wall behind
+  EXPECT_EQ(map.stats.silhouette_edges, 0u);  // only creases between walls
+  ImageU32 labels = rasterize_map(map);
+  for (uint32_t id : labels.data()) ASSERT_NE(id, kNone);
+  double area = 0;
+  for (const MapRegion& r : map.regions)
+    for (size_t i = 0; i < r.vertices.size(); ++i) {
+      const dvec2 a = r.vertices[i], b = r.vertices[(i + 1) % r.vertices.size()];
+      area += 0.5 * (a.x * b.y - a.y * b.x);
+    }
+  EXPECT_NEAR(area, 64.0 * 64.0, 1e-6);  // regions tile the image exactly
+}
+
+TEST(BeamTrace, LoneQuadSilhouettesLieOnItsBoundary) {
+  Scene s = quad_scene(false);
+  WingedPair wp = build_winged_pair(extract_polygons(s));
+  // Inside the outer box (margin 0.25 · scale around the quad), the whole quad in view.
+  Camera cam = look_at({0.05f, 0.02f, -2.4f}, {0, 0, -3}, {0, 1, 0}, 130.0f, 64, 64);
+  VisibilityMap map = trace_visibility_map(wp, cam);
+  EXPECT_EQ(map.stats.visible_polygons, 1u);
+  // Every silhouette lies on a quad boundary edge (one opaque face around it).
+  // Known gap (docs/visibility.md): map edges whose two sides carry different collinear
+  // winged-pair edges are not matched, so not every boundary edge is found yet.
+  std::set<uint32_t> sources;
+  for (const MapEdge& e : map.edges) {
+    if (!e.silhouette) continue;
+    sources.insert(e.source);
+    int opaque = 0;
+    uint32_t p = wp.edges[e.source].pair;
+    do {
+      opaque += wp.faces[wp.pairs[p].face].opaque();
+      p = wp.pairs[p].spin[0];
+    } while (p != wp.edges[e.source].pair);
+    EXPECT_EQ(opaque, 1);
+  }
+  EXPECT_GE(sources.size(), 2u);
+}
+
+TEST(BeamTrace, CameraOutsideTheBoxIsInputError) {
+  WingedPair wp = build_winged_pair(extract_polygons(quad_scene(false)));
+  Camera cam = look_at({0, 0, 1000}, {0, 0, 0}, {0, 1, 0}, 60.0f, 16, 16);
+  EXPECT_THROW(trace_visibility_map(wp, cam), InputError);
+}
+
+TEST(BeamTrace, AgreesWithEmbreeOnRoomsAndMaze) {
+  for (const Scene& scene : {make_vis_rooms(), make_vis_maze()}) {
+    ModelPolygons model = extract_polygons(scene);
+    WingedPair wp = build_winged_pair(model);
+    RayScene rays(scene);
+    const CameraPath& path = scene.camera_paths.front();
+    OracleCounts total;
+    for (int frame = 0; frame < path.frames; frame += path.frames / 6) {
+      Camera cam = camera_at_time(path, frame_time(path, frame), 192, 192, 1e-3f, 1e4f);
+      total += compare_with_ray_casts(trace_visibility_map(wp, cam), model, scene, rays, cam);
+    }
+    SCOPED_TRACE(scene.name);
+    EXPECT_GE(total.agreement_pct(), 99.5);
+    EXPECT_GE(total.interior_pct(), 99.5);
+    EXPECT_EQ(total.occluded_label, 0u);
+  }
+}
+
+}  // namespace
+}  // namespace proxima::visibility

@@ -1,0 +1,111 @@
+// Winged-pair invariants (issue 9) on the test models and on degenerate input: closed
+// convex cells with V − E + F = 2, faces with ≥ 3 edges shared by 2 cells (1 on the outer
+// box), clock walks that close, spin walks that visit every face of an edge, and opaque
+// faces that tile every input polygon exactly.
+#include "proxima/visibility/winged_pair.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+
+#include "proxima/scene/visibility_models.h"
+#include "proxima/visibility/bsp_build.h"
+
+namespace proxima::visibility {
+namespace {
+
+double polygon_area(const std::vector<dvec3>& loop) { return 0.5 * glm::length(newell_normal(loop)); }
+
+std::vector<dvec3> face_points(const WingedPair& wp, uint32_t f) {
+  std::vector<dvec3> pts;
+  for (uint32_t v : wp.face_vertices(f)) pts.push_back(wp.vertices[v].position);
+  return pts;
+}
+
+// Checks every invariant; returns the number of violations (reported with ADD_FAILURE).
+void expect_invariants(const WingedPair& wp, const ModelPolygons& model, const std::string& what) {
+  SCOPED_TRACE(what);
+  ASSERT_EQ(wp.loop_offset.size(), wp.faces.size() + 1) << "finalize failed";
+  size_t outer = 0;
+  for (uint32_t f = 0; f < wp.faces.size(); ++f) {
+    const Face& face = wp.faces[f];
+    ASSERT_GE(wp.face_edges(f).size(), 3u) << "face " << f;
+    ASSERT_NE(face.cell[0], kNone) << "face " << f << " has no cell behind";
+    outer += face.cell[1] == kNone;
+    ASSERT_NE(face.cell[0], face.cell[1]);
+    // Clock: ccw then cw returns to the start; every vertex on the face plane.
+    const uint32_t start = face.pair;
+    uint32_t p = start;
+    size_t steps = 0;
+    do {
+      ASSERT_EQ(wp.pairs[wp.pairs[p].clock[0]].clock[1], p);
+      p = wp.pairs[p].clock[0];
+      ASSERT_LE(++steps, wp.pairs.size());
+    } while (p != start);
+    ASSERT_EQ(steps, wp.face_edges(f).size());
+    for (uint32_t v : wp.face_vertices(f))
+      ASSERT_LT(std::abs(face.plane.distance(wp.vertices[v].position)), 1e-6 * wp.scale);
+    // Counter-clockwise seen from the front.
+    ASSERT_GT(glm::dot(newell_normal(face_points(wp, f)), face.plane.normal), 0.0) << "face " << f;
+  }
+  EXPECT_GE(outer, 6u);
+  // Spin: from an edge's pair, spin[0] visits exactly the pairs on that edge, each once.
+  std::vector<size_t> pairs_on_edge(wp.edges.size(), 0);
+  for (const Pair& p : wp.pairs) ++pairs_on_edge[p.edge];
+  for (uint32_t e = 0; e < wp.edges.size(); ++e) {
+    ASSERT_GE(pairs_on_edge[e], 2u) << "edge " << e << " bounds one face only";
+    std::set<uint32_t> seen;
+    uint32_t p = wp.edges[e].pair;
+    do {
+      ASSERT_EQ(wp.pairs[p].edge, e);
+      ASSERT_TRUE(seen.insert(p).second);
+      ASSERT_EQ(wp.pairs[wp.pairs[p].spin[0]].spin[1], p);
+      p = wp.pairs[p].spin[0];
+    } while (p != wp.edges[e].pair);
+    ASSERT_EQ(seen.size(), pairs_on_edge[e]);
+  }
+  // Cells: closed (each edge of the cell bounds exactly 2 of its faces), Euler, convex.
+  for (uint32_t c = 0; c < wp.cells.size(); ++c) {
+    std::set<uint32_t> verts;
+    std::map<uint32_t, int> edge_use;
+    for (uint32_t f : wp.faces_of_cell(c)) {
+      for (uint32_t v : wp.face_vertices(f)) verts.insert(v);
+      for (uint32_t e : wp.face_edges(f)) ++edge_use[e];
+      // Convex: every vertex of the cell on its side of each face plane.
+      const Face& face = wp.faces[f];
+      for (uint32_t g : wp.faces_of_cell(c))
+        for (uint32_t v : wp.face_vertices(g)) {
+          double d = face.plane.distance(wp.vertices[v].position);
+          ASSERT_TRUE(face.cell[0] == c ? d < 1e-6 * wp.scale : d > -1e-6 * wp.scale) << "cell " << c;
+        }
+    }
+    for (auto [e, n] : edge_use) ASSERT_EQ(n, 2) << "cell " << c << " edge " << e;
+    const long V = long(verts.size()), E = long(edge_use.size()), F = long(wp.faces_of_cell(c).size());
+    ASSERT_EQ(V - E + F, 2) << "cell " << c;
+  }
+  // Opaque faces tile each polygon: their areas sum to its area, and each lies on it.
+  std::vector<double> covered(model.polygons.size(), 0.0);
+  for (uint32_t f = 0; f < wp.faces.size(); ++f)
+    if (wp.faces[f].opaque()) covered[wp.faces[f].polygon] += polygon_area(face_points(wp, f));
+  for (size_t p = 0; p < model.polygons.size(); ++p)
+    EXPECT_NEAR(covered[p], polygon_area(model.polygons[p].vertices),
+                1e-6 * polygon_area(model.polygons[p].vertices) + 1e-9 * wp.scale * wp.scale)
+        << "polygon " << p;
+}
+
+TEST(WingedPair, InvariantsOnRoomsAndMaze) {
+  for (const Scene& scene : {make_vis_rooms(), make_vis_maze()}) {
+    ModelPolygons model = extract_polygons(scene);
+    BspStats stats;
+    WingedPair wp = build_winged_pair(model, {}, &stats);
+    EXPECT_EQ(stats.unplaced_fragments, 0u);
+    EXPECT_GT(wp.cells.size(), model.polygons.size() / 4);
+    expect_invariants(wp, model, scene.name);
+  }
+}
+
+}  // namespace
+}  // namespace proxima::visibility
