@@ -11,6 +11,7 @@
 #include "proxima/core/parallel.h"
 #include "proxima/core/rng.h"
 #include "proxima/core/timer.h"
+#include "proxima/eval/image_error.h"
 #include "proxima/raster/rasterizer.h"
 #include "proxima/scene/load.h"
 #include "proxima/trace/ray_scene.h"
@@ -60,13 +61,6 @@ ImageF cluster_image(const ReflectionFrame& frame, const ClusterReflections& cr,
     for (int ch = 0; ch < 3; ++ch) out.at(x, y, ch) += share * (c[ch] - 0.3f * color.at(x, y, ch));
   }
   return out;
-}
-
-// |a − b| × 8, for error images (linear, clamped on write).
-ImageF error_image(const ImageF& a, const ImageF& b) {
-  ImageF e(a.width(), a.height(), 3);
-  for (size_t i = 0; i < e.data().size(); ++i) e.data()[i] = 8.0f * std::abs(a.data()[i] - b.data()[i]);
-  return e;
 }
 
 void validate(const ClusterReflectFlags& f) {
@@ -197,10 +191,10 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
       occlusion_pct.add(100.0 * double(st.occlusion_error_samples) / samples);
       occlusion_ray_pct.add(100.0 * double(st.occlusion_error_rays) / std::max<double>(1.0, double(st.rays)));
       reference = compose_reflections(frame, traced.radiance);
-      const vec3 mae = masked_mae_255(color, reference, mask);
-      mae_r.add(mae.x);
-      mae_g.add(mae.y);
-      mae_b.add(mae.z);
+      const ImageError err = compare_images(color, reference, &mask);
+      mae_r.add(err.mae[0]);
+      mae_g.add(err.mae[1]);
+      mae_b.add(err.mae[2]);
     }
     std::fprintf(stderr, "frame %d/%d: %llu clusters, %llu texels, cluster %.0f ms%s\n", frame_index, frames,
                  static_cast<unsigned long long>(st.clusters), static_cast<unsigned long long>(st.texels),
@@ -213,9 +207,10 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
       results.images["clusters"] = "clusters.png";
       if (f.compare) {
         write_png_linear(out / "reference.png", reference);
-        write_png_linear(out / "error.png", error_image(color, reference));
+        // Error heat map over the reflective pixels, 0–20 on the 0–255 scale.
+        write_png_linear(out / "error.png", error_heatmap(error_image(color, reference, &mask), 20.0f, &mask));
         results.images["reference"] = "reference.png";
-        results.images["error_x8"] = "error.png";
+        results.images["error_heatmap_0_20"] = "error.png";
       }
       wrote_images = true;
     }

@@ -17,7 +17,6 @@
 #include <string>
 
 #include "proxima/core/error.h"
-#include "proxima/core/image_io.h"
 #include "proxima/core/parallel.h"
 #include "proxima/core/rng.h"
 #include "proxima/core/timer.h"
@@ -481,19 +480,6 @@ ImageU8 reflective_pixel_mask(const ReflectionFrame& frame) {
   const int sw = frame.sample_camera.width, k = frame.supersample;
   for (uint32_t px : frame.pixel) mask.at(int(px % uint32_t(sw)) / k, int(px / uint32_t(sw)) / k) = 1;
   return mask;
-}
-
-vec3 masked_mae_255(const ImageF& a, const ImageF& b, const ImageU8& mask) {
-  auto to255 = [](float linear) { return 255.0 * double(linear_to_srgb(std::clamp(linear, 0.0f, 1.0f))); };
-  dvec3 sum(0.0);
-  double count = 0.0;
-  for (int y = 0; y < a.height(); ++y)
-    for (int x = 0; x < a.width(); ++x) {
-      if (!mask.at(x, y)) continue;
-      for (int c = 0; c < 3; ++c) sum[c] += std::abs(to255(a.at(x, y, c)) - to255(b.at(x, y, c)));
-      count += 1.0;
-    }
-  return count > 0.0 ? vec3(sum / count) : vec3(0.0f);
 }
 
 }  // namespace proxima

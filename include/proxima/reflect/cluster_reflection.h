@@ -142,9 +142,4 @@ ImageF compose_reflections(const ReflectionFrame& frame, std::span<const vec3> r
 // Output pixels with at least one reflective sample (1 channel, 0/1).
 ImageU8 reflective_pixel_mask(const ReflectionFrame& frame);
 
-// Mean absolute difference per channel on the 0–255 scale of the images' sRGB PNG values
-// (linear values clamped to [0, 1], then encoded) over the pixels where mask ≠ 0, the way
-// the thesis reports its error images; 0 for an empty mask. Same sizes, 3 channels.
-vec3 masked_mae_255(const ImageF& a, const ImageF& b, const ImageU8& mask);
-
 }  // namespace proxima
