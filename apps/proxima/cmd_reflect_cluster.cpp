@@ -177,20 +177,24 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
     cameras_ms.add(median(s2));
     images_ms.add(median(s3));
     intersection_ms.add(median(s4));
-    clusters.add(double(st.clusters));
-    texels.add(double(st.texels));
-    samples_per_cluster.add(st.clusters ? double(st.reflective_samples) / double(st.clusters) : 0.0);
+    if (reflective > 0) {  // cluster figures over the frames that show reflective pixels
+      clusters.add(double(st.clusters));
+      texels.add(double(st.texels));
+      samples_per_cluster.add(double(st.reflective_samples) / double(st.clusters));
+    }
     fallback_pct.add(100.0 * double(st.env_fallback_samples) / samples);
     fill_pct.add(100.0 * double(st.behind_fill_samples) / samples);
     planar_pct.add(100.0 * double(st.planar_samples) / samples);
     const ImageF color = compose_reflections(frame, cluster.radiance);
-    ImageF reference;
+    const ImageF reference = f.compare ? compose_reflections(frame, traced.radiance) : ImageF();
     if (f.compare) {
       reference_ms.add(median(r_ms));
       reference_dynamic_ms.add(median(r_ms) + median(b_ms));
+    }
+    // Error figures average over the frames that show reflective pixels.
+    if (f.compare && reflective > 0) {
       occlusion_pct.add(100.0 * double(st.occlusion_error_samples) / samples);
       occlusion_ray_pct.add(100.0 * double(st.occlusion_error_rays) / std::max<double>(1.0, double(st.rays)));
-      reference = compose_reflections(frame, traced.radiance);
       const ImageError err = compare_images(color, reference, &mask);
       mae_r.add(err.mae[0]);
       mae_g.add(err.mae[1]);
@@ -218,6 +222,8 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
 
   auto& m = results.metrics;
   m["frames"] = double(cluster_ms.values.size());
+  m["frames_with_reflections"] = double(std::count_if(reflective_pct.values.begin(), reflective_pct.values.end(),
+                                                      [](double v) { return v > 0.0; }));
   m["reflective_pct_avg"] = reflective_pct.avg();
   m["reflective_pct_max"] = reflective_pct.max();
   m["clusters_avg"] = clusters.avg();
