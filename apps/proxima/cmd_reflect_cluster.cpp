@@ -130,7 +130,7 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
   ro.seed = f.common.seed;
 
   Series reflective_pct, cluster_ms, reference_ms, reference_dynamic_ms, step1_ms, cameras_ms, images_ms,
-      intersection_ms, clusters, samples_per_cluster, occlusion_pct, fallback_pct, planar_pct, mae_r, mae_g, mae_b, texels, fill_pct, occlusion_ray_pct;
+      intersection_ms, clusters, samples_per_cluster, occlusion_pct, fallback_pct, planar_pct, mae_r, mae_g, mae_b, texels, fill_pct, occlusion_ray_pct, occlusion_mirror_pct;
   Results results;
   results.command = command_line();
   results.threads = active_threads();
@@ -195,6 +195,8 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
     if (f.compare && reflective > 0) {
       occlusion_pct.add(100.0 * double(st.occlusion_error_samples) / samples);
       occlusion_ray_pct.add(100.0 * double(st.occlusion_error_rays) / std::max<double>(1.0, double(st.rays)));
+      if (st.mirror_samples > 0)
+        occlusion_mirror_pct.add(100.0 * double(st.mirror_occlusion_error_samples) / double(st.mirror_samples));
       const ImageError err = compare_images(color, reference, &mask);
       mae_r.add(err.mae[0]);
       mae_g.add(err.mae[1]);
@@ -266,16 +268,20 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
     m["occlusion_error_pct_avg"] = occlusion_pct.avg();
     m["occlusion_error_pct_max"] = occlusion_pct.max();
     m["occlusion_error_rays_pct_avg"] = occlusion_ray_pct.avg();
+    m["occlusion_error_mirror_pct_avg"] = occlusion_mirror_pct.avg();
+    m["occlusion_error_mirror_pct_max"] = occlusion_mirror_pct.max();
     m["reference_ms_avg"] = reference_ms.avg();
     m["reference_dynamic_ms_avg"] = reference_dynamic_ms.avg();
     m["speedup_static"] = reference_ms.avg() / cluster_ms.avg();
     m["speedup_dynamic"] = reference_dynamic_ms.avg() / cluster_ms.avg();
     results.tables.push_back({"Error vs Embree on the same rays (thesis §4.7.1), " + where,
                               {"mae_r", "mae_g", "mae_b", "mae_max_channel_max_frame", "occlusion_error_pct_avg",
-                               "occlusion_error_pct_max", "occlusion_error_rays_pct_avg", "env_fallback_pct_avg",
+                               "occlusion_error_pct_max", "occlusion_error_rays_pct_avg",
+                               "occlusion_error_mirror_pct_avg", "occlusion_error_mirror_pct_max", "env_fallback_pct_avg",
                                "behind_fill_pct_avg"},
                               {{mae_r.avg(), mae_g.avg(), mae_b.avg(), std::max({mae_r.max(), mae_g.max(), mae_b.max()}),
-                                occlusion_pct.avg(), occlusion_pct.max(), occlusion_ray_pct.avg(), fallback_pct.avg(),
+                                occlusion_pct.avg(), occlusion_pct.max(), occlusion_ray_pct.avg(),
+                                occlusion_mirror_pct.avg(), occlusion_mirror_pct.max(), fallback_pct.avg(),
                                 fill_pct.avg()}}});
   }
   publish_results(out, results);

@@ -447,6 +447,11 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
       for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) st.occlusion_error_rays += ray_occluded[r - ray_base];
     }
   }
+  for (size_t i = 0; i < n; ++i) {
+    if (glossy_lobe_half_angle(frame.gloss[i]) > 0.0f) continue;
+    ++st.mirror_samples;
+    st.mirror_occlusion_error_samples += (out.flags[i] & kOcclusionError) != 0;
+  }
   for (uint8_t flag : out.flags) {
     st.env_fallback_samples += (flag & kEnvFallback) != 0;
     st.occlusion_error_samples += (flag & kOcclusionError) != 0;

@@ -105,6 +105,8 @@ struct ClusterFrameStats {
   uint64_t behind_fill_samples = 0;     // samples with a ray answered by fill_behind
   uint64_t rays = 0;
   uint64_t occlusion_error_rays = 0;
+  uint64_t mirror_samples = 0;                  // samples with g = 0 (one ray each)
+  uint64_t mirror_occlusion_error_samples = 0;  // of those, occlusion errors
   uint64_t planar_clusters = 0;
   uint64_t planar_samples = 0;          // samples in planar clusters
   double clustering_ms = 0.0;           // step 2
