@@ -15,6 +15,7 @@
 #include "proxima/raster/rasterizer.h"
 #include "proxima/scene/load.h"
 #include "proxima/trace/ray_scene.h"
+#include "proxima/trace/reference_renderer.h"
 
 namespace proxima::cli {
 
@@ -76,6 +77,7 @@ void validate(const ClusterReflectFlags& f) {
   if (f.frame_step < 1) fail_input("--frame-step: must be ≥ 1");
   if (f.reps < 1 || f.reps > 100) fail_input("--reps: must be in 1..100");
   if (f.image_frame < -1) fail_input("--image-frame: must be ≥ -1");
+  if (f.full_reference && !f.compare) fail_input("--full-reference: needs --compare");
   if (f.cluster.clustering.max_theta_bins < 1 || f.cluster.clustering.max_theta_bins > 1000)
     fail_input("--theta-bins: must be in 1..1000");
   if (f.cluster.clustering.max_phi_bins < 1 || f.cluster.clustering.max_phi_bins > 1000)
@@ -108,6 +110,8 @@ void add_cluster_reflect_flags(CLI::App* app, ClusterReflectFlags& f, bool out_r
   app->add_option("--image-frame", f.image_frame, "frame whose images are written (-1 = the first rendered)")
       ->capture_default_str();
   app->add_flag("--compare", f.compare, "trace the same rays with Embree: errors, occlusion errors, timing");
+  app->add_flag("--full-reference", f.full_reference,
+                "also compare with render_reference (shadows, jittered area-light samples, 1 bounce); untimed");
   add_threads_flag(app, f.common);
   add_seed_flag(app, f.common);
   add_out_flag(app, f.common, out_required);
@@ -130,7 +134,7 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
   ro.seed = f.common.seed;
 
   Series reflective_pct, cluster_ms, reference_ms, reference_dynamic_ms, step1_ms, cameras_ms, images_ms,
-      intersection_ms, clusters, samples_per_cluster, occlusion_pct, fallback_pct, planar_pct, mae_r, mae_g, mae_b, texels, fill_pct, occlusion_ray_pct, occlusion_mirror_pct;
+      intersection_ms, clusters, samples_per_cluster, occlusion_pct, fallback_pct, planar_pct, mae_r, mae_g, mae_b, texels, fill_pct, occlusion_ray_pct, occlusion_mirror_pct, full_r, full_g, full_b, traced_full;
   Results results;
   results.command = command_line();
   results.threads = active_threads();
@@ -201,6 +205,22 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
       mae_r.add(err.mae[0]);
       mae_g.add(err.mae[1]);
       mae_b.add(err.mae[2]);
+      if (f.full_reference) {
+        // Ground truth with shadows and jittered area-light samples; the Embree pass on the
+        // same rays against it isolates what the shared unshadowed shading costs.
+        ReferenceOptions full_opts;
+        full_opts.supersample = ro.supersample;
+        full_opts.area_light_samples = ro.area_light_samples;
+        full_opts.glossy_rays = ro.glossy_rays;
+        full_opts.max_bounces = 1;
+        full_opts.seed = ro.seed;
+        const ImageF full = render_reference(scene, *rays, camera, full_opts);
+        const ImageError cluster_err = compare_images(color, full, &mask);
+        full_r.add(cluster_err.mae[0]);
+        full_g.add(cluster_err.mae[1]);
+        full_b.add(cluster_err.mae[2]);
+        traced_full.add(compare_images(reference, full, &mask).mae_avg);
+      }
     }
     std::fprintf(stderr, "frame %d/%d: %llu clusters, %llu texels, cluster %.0f ms%s\n", frame_index, frames,
                  static_cast<unsigned long long>(st.clusters), static_cast<unsigned long long>(st.texels),
@@ -274,6 +294,15 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
     m["reference_dynamic_ms_avg"] = reference_dynamic_ms.avg();
     m["speedup_static"] = reference_ms.avg() / cluster_ms.avg();
     m["speedup_dynamic"] = reference_dynamic_ms.avg() / cluster_ms.avg();
+    if (f.full_reference) {
+      m["full_mae_r"] = full_r.avg();
+      m["full_mae_g"] = full_g.avg();
+      m["full_mae_b"] = full_b.avg();
+      m["traced_vs_full_mae"] = traced_full.avg();
+      results.tables.push_back({"Error vs render_reference (shadows, area-light jitter, 1 bounce), " + where,
+                                {"cluster_mae_r", "cluster_mae_g", "cluster_mae_b", "same_rays_embree_mae_avg"},
+                                {{full_r.avg(), full_g.avg(), full_b.avg(), traced_full.avg()}}});
+    }
     results.tables.push_back({"Error vs Embree on the same rays (thesis §4.7.1), " + where,
                               {"mae_r", "mae_g", "mae_b", "mae_max_channel_max_frame", "occlusion_error_pct_avg",
                                "occlusion_error_pct_max", "occlusion_error_rays_pct_avg",

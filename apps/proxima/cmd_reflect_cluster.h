@@ -17,12 +17,13 @@ struct ClusterReflectFlags {
   int reps = 1;             // timing repetitions per frame (medians)
   int image_frame = -1;     // frame whose images are written; −1 = the first one rendered
   bool compare = false;     // also trace the same rays with Embree: errors, occlusion errors, timing
+  bool full_reference = false;  // also render_reference (shadows, jittered area light, --bounces 1): errors
   ReflectionOptions reflection;
   ClusterReflectionOptions cluster;
 };
 
 // Adds the flags (--scene --path --frames --frame-step --width --height --ss --gloss-rays
-// --light-samples --theta-bins --phi-bins --resolution-scale --reps --image-frame --compare --threads
+// --light-samples --theta-bins --phi-bins --resolution-scale --reps --image-frame --compare --full-reference --threads
 // --seed --out) to `app`, `out_required` for --out.
 void add_cluster_reflect_flags(CLI::App* app, ClusterReflectFlags& flags, bool out_required);
 
