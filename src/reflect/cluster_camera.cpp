@@ -150,7 +150,7 @@ std::optional<ClusterCamera> build_cluster_camera(const ClusterCameraInput& in) 
 
     // Step 5: the window's image (a quadrilateral) gets about (window area / p²)·scale²
     // texels, i.e. one texel per footprint p at scale 1; square pixels.
-    const double pixels = double(in.pixel_count > 0 ? in.pixel_count : in.points.size());
+    const double pixels = double(in.points.size());
     double texels = double(in.resolution_scale) * double(in.resolution_scale) *
                     std::min(4.0 * pixels, double(window.max.x - window.min.x) *
                                                double(window.max.y - window.min.y) / (double(p) * double(p)));

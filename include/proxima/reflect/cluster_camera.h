@@ -19,7 +19,6 @@ struct ClusterCameraInput {
   vec3 eye{0.0f};                 // e
   float pixel_footprint = 0.0f;   // p: mean distance between neighbouring pixels' points (> 0)
   float resolution_scale = 1.0f;  // texels per footprint along each axis (Table 17)
-  size_t pixel_count = 0;         // pixels of the cluster (0 = points.size()); caps the texels
   int max_image_side = 2048;      // cap on width and height
   float plane_tolerance = 0.0f;   // coplanarity tolerance in meters (≥ 0)
 };
