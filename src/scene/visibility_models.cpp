@@ -89,6 +89,13 @@ CameraKey key(float time, vec3 position, vec3 target, float fov = 70.0f) {
 }
 
 // A path through `points` (one key per point, 1 s apart) looking `ahead` points forward.
+// A named camera at the start of the scene's walk, so every built-in scene can be rendered
+// with --camera and checked from a camera (raster agreement, render tests).
+void add_walk_start_camera(Scene& s) {
+  const CameraPath& path = s.camera_paths.front();
+  s.cameras.push_back({"walk_start", camera_at_time(path, frame_time(path, 0), 512, 512, 0.01f, 1000.0f)});
+}
+
 CameraPath walk_through(const std::vector<vec3>& points, int frames, float fov = 70.0f,
                         int ahead = 1, vec3 look_offset = vec3(0.0f)) {
   CameraPath p;
@@ -253,6 +260,7 @@ Scene make_vis_rooms() {
                                           {8.2f, 1.6f, 1.6f}, {7.0f, 1.6f, 0.8f}, {5.8f, 1.6f, 1.8f},
                                           {4.6f, 1.6f, 2.1f}, {2.5f, 1.6f, 3.2f}, {1.0f, 1.6f, 2.0f}},
                                          120, 70.0f, 1));
+  add_walk_start_camera(s);
   return s;
 }
 
@@ -327,6 +335,7 @@ Scene make_vis_maze() {
   std::reverse(pts.begin(), pts.end());
   pts.insert(pts.begin(), center(0) + (center(0) - center(n)));  // outside, before the entrance
   s.camera_paths.push_back(walk_through(pts, std::max(120, int(pts.size()) * 3), 70.0f, 1));
+  add_walk_start_camera(s);
   return s;
 }
 
@@ -362,6 +371,7 @@ Scene make_vis_arena() {
     pts.push_back({13.5f * std::sin(phi), 1.7f, 13.5f * std::cos(phi)});
   }
   s.camera_paths.push_back(walk_through(pts, 150, 70.0f, 2));
+  add_walk_start_camera(s);
   return s;
 }
 
@@ -396,6 +406,7 @@ Scene make_vis_vcity() {
     pts.push_back({street(leg % 2 == 0 ? 14 : 0), y, z + 1.5f * pitch});
   }
   s.camera_paths.push_back(walk_through(pts, 160, 65.0f, 2, vec3(0, -3.0f, 0)));
+  add_walk_start_camera(s);
   return s;
 }
 
@@ -405,6 +416,7 @@ Scene make_vis_floor() {
   office_floor(s, 0, 30, false, false, 17);
   lights(s, {60, 2.8f, 10});
   s.camera_paths.push_back(office_walk(30));
+  add_walk_start_camera(s);
   return s;
 }
 
@@ -416,6 +428,7 @@ Scene make_vis_building(int floors) {
     office_floor(s, level, 32, level > 0, level + 1 < floors, 19);
   lights(s, {64, 2.8f, 10});
   s.camera_paths.push_back(office_walk(32));
+  add_walk_start_camera(s);
   return s;
 }
 
