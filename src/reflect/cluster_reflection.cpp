@@ -1,0 +1,490 @@
+// Reflections from screen-space clustered depth images, and the Embree pass over the same rays.
+// Paper: thesis ch. 4, Algorithm 6 (§4.2), with §4.3 clustering (cluster_clustering.cpp),
+// §4.4 cluster cameras (cluster_camera.cpp), §4.5 Algorithm 7 (cluster_depth_image_march.cpp),
+// §4.6 glossy reflections. Symbols ↔ variables: S ↔ scene, e ↔ frame.camera.position,
+// p.rgb_d ↔ frame.base, p.s / p.g ↔ frame.specular / gloss, p.n ↔ frame.normal,
+// p.rID ↔ frame.reflector, C ↔ a cluster of ReflectionClusters, K ↔ ClusterCamera,
+// D ↔ depth + color (the cluster image), r_i ↔ frame.direction, d_i ↔ one ray's color,
+// G(d_i, p.g) ↔ the mean over the lobe rays (the lobe is uniform in solid angle, docs/shading.md),
+// LERP(p.rgb_d, p.rgb_n, p.s) ↔ combine_shading (base + s·reflected).
+// Glossy (§4.6): the lobe rays' end points widen the cluster window; the far distance
+// D_g = diagonal·(1 − falloff·g_max) is nearer for rougher clusters, and hits in its last
+// fade_fraction fade to the environment radiance (what a ray escaping the image gets).
+#include "proxima/reflect/cluster_reflection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "proxima/core/error.h"
+#include "proxima/core/parallel.h"
+#include "proxima/core/rng.h"
+#include "proxima/core/timer.h"
+#include "proxima/raster/rasterizer.h"
+#include "proxima/reflect/cluster_camera.h"
+#include "proxima/reflect/depth_image_march.h"
+#include "proxima/scene/shading.h"
+
+namespace proxima {
+
+namespace {
+
+// The reference renderer's ray offset: 1e-4 × the scene diagonal (docs/shading.md).
+constexpr float kRelativeEpsilon = 1e-4f;
+constexpr size_t kSampleGrain = 256;
+
+void validate(const ReflectionOptions& o) {
+  if (o.supersample < 1 || o.supersample > 8) fail_input("reflections: supersample must be in 1..8");
+  if (o.glossy_rays < 1 || o.glossy_rays > 1024) fail_input("reflections: glossy rays must be in 1..1024");
+  if (o.area_light_samples < 1 || o.area_light_samples > 64)
+    fail_input("reflections: area light samples must be in 1..64");
+}
+
+// Two-sided surface as seen from `toward_viewer` (as trace/'s surface_point).
+struct Facing {
+  vec3 ng, n;
+};
+Facing facing(const Scene& scene, uint32_t triangle, float u, float v, vec3 toward_viewer) {
+  Facing f;
+  f.ng = triangle_normal(scene, triangle);
+  if (glm::dot(f.ng, toward_viewer) < 0.0f) f.ng = -f.ng;
+  f.n = shading_normal(scene, triangle, u, v);
+  if (glm::dot(f.n, f.ng) < 0.0f) f.n = -f.n;
+  return f;
+}
+
+// Bilinear color of the texels around continuous pixel `s` that lie on the hit surface
+// (depth within 5% of `depth`); the nearest texel when none does.
+vec3 lookup_color(const ImageF& color, const ImageF& depth, vec2 s, float hit_depth) {
+  const int w = color.width(), h = color.height();
+  const float fx = s.x - 0.5f, fy = s.y - 0.5f;
+  const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+  const float tx = fx - float(x0), ty = fy - float(y0);
+  vec3 sum(0.0f);
+  float weight = 0.0f;
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      int x = x0 + i, y = y0 + j;
+      if (x < 0 || y < 0 || x >= w || y >= h) continue;
+      float d = depth.at(x, y);
+      if (!(std::abs(d - hit_depth) <= 0.05f * hit_depth)) continue;
+      float wt = (i ? tx : 1.0f - tx) * (j ? ty : 1.0f - ty);
+      sum += wt * vec3(color.at(x, y, 0), color.at(x, y, 1), color.at(x, y, 2));
+      weight += wt;
+    }
+  if (weight > 0.0f) return sum / weight;
+  int x = std::clamp(int(s.x), 0, w - 1), y = std::clamp(int(s.y), 0, h - 1);
+  return vec3(color.at(x, y, 0), color.at(x, y, 1), color.at(x, y, 2));
+}
+
+// Whether the surface point at continuous pixel `s`, depth `z`, on `triangle`, shows in the
+// image: some texel of the 3×3 around `s` holds that triangle or a depth ≥ 0.99·z.
+bool visible_near(const RasterImages& image, vec2 s, float z, uint32_t triangle) {
+  const int w = image.depth.width(), h = image.depth.height();
+  const int cx = int(s.x), cy = int(s.y);
+  for (int y = std::max(0, cy - 1); y <= std::min(h - 1, cy + 1); ++y)
+    for (int x = std::max(0, cx - 1); x <= std::min(w - 1, cx + 1); ++x)
+      if (image.triangle.at(x, y) == triangle || image.depth.at(x, y) >= 0.99f * z) return true;
+  return false;
+}
+
+// Ray parameters [t0, t1] inside the cluster image's volume: in front of the near (clip)
+// plane, within the camera's depth range and within the far distance. False when empty.
+bool clip_ray(const ClusterCamera& k, vec3 origin, vec3 dir, float far_distance, float& t0, float& t1) {
+  t0 = 0.0f;
+  t1 = far_distance;
+  auto keep_above = [&](float value_at_0, float slope, float bound) {  // value(t) ≥ bound
+    if (std::abs(slope) < 1e-12f) return value_at_0 >= bound;
+    float t = (bound - value_at_0) / slope;
+    if (slope > 0.0f) t0 = std::max(t0, t);
+    else t1 = std::min(t1, t);
+    return true;
+  };
+  const vec3 fwd = camera_forward(k.camera);
+  const float z0 = glm::dot(origin - k.camera.position, fwd), dz = glm::dot(dir, fwd);
+  const float h0 = glm::dot(origin - k.plane_point, k.plane_normal), dh = glm::dot(dir, k.plane_normal);
+  if (!keep_above(h0, dh, k.clip_offset)) return false;
+  if (!keep_above(z0, dz, 1.001f * k.camera.near)) return false;
+  if (!keep_above(-z0, -dz, -0.999f * k.camera.far)) return false;
+  return t0 < t1;
+}
+
+}  // namespace
+
+vec3 shade_reflected_point(const Scene& scene, uint32_t triangle, float u, float v, vec3 toward_viewer,
+                           int area_light_samples) {
+  const Material& m = scene.materials[scene.triangle_material[triangle]];
+  const Facing f = facing(scene, triangle, u, v, toward_viewer);
+  const vec3 p = triangle_point(scene, triangle, u, v);
+  ShadingTerms terms;
+  terms.emission = m.emission;
+  terms.ambient = scene.ambient;
+  terms.albedo = surface_diffuse(scene, triangle, u, v);
+  terms.specular = m.specular;
+  if (m.specular < 1.0f && terms.albedo != vec3(0.0f)) {
+    for (const PointLight& light : scene.point_lights) terms.direct_irradiance += point_light_irradiance(light, p, f.n);
+    const int n = area_light_samples;
+    for (const AreaLight& light : scene.area_lights) {
+      vec3 sum(0.0f);
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          vec2 ab = stratum_sample(i, j, n, 0.5f, 0.5f);
+          sum += area_light_sample_irradiance(light, light.point(ab.x, ab.y), p, f.n);
+        }
+      terms.direct_irradiance += sum / float(n * n);
+    }
+  }
+  return combine_shading(terms);
+}
+
+ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camera, const ReflectionOptions& options,
+                                         std::span<const Bounds3> object_bounds) {
+  validate(options);
+  validate_camera(camera, "reflection camera");
+  Stopwatch watch;
+  ReflectionFrame frame;
+  const int k = options.supersample;
+  frame.camera = camera;
+  frame.supersample = k;
+  frame.area_light_samples = options.area_light_samples;
+  frame.sample_camera = camera;
+  frame.sample_camera.width = camera.width * k;
+  frame.sample_camera.height = camera.height * k;
+  validate_camera(frame.sample_camera, "reflection camera × supersample");
+  frame.scene_diagonal = std::max(scene_bounds(scene).diagonal(), 1e-3f);
+  const float epsilon = kRelativeEpsilon * frame.scene_diagonal;
+
+  // Step 1: G-buffer from e.
+  RasterOptions ro;
+  ro.outputs = kRasterDepth | kRasterTriangle | kRasterBarycentric | kRasterObject;
+  ro.object_bounds = object_bounds;
+  RasterImages g = rasterize(scene, frame.sample_camera, ro);
+  const int sw = frame.sample_camera.width, sh = frame.sample_camera.height;
+  const Camera& sc = frame.sample_camera;
+  frame.base = ImageF(sw, sh, 3, 0.0f);
+  parallel_for(size_t(sh), 8, [&](size_t y0, size_t y1) {
+    for (int y = int(y0); y < int(y1); ++y)
+      for (int x = 0; x < sw; ++x) {
+        uint32_t t = g.triangle.at(x, y);
+        vec3 dir = ray_through(sc, vec2(float(x) + 0.5f, float(y) + 0.5f)).dir;
+        vec3 c = t == kNoTriangle ? environment_radiance(scene.environment, dir)
+                                  : shade_reflected_point(scene, t, g.barycentric.at(x, y, 0),
+                                                          g.barycentric.at(x, y, 1), -dir, options.area_light_samples);
+        for (int ch = 0; ch < 3; ++ch) frame.base.at(x, y, ch) = c[ch];
+      }
+  });
+
+  // Reflective samples in row-major order, and their ray counts.
+  for (int y = 0; y < sh; ++y)
+    for (int x = 0; x < sw; ++x) {
+      uint32_t t = g.triangle.at(x, y);
+      if (t == kNoTriangle) continue;
+      const Material& m = scene.materials[scene.triangle_material[t]];
+      if (!m.reflective()) continue;
+      frame.pixel.push_back(uint32_t(y) * uint32_t(sw) + uint32_t(x));
+      frame.reflector.push_back(g.object.at(x, y));
+      frame.specular.push_back(m.specular);
+      frame.gloss.push_back(m.gloss);
+    }
+  const size_t n = frame.pixel.size();
+  frame.first_ray.assign(n + 1, 0);
+  for (size_t i = 0; i < n; ++i)
+    frame.first_ray[i + 1] = frame.first_ray[i] + (glossy_lobe_half_angle(frame.gloss[i]) > 0.0f ? options.glossy_rays : 1);
+  frame.position.resize(n);
+  frame.normal.resize(n);
+  frame.origin.resize(n);
+  frame.direction.resize(frame.first_ray[n]);
+
+  // The rays of render_reference's first bounce, from the same random streams.
+  parallel_for(n, kSampleGrain, [&](size_t b, size_t e) {
+    std::vector<vec2> lobe(size_t(options.glossy_rays));
+    for (size_t i = b; i < e; ++i) {
+      const int x = int(frame.pixel[i] % uint32_t(sw)), y = int(frame.pixel[i] / uint32_t(sw));
+      const uint32_t t = g.triangle.at(x, y);
+      const float u = g.barycentric.at(x, y, 0), v = g.barycentric.at(x, y, 1);
+      const vec3 dir = glm::normalize(ray_through(sc, vec2(float(x) + 0.5f, float(y) + 0.5f)).dir);
+      const Facing f = facing(scene, t, u, v, -dir);
+      frame.position[i] = triangle_point(scene, t, u, v);
+      frame.normal[i] = f.n;
+      frame.origin[i] = frame.position[i] + epsilon * f.ng;
+      const uint64_t out_pixel = uint64_t(y / k) * uint64_t(camera.width) + uint64_t(x / k);
+      Pcg32 rng(derive_seed(options.seed, out_pixel, uint64_t((y % k) * k + (x % k))));
+      // The reference draws its area-light jitter at this point before the lobe samples.
+      if (frame.specular[i] < 1.0f && surface_diffuse(scene, t, u, v) != vec3(0.0f))
+        for (size_t l = 0; l < scene.area_lights.size(); ++l)
+          for (int s = 0; s < 2 * options.area_light_samples * options.area_light_samples; ++s) rng.next_float();
+      const vec3 mirror = reflect(dir, f.n);
+      const float half_angle = glossy_lobe_half_angle(frame.gloss[i]);
+      vec3* out = &frame.direction[frame.first_ray[i]];
+      if (half_angle > 0.0f) {
+        stratified_samples_2d(lobe, rng);
+        for (size_t r = 0; r < lobe.size(); ++r) out[r] = glossy_lobe_direction(mirror, f.ng, half_angle, lobe[r]);
+      } else {
+        out[0] = glossy_lobe_direction(mirror, f.ng, 0.0f, vec2(0.0f));
+      }
+    }
+  });
+  frame.ms = watch.elapsed_ms();
+  return frame;
+}
+
+TracedReflections trace_reflections(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame) {
+  Stopwatch watch;
+  TracedReflections out;
+  const size_t n = frame.sample_count();
+  out.radiance.assign(n, vec3(0.0f));
+  out.hit_triangle.assign(frame.direction.size(), kNoTriangle);
+  out.hit_t.assign(frame.direction.size(), kInf);
+  parallel_for(n, kSampleGrain, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      vec3 sum(0.0f);
+      for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
+        const vec3 dir = frame.direction[r];
+        Hit hit = rays.intersect(Ray{frame.origin[i], dir, 0.0f, kInf});
+        if (hit.valid()) {
+          out.hit_triangle[r] = hit.triangle;
+          out.hit_t[r] = hit.t;
+          sum += shade_reflected_point(scene, hit.triangle, hit.u, hit.v, -dir, frame.area_light_samples);
+        } else {
+          sum += environment_radiance(scene.environment, dir);
+        }
+      }
+      out.radiance[i] = sum / float(frame.first_ray[i + 1] - frame.first_ray[i]);
+    }
+  });
+  out.ms = watch.elapsed_ms();
+  return out;
+}
+
+ClusterReflections render_cluster_reflections(const Scene& scene, const ReflectionFrame& frame,
+                                              const ClusterReflectionOptions& options,
+                                              std::span<const Bounds3> object_bounds,
+                                              const TracedReflections* reference) {
+  ClusterReflections out;
+  ClusterFrameStats& st = out.stats;
+  const size_t n = frame.sample_count();
+  out.radiance.assign(n, vec3(0.0f));
+  st.reflective_samples = n;
+  if (n == 0) return out;
+  const float epsilon = kRelativeEpsilon * frame.scene_diagonal;
+  const int sw = frame.sample_camera.width;
+
+  // Step 2: clusters; step 3a needs each cluster's mean pixel footprint p: the distance
+  // between horizontally and vertically neighbouring samples of the cluster in the
+  // tangent plane of the first.
+  Stopwatch watch;
+  ReflectionClusters clusters = cluster_reflections(frame.normal, frame.reflector, options.clustering);
+  const size_t nc = clusters.count();
+  st.clusters = nc;
+  st.clustering_ms = watch.elapsed_ms();
+  watch.restart();
+  std::vector<int32_t> sample_at(frame.base.pixel_count(), -1);
+  for (size_t i = 0; i < n; ++i) sample_at[frame.pixel[i]] = int32_t(i);
+  std::vector<double> footprint_sum(nc, 0.0);
+  std::vector<uint32_t> footprint_count(nc, 0);
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t px = frame.pixel[i];
+    const int x = int(px % uint32_t(sw));
+    for (uint32_t next : {x + 1 < sw ? px + 1 : px, px + uint32_t(sw)}) {
+      if (next == px || next >= sample_at.size() || sample_at[next] < 0) continue;
+      const size_t j = size_t(sample_at[next]);
+      if (clusters.cluster_of[j] != clusters.cluster_of[i]) continue;
+      vec3 d = frame.position[j] - frame.position[i];
+      d -= glm::dot(d, frame.normal[i]) * frame.normal[i];
+      footprint_sum[clusters.cluster_of[i]] += glm::length(d);
+      ++footprint_count[clusters.cluster_of[i]];
+    }
+  }
+  const float focal = focal_length_px(frame.sample_camera);
+  std::vector<std::optional<ClusterCamera>> cameras(nc);
+  std::vector<float> far_distance(nc);
+  std::vector<float> cluster_gloss(nc, 0.0f);
+  {
+    std::vector<vec3> points, normals, ends;
+    for (size_t c = 0; c < nc; ++c) {
+      points.clear();
+      normals.clear();
+      ends.clear();
+      for (uint32_t i : clusters.cluster(c)) cluster_gloss[c] = std::max(cluster_gloss[c], frame.gloss[i]);
+      far_distance[c] = frame.scene_diagonal *
+                        (cluster_gloss[c] > 0.0f ? std::max(0.05f, 1.0f - options.glossy_far_falloff * cluster_gloss[c]) : 1.0f);
+      for (uint32_t i : clusters.cluster(c)) {
+        points.push_back(frame.position[i]);
+        normals.push_back(frame.normal[i]);
+        for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r)
+          ends.push_back(frame.origin[i] + far_distance[c] * frame.direction[r]);
+      }
+      ClusterCameraInput in;
+      in.points = points;
+      in.normals = normals;
+      in.ray_ends = ends;
+      in.eye = frame.camera.position;
+      // A lone pixel: its footprint at its distance from the eye.
+      in.pixel_footprint = footprint_count[c] > 0
+                               ? float(footprint_sum[c] / double(footprint_count[c]))
+                               : glm::length(points[0] - frame.camera.position) / focal;
+      in.resolution_scale = options.resolution_scale;
+      in.max_image_side = options.max_image_side;
+      in.plane_tolerance = epsilon;
+      cameras[c] = build_cluster_camera(in);
+      if (cameras[c] && cameras[c]->planar) {
+        ++st.planar_clusters;
+        st.planar_samples += points.size();
+      }
+    }
+  }
+  st.cameras_ms = watch.elapsed_ms();
+
+  out.cluster = clusters.cluster_of;
+  out.flags.assign(n, 0);
+  RasterImages images;
+  ImageF color;
+  for (size_t c = 0; c < nc; ++c) {
+    const std::span<const uint32_t> members = clusters.cluster(c);
+    st.max_cluster_samples = std::max<uint64_t>(st.max_cluster_samples, members.size());
+    if (!cameras[c]) {
+      for (uint32_t i : members) {
+        out.flags[i] |= kEnvFallback;
+        vec3 sum(0.0f);
+        for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r)
+          sum += environment_radiance(scene.environment, frame.direction[r]);
+        out.radiance[i] = sum / float(frame.first_ray[i + 1] - frame.first_ray[i]);
+      }
+      continue;
+    }
+    const ClusterCamera& k = *cameras[c];
+    const Camera& cam = k.camera;
+
+    // Step 3b: the cluster image, everything in front of the near (clip) plane, shaded.
+    watch.restart();
+    RasterOptions ro;
+    ro.outputs = kRasterDepth | kRasterTriangle | kRasterBarycentric;
+    ro.object_bounds = object_bounds;
+    // A curved cluster's own reflector bulges in front of its fitting plane and would only
+    // hide what its rays hit; it is left out (convex reflectors do not see themselves).
+    std::vector<uint32_t> others;
+    if (!k.planar) {
+      for (uint32_t o = 0; o < scene.objects.size(); ++o)
+        if (o != clusters.reflector[c]) others.push_back(o);
+      ro.objects = others;
+    }
+    RasterStats rs = rasterize(scene, cam, ro, images, [&](const Fragment& fr) {
+      vec3 x = unproject(cam, vec2(float(fr.x) + 0.5f, float(fr.y) + 0.5f), fr.depth);
+      return glm::dot(x - k.plane_point, k.plane_normal) > k.clip_offset;
+    });
+    st.objects_drawn += rs.objects_drawn;
+    st.texels += uint64_t(cam.width) * uint64_t(cam.height);
+    color = ImageF(cam.width, cam.height, 3, 0.0f);
+    parallel_for(size_t(cam.height), 8, [&](size_t y0, size_t y1) {
+      for (int y = int(y0); y < int(y1); ++y)
+        for (int x = 0; x < cam.width; ++x) {
+          uint32_t t = images.triangle.at(x, y);
+          if (t == kNoTriangle) continue;
+          float u = images.barycentric.at(x, y, 0), v = images.barycentric.at(x, y, 1);
+          vec3 toward = cam.position - triangle_point(scene, t, u, v);
+          vec3 col = shade_reflected_point(scene, t, u, v, toward, frame.area_light_samples);
+          for (int ch = 0; ch < 3; ++ch) color.at(x, y, ch) = col[ch];
+        }
+    });
+    st.depth_images_ms += watch.elapsed_ms();
+
+    // Step 3c: every ray of every pixel against the image; G = the lobe mean.
+    watch.restart();
+    const float far = far_distance[c];
+    const bool glossy = cluster_gloss[c] > 0.0f;
+    MarchOptions march;
+    march.fill_behind = true;
+    std::vector<uint8_t> ray_occluded(frame.first_ray[members.back() + 1] - frame.first_ray[members.front()], 0);
+    const uint32_t ray_base = frame.first_ray[members.front()];
+    parallel_for(members.size(), 64, [&](size_t b, size_t e) {
+      for (size_t m = b; m < e; ++m) {
+        const uint32_t i = members[m];
+        vec3 sum(0.0f);
+        for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
+          const vec3 o = frame.origin[i], dir = frame.direction[r];
+          const vec3 env = environment_radiance(scene.environment, dir);
+          float t0, t1;
+          std::optional<DepthImageHit> hit;
+          if (clip_ray(k, o, dir, far, t0, t1))
+            hit = march_depth_image(cam, images.depth, o + t0 * dir, o + t1 * dir, march);
+          if (hit) {
+            if (hit->filled) out.flags[i] |= kBehindFill;
+            vec3 c_hit = lookup_color(color, images.depth, hit->pixel, hit->depth);
+            if (glossy) {
+              float t = glm::length(unproject(cam, hit->pixel, hit->depth) - o);
+              float w = std::clamp((far - t) / (options.fade_fraction * far), 0.0f, 1.0f);
+              c_hit = w * c_hit + (1.0f - w) * env;
+            }
+            sum += c_hit;
+          } else {
+            sum += env;
+            out.flags[i] |= kEnvFallback;
+          }
+          // Occlusion error: the surface Embree hits is not what the image holds there.
+          if (reference && reference->hit_triangle[r] != kNoTriangle) {
+            const vec3 x = o + reference->hit_t[r] * dir;
+            auto pr = project(cam, x);
+            bool absent = glm::dot(x - k.plane_point, k.plane_normal) <= k.clip_offset || !pr ||
+                          pr->pixel.x < 0.0f || pr->pixel.y < 0.0f || pr->pixel.x >= float(cam.width) ||
+                          pr->pixel.y >= float(cam.height);
+            if (!absent && pr->depth <= cam.far) {
+              // Hidden only if no texel within one of its projection holds the surface or
+              // something at its depth or beyond (resolution is not occlusion).
+              absent = !visible_near(images, pr->pixel, pr->depth, reference->hit_triangle[r]);
+            }
+            if (absent && (!pr || pr->depth <= cam.far)) {
+              out.flags[i] |= kOcclusionError;
+              ray_occluded[r - ray_base] = 1;
+            }
+          }
+        }
+        out.radiance[i] = sum / float(frame.first_ray[i + 1] - frame.first_ray[i]);
+      }
+    });
+    st.intersection_ms += watch.elapsed_ms();
+    for (uint32_t i : members) {
+      st.rays += frame.first_ray[i + 1] - frame.first_ray[i];
+      for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) st.occlusion_error_rays += ray_occluded[r - ray_base];
+    }
+  }
+  for (size_t i = 0; i < n; ++i) {
+    if (glossy_lobe_half_angle(frame.gloss[i]) > 0.0f) continue;
+    ++st.mirror_samples;
+    st.mirror_occlusion_error_samples += (out.flags[i] & kOcclusionError) != 0;
+  }
+  for (uint8_t flag : out.flags) {
+    st.env_fallback_samples += (flag & kEnvFallback) != 0;
+    st.occlusion_error_samples += (flag & kOcclusionError) != 0;
+    st.behind_fill_samples += (flag & kBehindFill) != 0;
+  }
+  return out;
+}
+
+ImageF compose_reflections(const ReflectionFrame& frame, std::span<const vec3> reflected) {
+  ImageF samples = frame.base;
+  for (size_t i = 0; i < frame.sample_count(); ++i) {
+    const int sw = frame.sample_camera.width;
+    const int x = int(frame.pixel[i] % uint32_t(sw)), y = int(frame.pixel[i] / uint32_t(sw));
+    for (int c = 0; c < 3; ++c) samples.at(x, y, c) += frame.specular[i] * reflected[i][c];
+  }
+  const int k = frame.supersample, w = frame.camera.width, h = frame.camera.height;
+  ImageF out(w, h, 3, 0.0f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c) {
+        float sum = 0.0f;
+        for (int j = 0; j < k; ++j)
+          for (int i = 0; i < k; ++i) sum += samples.at(x * k + i, y * k + j, c);
+        out.at(x, y, c) = sum / float(k * k);
+      }
+  return out;
+}
+
+ImageU8 reflective_pixel_mask(const ReflectionFrame& frame) {
+  ImageU8 mask(frame.camera.width, frame.camera.height, 1, 0);
+  const int sw = frame.sample_camera.width, k = frame.supersample;
+  for (uint32_t px : frame.pixel) mask.at(int(px % uint32_t(sw)) / k, int(px / uint32_t(sw)) / k) = 1;
+  return mask;
+}
+
+}  // namespace proxima

@@ -1,0 +1,83 @@
+#include <gtest/gtest.h>
+
+#include "proxima/reflect/depth_image_march.h"
+
+namespace proxima {
+
+namespace {
+
+const Camera kCamera = look_at(vec3(0.0f), vec3(0, 0, -1), vec3(0, 1, 0), 60.0f, 128, 128, 0.1f, 100.0f);
+
+// Depth image of the plane dot(x, n) = c, seen by kCamera at pixel centres.
+ImageF plane_depth(vec3 n, float c) {
+  ImageF d(kCamera.width, kCamera.height, 1, kInf);
+  for (int y = 0; y < d.height(); ++y)
+    for (int x = 0; x < d.width(); ++x) {
+      Ray r = ray_through(kCamera, vec2(float(x) + 0.5f, float(y) + 0.5f));
+      float t = c / glm::dot(r.dir, n);
+      if (t > 0.0f) d.at(x, y) = -world_to_camera(kCamera, r.origin + t * r.dir).z;
+    }
+  return d;
+}
+
+}  // namespace
+
+TEST(ClusterDepthImageMarch, FindsTheAnalyticHitOnATiltedPlane) {
+  const vec3 n = glm::normalize(vec3(0.1f, 0.3f, 1.0f));
+  const float c = glm::dot(n, vec3(0, 0, -6));
+  const ImageF depth = plane_depth(n, c);
+  const vec3 begin(0.8f, -0.4f, -1.0f);
+  for (vec3 dir : {vec3(-0.3f, 0.2f, -1.0f), vec3(0.1f, 0.1f, -1.0f), vec3(-0.05f, 0.25f, -1.0f)}) {
+    dir = glm::normalize(dir);
+    const float t = (c - glm::dot(n, begin)) / glm::dot(n, dir);
+    const vec3 analytic = begin + t * dir;
+    auto hit = march_depth_image(kCamera, depth, begin, begin + 2.0f * t * dir);
+    ASSERT_TRUE(hit.has_value());
+    const vec3 found = unproject(kCamera, hit->pixel, hit->depth);
+    // Within one texel footprint at depth 6 (≈ 0.054 m) of the analytic point.
+    EXPECT_LT(glm::length(found - analytic), 0.06f) << found.x << " " << found.y << " " << found.z;
+  }
+}
+
+TEST(ClusterDepthImageMarch, RayEndingInFrontOfTheSurfaceMisses) {
+  const ImageF depth = plane_depth(vec3(0, 0, 1), -6.0f);
+  auto hit = march_depth_image(kCamera, depth, vec3(0.5f, 0.0f, -1.0f), vec3(-1.0f, 0.5f, -5.5f));
+  EXPECT_FALSE(hit.has_value());
+}
+
+TEST(ClusterDepthImageMarch, RayPassingBehindAnObjectMissesIt) {
+  // Back wall at depth 10 with a near plate at depth 3 over texels [40, 88)².
+  ImageF depth = plane_depth(vec3(0, 0, 1), -10.0f);
+  for (int y = 40; y < 88; ++y)
+    for (int x = 40; x < 88; ++x) depth.at(x, y) = 3.0f;
+  // Across the plate from left to right at depth 6 → 8, ending before the wall.
+  const vec3 a = unproject(kCamera, vec2(10.5f, 64.5f), 6.0f), b = unproject(kCamera, vec2(120.5f, 64.5f), 8.0f);
+  EXPECT_FALSE(march_depth_image(kCamera, depth, a, b).has_value());
+  // With fill_behind it reports the wall it was last in front of, at the plate's edge.
+  MarchOptions fill;
+  fill.fill_behind = true;
+  auto filled = march_depth_image(kCamera, depth, a, b, fill);
+  ASSERT_TRUE(filled.has_value());
+  EXPECT_TRUE(filled->filled);
+  EXPECT_FLOAT_EQ(filled->depth, 10.0f);
+  EXPECT_NEAR(filled->pixel.x, 40.0f, 1.5f);
+  // The same ray continued to depth 12 hits the wall, right of the plate.
+  const vec3 c = unproject(kCamera, vec2(120.5f, 64.5f), 12.0f);
+  auto wall = march_depth_image(kCamera, depth, a, c);
+  ASSERT_TRUE(wall.has_value());
+  EXPECT_NEAR(wall->depth, 10.0f, 0.05f);
+  EXPECT_GE(wall->pixel.x, 88.0f);
+  // A ray that goes from depth 2 to 4 inside the plate's footprint hits the plate.
+  auto plate = march_depth_image(kCamera, depth, unproject(kCamera, vec2(50.5f, 60.5f), 2.0f),
+                                 unproject(kCamera, vec2(70.5f, 62.5f), 4.0f));
+  ASSERT_TRUE(plate.has_value());
+  EXPECT_FLOAT_EQ(plate->depth, 3.0f);
+}
+
+TEST(ClusterDepthImageMarch, SegmentBehindTheCameraOrOutsideTheImage) {
+  const ImageF depth = plane_depth(vec3(0, 0, 1), -6.0f);
+  EXPECT_FALSE(march_depth_image(kCamera, depth, vec3(0, 0, 1), vec3(0, 0, -8)).has_value());
+  EXPECT_FALSE(march_depth_image(kCamera, depth, vec3(20, 0, -2), vec3(30, 0, -8)).has_value());
+}
+
+}  // namespace proxima

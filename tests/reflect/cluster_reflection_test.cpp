@@ -1,0 +1,91 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "proxima/core/parallel.h"
+#include "proxima/eval/image_error.h"
+#include "proxima/reflect/cluster_reflection.h"
+#include "trace/test_geometry.h"
+
+namespace proxima {
+
+namespace {
+
+// A 2 × 2 m mirror in the plane z = 0 facing +Z, a textured 8 × 8 m wall at z = 4 facing it,
+// a point light between them.
+Scene mirror_and_wall() {
+  Scene s;
+  s.name = "mirror-and-wall";
+  Texture tex;
+  tex.name = "waves";
+  tex.image = ImageF(32, 32, 3);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) {
+      tex.image.at(x, y, 0) = 0.5f + 0.4f * std::sin(0.39f * float(x));
+      tex.image.at(x, y, 1) = 0.5f + 0.4f * std::cos(0.29f * float(y));
+      tex.image.at(x, y, 2) = 0.5f + 0.3f * std::sin(0.2f * float(x + y));
+    }
+  s.textures.push_back(tex);
+  Material wall;
+  wall.diffuse = vec3(1.0f);
+  wall.diffuse_texture = 0;
+  const uint32_t wall_mat = add_material(s, wall);
+  const uint32_t mirror_mat = test::add_diffuse(s, vec3(0.9f), 1.0f, 0.0f);
+  add_object(s, test::quad_mesh(vec3(-1, -1, 0), vec3(2, 0, 0), vec3(0, 2, 0)), "mirror", mirror_mat);
+  add_object(s, test::quad_mesh(vec3(-4, -4, 4), vec3(0, 8, 0), vec3(8, 0, 0)), "wall", wall_mat);
+  s.point_lights.push_back({vec3(0.0f, 0.5f, 3.0f), vec3(12.0f)});
+  s.ambient = vec3(0.1f);
+  return s;
+}
+
+const Camera kEye = look_at(vec3(0.4f, 0.3f, 2.5f), vec3(0.0f), vec3(0, 1, 0), 50.0f, 48, 48, 0.01f, 100.0f);
+
+}  // namespace
+
+TEST(ClusterReflection, PlanarMirrorReproducesTheTracedReflection) {
+  const Scene scene = mirror_and_wall();
+  ReflectionOptions opts;
+  opts.supersample = 2;
+  ReflectionFrame frame = prepare_reflection_frame(scene, kEye, opts);
+  ASSERT_GT(frame.sample_count(), 1000u);
+  RayScene rays(scene);
+  TracedReflections traced = trace_reflections(scene, rays, frame);
+  ClusterReflections cluster = render_cluster_reflections(scene, frame, {}, {}, &traced);
+  EXPECT_EQ(cluster.stats.clusters, 1u);
+  EXPECT_EQ(cluster.stats.planar_clusters, 1u);
+  EXPECT_EQ(cluster.stats.env_fallback_samples, 0u);
+  EXPECT_EQ(cluster.stats.occlusion_error_samples, 0u);
+  const ImageU8 mask = reflective_pixel_mask(frame);
+  const ImageError err =
+      compare_images(compose_reflections(frame, cluster.radiance), compose_reflections(frame, traced.radiance), &mask);
+  EXPECT_GT(err.pixels, 500u);
+  for (int c = 0; c < 3; ++c) EXPECT_LT(err.mae[c], 1.0) << "channel " << c;
+  // The reflection is not trivially dark: the wall shows up in it.
+  float brightest = 0.0f;
+  for (vec3 c : cluster.radiance) brightest = std::max(brightest, c.y);
+  EXPECT_GT(brightest, 0.1f);
+}
+
+TEST(ClusterReflection, GlossyLobeIsIdenticalForAnyThreadCount) {
+  Scene scene = mirror_and_wall();
+  scene.materials[1].gloss = 0.4f;
+  scene.materials[1].specular = 0.6f;
+  ReflectionOptions opts;
+  opts.supersample = 1;
+  opts.glossy_rays = 9;
+  std::vector<vec3> one, two;
+  {
+    ThreadLimit limit(1);
+    ReflectionFrame frame = prepare_reflection_frame(scene, kEye, opts);
+    EXPECT_EQ(frame.direction.size(), 9u * frame.sample_count());
+    one = render_cluster_reflections(scene, frame, {}).radiance;
+  }
+  {
+    ThreadLimit limit(2);
+    two = render_cluster_reflections(scene, prepare_reflection_frame(scene, kEye, opts), {}).radiance;
+  }
+  ASSERT_EQ(one.size(), two.size());
+  EXPECT_TRUE(one == two);
+}
+
+}  // namespace proxima
