@@ -9,6 +9,8 @@
 #include <fstream>
 #include <string>
 
+#include "test_util.h"  // write_file, TempDir
+
 namespace proxima {
 
 struct RunResult {
@@ -27,10 +29,6 @@ inline RunResult run_cli(const std::string& args, const std::string& env = "") {
   while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) output.append(buf.data(), n);
   int status = pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
-
-inline void write_file(const std::filesystem::path& p, const std::string& bytes) {
-  std::ofstream(p, std::ios::binary) << bytes;
 }
 
 }  // namespace proxima

@@ -15,21 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void write_file(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-}
-
-template <typename F>
-std::string error_of(F fn) {
-  try {
-    fn();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(LoadTest, UnknownNameListsBuiltinScenes) {
   const std::string msg = error_of([] { load_scene("no-such-scene-anywhere"); });
   EXPECT_NE(msg.find("no such scene or file: no-such-scene-anywhere (built-in scenes: "),
