@@ -54,15 +54,18 @@ void reference_section(const CommonOptions& f, const std::filesystem::path& out,
 void raster_section(Results& results) {
   stage("rasterizer vs Embree item buffers on every built-in camera");
   Table table{"rasterized vs ray-cast triangle ids, 512×512",
-              {"scene", "camera", "agreement_pct", "edge_ties", "depth_ties", "other"},
+              {"scene", "camera", "agreement_pct", "edge_ties", "on_shared_edge", "depth_ties", "other"},
               {}};
-  double min_pct = 100.0;
+  double min_pct = 100.0, min_with_ties = 100.0;
   for (const CameraAgreement& c : raster_agreement_on_builtins(512)) {
     const IdAgreement& a = c.agreement;
     min_pct = std::min(min_pct, a.agreement_pct());
-    table.rows.push_back({c.scene, c.camera, a.agreement_pct(), double(a.edge), double(a.depth), double(a.other)});
+    min_with_ties = std::min(min_with_ties, a.agreement_with_ties_pct());
+    table.rows.push_back({c.scene, c.camera, a.agreement_pct(), double(a.edge), double(a.on_shared_edge),
+                          double(a.depth), double(a.other)});
   }
   results.metrics["id_agreement_pct"] = min_pct;
+  results.metrics["id_agreement_with_ties_pct"] = min_with_ties;
   results.tables.push_back(table);
   results.sections.push_back(
       {"raster", "Software rasterizer vs Embree",
