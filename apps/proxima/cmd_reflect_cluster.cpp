@@ -88,6 +88,8 @@ void validate(const ClusterReflectFlags& f) {
     fail_input("--theta-bins: must be in 1..1000");
   if (f.cluster.clustering.max_phi_bins < 1 || f.cluster.clustering.max_phi_bins > 1000)
     fail_input("--phi-bins: must be in 1..1000");
+  if (!(f.cluster.clustering.min_bin_scale >= 0.0f && f.cluster.clustering.min_bin_scale <= 1.0f))
+    fail_input("--min-bin-scale: must be in [0, 1]");
   if (!(f.cluster.resolution_scale > 0.0f && f.cluster.resolution_scale <= 8.0f))
     fail_input("--resolution-scale: must be in (0, 8]");
   if (f.cube_size < 1 || f.cube_size > 4096) fail_input("--cube-size: must be in 1..4096");
@@ -130,6 +132,10 @@ void add_cluster_reflect_flags(CLI::App* app, ClusterReflectFlags& f) {
       ->capture_default_str()
       ->group(group);
   app->add_option("--phi-bins", f.cluster.clustering.max_phi_bins, "cluster: MAXPHIBINS")
+      ->capture_default_str()
+      ->group(group);
+  app->add_option("--min-bin-scale", f.cluster.clustering.min_bin_scale,
+                  "cluster: lower bound of a reflector's bin scale per axis (0..1; 1 = 13×8 bins for every reflector)")
       ->capture_default_str()
       ->group(group);
   app->add_option("--resolution-scale", f.cluster.resolution_scale, "cluster: image texels per pixel footprint")
