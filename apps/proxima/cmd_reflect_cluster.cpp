@@ -1,10 +1,12 @@
-// `proxima reflect-cluster`: reflections from screen-space clustered depth images (issue 7,
-// thesis ch. 4) along a camera path, optionally compared with Embree tracing the same rays.
+// `proxima reflect --method cluster`: reflections from screen-space clustered depth images
+// (issue 7, thesis ch. 4) on one camera or along a camera path, optionally compared with
+// Embree tracing the same rays and with rectified environment mapping on the same rays.
 #include "cmd_reflect_cluster.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "proxima/core/error.h"
 #include "proxima/core/image_io.h"
@@ -13,7 +15,10 @@
 #include "proxima/core/timer.h"
 #include "proxima/eval/image_error.h"
 #include "proxima/raster/rasterizer.h"
+#include "proxima/reflect/envmap_lookup.h"
+#include "proxima/reflect/envmap_reflection.h"
 #include "proxima/scene/load.h"
+#include "proxima/scene/shading.h"
 #include "proxima/trace/ray_scene.h"
 #include "proxima/trace/reference_renderer.h"
 
@@ -70,7 +75,8 @@ void validate(const ClusterReflectFlags& f) {
   if (c.height < 1 || c.height > 4096) fail_input("--height: must be in 1..4096");
   if (c.threads < 0) fail_input("--threads: must be ≥ 0");
   if (f.reflection.supersample < 1 || f.reflection.supersample > 8) fail_input("--ss: must be in 1..8");
-  if (f.reflection.glossy_rays < 1 || f.reflection.glossy_rays > 1024) fail_input("--gloss-rays: must be in 1..1024");
+  if (f.reflection.glossy_rays < 1 || f.reflection.glossy_rays > 1024)
+    fail_input("--gloss-rays: must be in 1..1024 for --method cluster");
   if (f.reflection.area_light_samples < 1 || f.reflection.area_light_samples > 64)
     fail_input("--light-samples: must be in 1..64");
   if (f.frames < 0 || f.frames > 100000) fail_input("--frames: must be in 0..100000");
@@ -82,75 +88,133 @@ void validate(const ClusterReflectFlags& f) {
     fail_input("--theta-bins: must be in 1..1000");
   if (f.cluster.clustering.max_phi_bins < 1 || f.cluster.clustering.max_phi_bins > 1000)
     fail_input("--phi-bins: must be in 1..1000");
+  if (!(f.cluster.clustering.min_bin_scale >= 0.0f && f.cluster.clustering.min_bin_scale <= 1.0f))
+    fail_input("--min-bin-scale: must be in [0, 1]");
   if (!(f.cluster.resolution_scale > 0.0f && f.cluster.resolution_scale <= 8.0f))
     fail_input("--resolution-scale: must be in (0, 8]");
+  if (f.cube_size < 1 || f.cube_size > 4096) fail_input("--cube-size: must be in 1..4096");
+}
+
+const char* const kCauseNames[kOcclusionCauses] = {"none", "behind_near_plane", "outside_image",
+                                                   "own_curved_reflector", "hidden_in_image"};
+
+// Per sample the mean over its rays of the rectified env-map lookup from the ray origin
+// (issue 6's §2.2 bisection on one distance cube map).
+std::vector<vec3> envmap_reflections(const Scene& scene, const ReflectionFrame& frame, const DistanceCubeMap& map,
+                                     const RectifyOptions& rectify) {
+  std::vector<vec3> out(frame.sample_count(), vec3(0.0f));
+  parallel_for(frame.sample_count(), 256, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      vec3 sum(0.0f);
+      for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r)
+        sum += rectified_lookup(map, scene.environment, frame.origin[i], frame.direction[r], rectify).color;
+      out[i] = sum / float(frame.first_ray[i + 1] - frame.first_ray[i]);
+    }
+  });
+  return out;
 }
 
 }  // namespace
 
-void add_cluster_reflect_flags(CLI::App* app, ClusterReflectFlags& f, bool out_required) {
-  add_scene_flag(app, f.common, "living-room");
-  app->add_option("--path", f.path, "camera path, by index or name")->capture_default_str();
-  app->add_option("--frames", f.frames, "frames the path is divided into (0 = the path's own count)")
-      ->capture_default_str();
-  app->add_option("--frame-step", f.frame_step, "render every N-th of those frames")->capture_default_str();
-  add_size_flags(app, f.common);
-  app->add_option("--ss", f.reflection.supersample, "K×K samples per pixel (the reference's sub-pixel grid)")
-      ->capture_default_str();
-  app->add_option("--gloss-rays", f.reflection.glossy_rays, "lobe rays per sample on glossy surfaces")
-      ->capture_default_str();
-  app->add_option("--light-samples", f.reflection.area_light_samples,
-                  "N of the reference's N×N area-light samples (stream alignment; stratum centres shade)")
-      ->capture_default_str();
-  app->add_option("--theta-bins", f.cluster.clustering.max_theta_bins, "MAXTHETABINS")->capture_default_str();
-  app->add_option("--phi-bins", f.cluster.clustering.max_phi_bins, "MAXPHIBINS")->capture_default_str();
-  app->add_option("--resolution-scale", f.cluster.resolution_scale, "cluster image texels per pixel footprint")
-      ->capture_default_str();
-  app->add_option("--reps", f.reps, "timing repetitions per frame (medians)")->capture_default_str();
-  app->add_option("--image-frame", f.image_frame, "frame whose images are written (-1 = the first rendered)")
-      ->capture_default_str();
-  app->add_flag("--compare", f.compare, "trace the same rays with Embree: errors, occlusion errors, timing");
+void add_cluster_reflect_flags(CLI::App* app, ClusterReflectFlags& f) {
+  const auto group = "cluster (--method cluster)";
+  app->add_option("--frames", f.frames,
+                  "cluster: with --path and no --frame, the path is divided into N frames (0 = its own count)")
+      ->capture_default_str()
+      ->group(group);
+  app->add_option("--frame-step", f.frame_step, "cluster: render every N-th of those frames")
+      ->capture_default_str()
+      ->group(group);
+  app->add_option("--ss", f.reflection.supersample, "cluster: K×K samples per pixel (the reference's sub-pixel grid)")
+      ->capture_default_str()
+      ->group(group);
+  app->add_option("--theta-bins", f.cluster.clustering.max_theta_bins, "cluster: MAXTHETABINS")
+      ->capture_default_str()
+      ->group(group);
+  app->add_option("--phi-bins", f.cluster.clustering.max_phi_bins, "cluster: MAXPHIBINS")
+      ->capture_default_str()
+      ->group(group);
+  app->add_option("--min-bin-scale", f.cluster.clustering.min_bin_scale,
+                  "cluster: lower bound of a reflector's bin scale per axis (0..1; 1 = 13×8 bins for every reflector)")
+      ->capture_default_str()
+      ->group(group);
+  app->add_option("--resolution-scale", f.cluster.resolution_scale, "cluster: image texels per pixel footprint")
+      ->capture_default_str()
+      ->group(group);
+  app->add_option("--image-frame", f.image_frame, "cluster: frame whose images are written (-1 = the first rendered)")
+      ->capture_default_str()
+      ->group(group);
   app->add_flag("--full-reference", f.full_reference,
-                "also compare with render_reference (shadows, jittered area-light samples, 1 bounce); untimed");
-  add_threads_flag(app, f.common);
-  add_seed_flag(app, f.common);
-  add_out_flag(app, f.common, out_required);
+                "cluster: with --compare, also render_reference (shadows, jittered area-light samples, 1 bounce); "
+                "untimed")
+      ->group(group);
 }
 
 int run_cluster_reflect(const ClusterReflectFlags& f) {
   validate(f);
   ThreadLimit limit(f.common.threads);
   const Scene rest = load_scene(f.common.scene);
-  const int path_index = find_path(rest, f.path);
-  if (path_index < 0)
-    fail_input("--path: scene '" + rest.name + "' has no camera path '" + f.path + "' (" +
-               std::to_string(rest.camera_paths.size()) + " paths)");
-  const CameraPath& path = rest.camera_paths[size_t(path_index)];
-  const int frames = f.frames > 0 ? f.frames : path.frames;
+  // Frames: one (the scene camera --camera, or --path with --frame), or the path divided
+  // into --frames frames, every --frame-step-th rendered.
+  const CameraPath* path = nullptr;
+  int frames = 1;
+  if (!f.camera.path.empty()) {
+    const int path_index = find_path(rest, f.camera.path);
+    if (path_index < 0)
+      fail_input("--path: scene '" + rest.name + "' has no camera path '" + f.camera.path + "' (" +
+                 std::to_string(rest.camera_paths.size()) + " paths)");
+    path = &rest.camera_paths[size_t(path_index)];
+    frames = f.frames > 0 ? f.frames : path->frames;
+  }
+  const bool sequence = path && !f.frame_given;
+  std::vector<int> indices;
+  if (sequence) {
+    for (int i = 0; i < frames; i += f.frame_step) indices.push_back(i);
+  } else {
+    indices.push_back(f.frame_given ? f.camera.frame : 0);
+    pick_camera(rest, f.camera, f.common.width, f.common.height);  // InputError before --out is made
+  }
+  if (reflective_objects(rest).empty()) fail_input("--scene: '" + rest.name + "' has no reflective object");
   const auto out = prepare_out_dir(f.common.out);
-  const float t_first = path.keys.front().time, t_last = path.keys.back().time;
   const float far = std::max(10.0f, 4.0f * scene_bounds(rest).diagonal());
   ReflectionOptions ro = f.reflection;
   ro.seed = f.common.seed;
+  auto time_of = [&](int index) {
+    if (!path) return 0.0f;
+    if (!sequence) return frame_time(*path, index);
+    const float t0 = path->keys.front().time, t1 = path->keys.back().time;
+    return frames > 1 ? t0 + float(index) * (t1 - t0) / float(frames - 1) : t0;
+  };
 
-  Series reflective_pct, cluster_ms, reference_ms, reference_dynamic_ms, step1_ms, cameras_ms, images_ms,
-      intersection_ms, clusters, samples_per_cluster, occlusion_pct, fallback_pct, planar_pct, mae_r, mae_g, mae_b, texels, fill_pct, occlusion_ray_pct, occlusion_mirror_pct, full_r, full_g, full_b, traced_full;
+  Series reflective_pct, cluster_ms, reference_ms, reference_dynamic_ms, envmap_ms, envmap_build_ms, step1_ms,
+      cameras_ms, images_ms, intersection_ms, clusters, samples_per_cluster, occlusion_pct, fallback_pct, planar_pct,
+      mae_r, mae_g, mae_b, env_r, env_g, env_b, texels, fill_pct, occlusion_ray_pct, occlusion_mirror_pct,
+      occlusion_glossy_pct, full_r, full_g, full_b, traced_full;
+  Series cause_pct[kOcclusionCauses], cause_mirror_pct[kOcclusionCauses];
   Results results;
   results.command = command_line();
   results.threads = active_threads();
   bool wrote_images = false;
-  for (int frame_index = 0; frame_index < frames; frame_index += f.frame_step) {
-    const float t = frames > 1 ? t_first + float(frame_index) * (t_last - t_first) / float(frames - 1) : t_first;
+  for (const int frame_index : indices) {
+    const float t = time_of(frame_index);
     const Scene posed = has_animation(rest) ? pose_scene(rest, t) : Scene{};
     const Scene& scene = has_animation(rest) ? posed : rest;
-    const Camera camera = camera_at_time(path, t, f.common.width, f.common.height, 0.01f, far);
+    const Camera camera = sequence ? camera_at_time(*path, t, f.common.width, f.common.height, 0.01f, far)
+                                   : pick_camera(rest, f.camera, f.common.width, f.common.height);
 
     // Side by side, `reps` times; medians per frame.
-    std::vector<double> c_ms, r_ms, b_ms, s1, s2, s3, s4;
+    std::vector<double> c_ms, r_ms, b_ms, e_ms, s1, s2, s3, s4;
     ReflectionFrame frame;
     ClusterReflections cluster;
     TracedReflections traced;
     std::unique_ptr<RayScene> rays;
+    DistanceCubeMap map;
+    std::vector<vec3> env_radiance;
+    const std::vector<uint32_t> reflectors = reflective_objects(scene);
+    RectifyOptions rectify;
+    rectify.D = f.distance > 0.0f ? f.distance : scene_bounds(scene).diagonal();
+    rectify.d_e = f.d_e;
+    rectify.edge = f.edge_fallback ? EdgeRule::PlainFallback : EdgeRule::Black;
     for (int rep = 0; rep < f.reps; ++rep) {
       Stopwatch watch;
       const std::vector<Bounds3> bounds = raster_object_bounds(scene);
@@ -161,6 +225,24 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
         b_ms.push_back(rays->build_ms());
         traced = trace_reflections(scene, *rays, frame);
         r_ms.push_back(step1 + traced.ms);
+        if (rep == 0) {
+          // The env map of the reflectors' environment from their common centre, texels
+          // shaded as the cluster images' (unshadowed); built once per frame (the scene moves).
+          DistanceCubeMapOptions mo;
+          mo.resolution = f.cube_size;
+          mo.area_light_samples = ro.area_light_samples;
+          mo.seed = ro.seed;
+          mo.exclude = reflectors;
+          mo.shade = [&](uint32_t tri, float u, float v, vec3 toward) {
+            return shade_reflected_point(scene, tri, u, v, toward, ro.area_light_samples);
+          };
+          Stopwatch w;
+          map = render_distance_cube_map(scene, *rays, projection_center(scene, reflectors), mo);
+          envmap_build_ms.add(w.elapsed_ms());
+        }
+        Stopwatch w;
+        env_radiance = envmap_reflections(scene, frame, map, rectify);
+        e_ms.push_back(step1 + w.elapsed_ms());
       }
       cluster = render_cluster_reflections(scene, frame, f.cluster, bounds, f.compare ? &traced : nullptr);
       const ClusterFrameStats& st = cluster.stats;
@@ -185,26 +267,45 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
       clusters.add(double(st.clusters));
       texels.add(double(st.texels));
       samples_per_cluster.add(double(st.reflective_samples) / double(st.clusters));
+      planar_pct.add(100.0 * double(st.planar_samples) / samples);
     }
     fallback_pct.add(100.0 * double(st.env_fallback_samples) / samples);
     fill_pct.add(100.0 * double(st.behind_fill_samples) / samples);
-    planar_pct.add(100.0 * double(st.planar_samples) / samples);
     const ImageF color = compose_reflections(frame, cluster.radiance);
     const ImageF reference = f.compare ? compose_reflections(frame, traced.radiance) : ImageF();
+    const ImageF envmap = f.compare ? compose_reflections(frame, env_radiance) : ImageF();
     if (f.compare) {
       reference_ms.add(median(r_ms));
       reference_dynamic_ms.add(median(r_ms) + median(b_ms));
+      envmap_ms.add(median(e_ms));
     }
     // Error figures average over the frames that show reflective pixels.
     if (f.compare && reflective > 0) {
       occlusion_pct.add(100.0 * double(st.occlusion_error_samples) / samples);
       occlusion_ray_pct.add(100.0 * double(st.occlusion_error_rays) / std::max<double>(1.0, double(st.rays)));
+      // Causes, over all reflective samples and over the mirror samples (one ray each).
+      uint64_t mirror_cause[kOcclusionCauses] = {}, glossy_errors = 0;
+      for (size_t i = 0; i < frame.sample_count(); ++i) {
+        const bool mirror = glossy_lobe_half_angle(frame.gloss[i]) <= 0.0f;
+        if (mirror) ++mirror_cause[cluster.occlusion_cause[i]];
+        else glossy_errors += cluster.occlusion_cause[i] != uint8_t(OcclusionCause::None);
+      }
+      for (int c = 1; c < kOcclusionCauses; ++c) {
+        cause_pct[c].add(100.0 * double(st.occlusion_cause_samples[c]) / samples);
+        if (st.mirror_samples > 0) cause_mirror_pct[c].add(100.0 * double(mirror_cause[c]) / double(st.mirror_samples));
+      }
       if (st.mirror_samples > 0)
         occlusion_mirror_pct.add(100.0 * double(st.mirror_occlusion_error_samples) / double(st.mirror_samples));
+      if (st.mirror_samples < st.reflective_samples)
+        occlusion_glossy_pct.add(100.0 * double(glossy_errors) / double(st.reflective_samples - st.mirror_samples));
       const ImageError err = compare_images(color, reference, &mask);
       mae_r.add(err.mae[0]);
       mae_g.add(err.mae[1]);
       mae_b.add(err.mae[2]);
+      const ImageError env_err = compare_images(envmap, reference, &mask);
+      env_r.add(env_err.mae[0]);
+      env_g.add(env_err.mae[1]);
+      env_b.add(env_err.mae[2]);
       if (f.full_reference) {
         // Ground truth with shadows and jittered area-light samples; the Embree pass on the
         // same rays against it isolates what the shared unshadowed shading costs.
@@ -227,16 +328,20 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
                  cluster_ms.values.back(),
                  f.compare ? (", embree " + std::to_string(int(reference_ms.values.back())) + " ms").c_str() : "");
     if (!wrote_images && (f.image_frame < 0 || f.image_frame == frame_index)) {
-      write_png_linear(out / "color.png", color);
+      write_png_linear(out / "cluster.png", color);
       write_png_linear(out / "clusters.png", cluster_image(frame, cluster, color));
-      results.images["color"] = "color.png";
+      results.images["cluster"] = "cluster.png";
       results.images["clusters"] = "clusters.png";
       if (f.compare) {
         write_png_linear(out / "reference.png", reference);
-        // Error heat map over the reflective pixels, 0–20 on the 0–255 scale.
-        write_png_linear(out / "error.png", error_heatmap(error_image(color, reference, &mask), 20.0f, &mask));
+        write_png_linear(out / "envmap.png", envmap);
+        // Error heat maps over the reflective pixels, 0–20 on the 0–255 scale.
+        write_png_linear(out / "error_cluster.png", error_heatmap(error_image(color, reference, &mask), 20.0f, &mask));
+        write_png_linear(out / "error_envmap.png", error_heatmap(error_image(envmap, reference, &mask), 20.0f, &mask));
         results.images["reference"] = "reference.png";
-        results.images["error_heatmap_0_20"] = "error.png";
+        results.images["envmap"] = "envmap.png";
+        results.images["error_cluster_0_20"] = "error_cluster.png";
+        results.images["error_envmap_0_20"] = "error_envmap.png";
       }
       wrote_images = true;
     }
@@ -261,8 +366,12 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
   m["texels_avg"] = texels.avg();
   m["behind_fill_pct_avg"] = fill_pct.avg();
   m["planar_samples_pct_avg"] = planar_pct.avg();
-  const std::string where = rest.name + " / " + path.name;
-  results.tables.push_back({"Frame rate (thesis Table 13), " + where,
+  m["planar_samples_pct_max"] = planar_pct.max();
+  const std::string where =
+      rest.name + " / " + (path ? path->name + (sequence ? "" : " frame " + std::to_string(indices[0])) : "camera");
+  const std::string size = std::to_string(f.common.width) + "x" + std::to_string(f.common.height) + ", " +
+                           std::to_string(ro.supersample) + "x" + std::to_string(ro.supersample) + " ss";
+  results.tables.push_back({"Frame rate (thesis Table 13), " + where + ", " + size,
                             {"reflective_pct_max", "reflective_pct_avg", "embree_fps_max", "embree_fps_min",
                              "embree_fps_avg", "embree_dynamic_fps_avg", "cluster_fps_max", "cluster_fps_min",
                              "cluster_fps_avg"},
@@ -274,24 +383,42 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
                              "depth_images_max", "depth_images_avg", "intersection_max", "intersection_avg"},
                             {{step1_ms.max(), step1_ms.avg(), cameras_ms.max(), cameras_ms.avg(), images_ms.max(),
                               images_ms.avg(), intersection_ms.max(), intersection_ms.avg()}}});
+  // One row per run: runs at other bin counts, output sizes and image scales make Tables 15–17.
+  results.tables.push_back({"Parameters vs frame rate (thesis Tables 15–17), " + where,
+                            {"clusters_avg", "width", "height", "resolution_scale", "texels_avg", "cluster_fps_avg"},
+                            {{clusters.avg(), double(f.common.width), double(f.common.height),
+                              double(f.cluster.resolution_scale), texels.avg(), fps(cluster_ms.avg())}}});
   results.tables.push_back({"Clusters (thesis Table 19), " + where,
-                            {"clusters_avg", "clusters_max", "samples_per_cluster_avg", "planar_samples_pct_avg"},
-                            {{clusters.avg(), clusters.max(), samples_per_cluster.avg(), planar_pct.avg()}}});
+                            {"clusters_avg", "clusters_max", "samples_per_cluster_avg"},
+                            {{clusters.avg(), clusters.max(), samples_per_cluster.avg()}}});
   results.tables.push_back({"Glossy cost (thesis Table 20), " + where,
                             {"gloss_rays", "intersection_ms_avg", "embree_fps_avg", "cluster_fps_avg"},
                             {{double(ro.glossy_rays), intersection_ms.avg(), fps(reference_ms.avg()),
                               fps(cluster_ms.avg())}}});
+  results.tables.push_back({"Samples in planar clusters, % of reflective samples (thesis Table 21), " + where,
+                            {"avg", "max"},
+                            {{planar_pct.avg(), planar_pct.max()}}});
   if (f.compare) {
     m["cluster_mae_r"] = mae_r.avg();
     m["cluster_mae_g"] = mae_g.avg();
     m["cluster_mae_b"] = mae_b.avg();
+    m["envmap_mae_r"] = env_r.avg();
+    m["envmap_mae_g"] = env_g.avg();
+    m["envmap_mae_b"] = env_b.avg();
     m["occlusion_error_pct_avg"] = occlusion_pct.avg();
     m["occlusion_error_pct_max"] = occlusion_pct.max();
     m["occlusion_error_rays_pct_avg"] = occlusion_ray_pct.avg();
     m["occlusion_error_mirror_pct_avg"] = occlusion_mirror_pct.avg();
     m["occlusion_error_mirror_pct_max"] = occlusion_mirror_pct.max();
+    m["occlusion_error_glossy_pct_avg"] = occlusion_glossy_pct.avg();
+    for (int c = 1; c < kOcclusionCauses; ++c) {
+      m[std::string("occlusion_") + kCauseNames[c] + "_pct_avg"] = cause_pct[c].avg();
+      m[std::string("occlusion_") + kCauseNames[c] + "_mirror_pct_avg"] = cause_mirror_pct[c].avg();
+    }
     m["reference_ms_avg"] = reference_ms.avg();
     m["reference_dynamic_ms_avg"] = reference_dynamic_ms.avg();
+    m["envmap_ms_avg"] = envmap_ms.avg();
+    m["envmap_build_ms_avg"] = envmap_build_ms.avg();
     m["speedup_static"] = reference_ms.avg() / cluster_ms.avg();
     m["speedup_dynamic"] = reference_dynamic_ms.avg() / cluster_ms.avg();
     if (f.full_reference) {
@@ -304,25 +431,27 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
                                 {{full_r.avg(), full_g.avg(), full_b.avg(), traced_full.avg()}}});
     }
     results.tables.push_back({"Error vs Embree on the same rays (thesis §4.7.1), " + where,
-                              {"mae_r", "mae_g", "mae_b", "mae_max_channel_max_frame", "occlusion_error_pct_avg",
-                               "occlusion_error_pct_max", "occlusion_error_rays_pct_avg",
-                               "occlusion_error_mirror_pct_avg", "occlusion_error_mirror_pct_max", "env_fallback_pct_avg",
+                              {"method", "mae_r", "mae_g", "mae_b", "mae_max_channel_max_frame", "ms_avg"},
+                              {{std::string("cluster"), mae_r.avg(), mae_g.avg(), mae_b.avg(),
+                                std::max({mae_r.max(), mae_g.max(), mae_b.max()}), cluster_ms.avg()},
+                               {std::string("envmap (rectified)"), env_r.avg(), env_g.avg(), env_b.avg(),
+                                std::max({env_r.max(), env_g.max(), env_b.max()}), envmap_ms.avg()},
+                               {std::string("embree (static BVH)"), 0.0, 0.0, 0.0, 0.0, reference_ms.avg()},
+                               {std::string("embree (BVH rebuilt)"), 0.0, 0.0, 0.0, 0.0, reference_dynamic_ms.avg()}}});
+    Table causes{"Occlusion errors, % of reflective samples (all / mirror only), " + where,
+                 {"cause", "all_samples_pct_avg", "mirror_samples_pct_avg"},
+                 {{std::string("total"), occlusion_pct.avg(), occlusion_mirror_pct.avg()}}};
+    for (int c = 1; c < kOcclusionCauses; ++c)
+      causes.rows.push_back({std::string(kCauseNames[c]), cause_pct[c].avg(), cause_mirror_pct[c].avg()});
+    results.tables.push_back(std::move(causes));
+    results.tables.push_back({"Fallbacks, % of reflective samples, " + where,
+                              {"occlusion_error_rays_pct_avg", "occlusion_error_glossy_pct_avg", "env_fallback_pct_avg",
                                "behind_fill_pct_avg"},
-                              {{mae_r.avg(), mae_g.avg(), mae_b.avg(), std::max({mae_r.max(), mae_g.max(), mae_b.max()}),
-                                occlusion_pct.avg(), occlusion_pct.max(), occlusion_ray_pct.avg(),
-                                occlusion_mirror_pct.avg(), occlusion_mirror_pct.max(), fallback_pct.avg(),
+                              {{occlusion_ray_pct.avg(), occlusion_glossy_pct.avg(), fallback_pct.avg(),
                                 fill_pct.avg()}}});
   }
   publish_results(out, results);
   return 0;
-}
-
-Command register_reflect_cluster(CLI::App& root) {
-  static ClusterReflectFlags f;
-  auto* app = root.add_subcommand("reflect-cluster",
-                                  "reflections from clustered depth images along a camera path (thesis ch. 4)");
-  add_cluster_reflect_flags(app, f, true);
-  return {app, [] { return run_cluster_reflect(f); }};
 }
 
 }  // namespace proxima::cli

@@ -69,6 +69,5 @@ Command register_demo(CLI::App& root);
 Command register_visibility(CLI::App& root);
 Command register_sample(CLI::App& root);
 Command register_reflect(CLI::App& root);
-Command register_reflect_cluster(CLI::App& root);
 
 }  // namespace proxima::cli

@@ -18,7 +18,6 @@ int main(int argc, char** argv) {
       cli::register_visibility(root),
       cli::register_sample(root),
       cli::register_reflect(root),
-      cli::register_reflect_cluster(root),
   };
   try {
     root.parse(argc, argv);

@@ -80,6 +80,12 @@ std::optional<ClusterCamera> build_cluster_camera(const ClusterCameraInput& in) 
   }
   out.planar = same_normals;
   out.clip_offset = 0.5f * in.plane_tolerance;
+  if (!out.planar) {
+    // A curved cluster's points lie on both sides of its fitting plane: the near plane goes
+    // through the lowest of them, so no ray starts behind it (rays from the rim of a convex
+    // cluster hit things between the rim and the fitting plane).
+    for (vec3 p : in.points) out.clip_offset = std::min(out.clip_offset, glm::dot(p - plane.point, plane.normal) - in.plane_tolerance);
+  }
 
   // Step 3a: mirrored eye.
   const float eye_dist = glm::dot(in.eye - plane.point, plane.normal);

@@ -337,6 +337,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
 
   out.cluster = clusters.cluster_of;
   out.flags.assign(n, 0);
+  out.occlusion_cause.assign(n, uint8_t(OcclusionCause::None));
   RasterImages images;
   ImageF color;
   for (size_t c = 0; c < nc; ++c) {
@@ -423,18 +424,26 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
           // Occlusion error: the surface Embree hits is not what the image holds there.
           if (reference && reference->hit_triangle[r] != kNoTriangle) {
             const vec3 x = o + reference->hit_t[r] * dir;
+            const uint32_t tri = reference->hit_triangle[r];
             auto pr = project(cam, x);
-            bool absent = glm::dot(x - k.plane_point, k.plane_normal) <= k.clip_offset || !pr ||
-                          pr->pixel.x < 0.0f || pr->pixel.y < 0.0f || pr->pixel.x >= float(cam.width) ||
-                          pr->pixel.y >= float(cam.height);
-            if (!absent && pr->depth <= cam.far) {
+            OcclusionCause cause = OcclusionCause::None;
+            if (reference->hit_t[r] > far)
+              cause = OcclusionCause::None;  // beyond the (glossy) far distance: faded out by design
+            else if (glm::dot(x - k.plane_point, k.plane_normal) <= k.clip_offset)
+              cause = OcclusionCause::BehindNear;
+            else if (!pr || pr->pixel.x < 0.0f || pr->pixel.y < 0.0f || pr->pixel.x >= float(cam.width) ||
+                     pr->pixel.y >= float(cam.height))
+              cause = OcclusionCause::OutsideImage;
+            else if (!k.planar && scene.triangle_object[tri] == clusters.reflector[c])
+              cause = OcclusionCause::OwnReflector;
+            else if (!visible_near(images, pr->pixel, pr->depth, tri))
               // Hidden only if no texel within one of its projection holds the surface or
               // something at its depth or beyond (resolution is not occlusion).
-              absent = !visible_near(images, pr->pixel, pr->depth, reference->hit_triangle[r]);
-            }
-            if (absent && (!pr || pr->depth <= cam.far)) {
+              cause = OcclusionCause::Hidden;
+            if (cause != OcclusionCause::None) {
               out.flags[i] |= kOcclusionError;
               ray_occluded[r - ray_base] = 1;
+              if (out.occlusion_cause[i] == uint8_t(OcclusionCause::None)) out.occlusion_cause[i] = uint8_t(cause);
             }
           }
         }
@@ -452,6 +461,8 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     ++st.mirror_samples;
     st.mirror_occlusion_error_samples += (out.flags[i] & kOcclusionError) != 0;
   }
+  for (uint8_t cause : out.occlusion_cause)
+    if (cause != uint8_t(OcclusionCause::None)) ++st.occlusion_cause_samples[cause];
   for (uint8_t flag : out.flags) {
     st.env_fallback_samples += (flag & kEnvFallback) != 0;
     st.occlusion_error_samples += (flag & kOcclusionError) != 0;

@@ -101,7 +101,8 @@ DistanceCubeMap render_distance_cube_map(const Scene& scene, const RayScene& ray
               surface_point_seen(scene, t, g.barycentric.at(x, y, 0), g.barycentric.at(x, y, 1), p - center);
           Pcg32 rng(derive_seed(options.seed, uint64_t(f), uint64_t(y) * uint64_t(res) + uint64_t(x)));
           // Texels are one bounce deep: their own reflections are beyond the bounce limit.
-          vec3 color = combine_shading(light.local_terms(sp, rng));
+          vec3 color = options.shade ? options.shade(t, sp.u, sp.v, center - p)
+                                     : combine_shading(light.local_terms(sp, rng));
           for (int c = 0; c < 3; ++c) face.at(x, y, c) = color[c];
           face.at(x, y, 3) = distance.at(x, y) = glm::length(p - center);
         }

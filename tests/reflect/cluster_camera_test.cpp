@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "proxima/reflect/cluster_camera.h"
@@ -56,6 +57,25 @@ TEST(ClusterCamera, ConvexReflectorMovesCenterTowardsThePlane) {
   EXPECT_NEAR(glm::length(glm::cross(ec - k->mirrored_eye, k->plane_point - k->mirrored_eye)), 0.0f, 1e-4f);
 }
 
+TEST(ClusterCamera, CurvedClusterNearPlaneKeepsEveryPoint) {
+  // The same cap: its rim lies behind the fitting plane (through the mean point), the near
+  // plane must not: every ray starts in front of it.
+  const vec3 eye(0.3f, 0.4f, 4.0f);
+  Patch patch;
+  for (int i = -5; i <= 5; ++i)
+    for (int j = -5; j <= 5; ++j) {
+      vec3 n = glm::normalize(vec3(0.06f * float(i), 0.06f * float(j), 1.0f));
+      add_point(patch, eye, n, n, 20.0f);
+    }
+  auto k = build_cluster_camera(input(patch, eye));
+  ASSERT_TRUE(k.has_value());
+  float lowest = kInf;
+  for (vec3 p : patch.points) lowest = std::min(lowest, glm::dot(p - k->plane_point, k->plane_normal));
+  EXPECT_LT(lowest, -0.01f);  // the rim is well behind the fitting plane
+  EXPECT_LT(k->clip_offset, lowest);
+  EXPECT_GT(k->clip_offset, lowest - 2e-4f);
+}
+
 TEST(ClusterCamera, PlanarClusterUsesTheMirroredEye) {
   const vec3 eye(0.5f, 1.6f, 3.0f);
   Patch patch;
@@ -68,6 +88,7 @@ TEST(ClusterCamera, PlanarClusterUsesTheMirroredEye) {
   EXPECT_TRUE(k->planar);
   EXPECT_EQ(k->f, 1.0f);
   EXPECT_EQ(k->camera.position, k->mirrored_eye);
+  EXPECT_GT(k->clip_offset, 0.0f);  // the fitting plane itself, clear of the mirror's surface
   EXPECT_NEAR(k->mirrored_eye.y, -1.6f, 1e-5f);
   // Every reflection ray passes through e0: its start and end project to the same pixel.
   for (size_t i = 0; i < patch.points.size(); i += 37) {

@@ -1,4 +1,4 @@
-// `proxima reflect-cluster` end to end: results.json carries the metrics issue 7 names;
+// `proxima reflect --method cluster` end to end: results.json carries the metrics issue 7 names;
 // bad input is exit code 2 with nothing written.
 #include <gtest/gtest.h>
 
@@ -26,8 +26,8 @@ int run_cli(const std::string& args) {
 TEST(ClusterCli, CompareWritesTheIssueMetrics) {
   TempDir dir;
   const auto out = dir.path / "run";
-  ASSERT_EQ(run_cli("reflect-cluster --scene room-reflector --frames 2 --width 48 --height 32 --ss 1 --compare --out " +
-                    out.string()),
+  ASSERT_EQ(run_cli("reflect --method cluster --scene room-reflector --path 0 --frames 2 --width 48 --height 32 --ss 1 "
+                    "--cube-size 16 --compare --out " + out.string()),
             0);
   std::ifstream in(out / "results.json");
   nlohmann::json j = nlohmann::json::parse(in);
@@ -36,15 +36,43 @@ TEST(ClusterCli, CompareWritesTheIssueMetrics) {
                            "reference_dynamic_ms_avg"})
     EXPECT_TRUE(j["metrics"].contains(name)) << name;
   EXPECT_GE(j["metrics"]["clusters_avg"].get<double>(), 1.0);
-  EXPECT_TRUE(std::filesystem::exists(out / "reference.png"));
+  EXPECT_EQ(j["metrics"]["frames"].get<double>(), 2.0);
+  for (const char* name : {"reference.png", "envmap.png", "error_cluster.png", "error_envmap.png", "cluster.png"})
+    EXPECT_TRUE(std::filesystem::exists(out / name)) << name;
+  // The occlusion-error causes partition the occlusion-error samples.
+  double causes = 0.0;
+  for (const char* name : {"occlusion_behind_near_plane_pct_avg", "occlusion_outside_image_pct_avg",
+                           "occlusion_own_curved_reflector_pct_avg", "occlusion_hidden_in_image_pct_avg"})
+    causes += j["metrics"][name].get<double>();
+  EXPECT_NEAR(causes, j["metrics"]["occlusion_error_pct_avg"].get<double>(), 1e-9);
+}
+
+TEST(ClusterCli, OneSceneCameraOrOnePathFrame) {
+  TempDir dir;
+  for (const std::string& pick : {std::string("--camera 0"), std::string("--path 0 --frame 3")}) {
+    const auto out = dir.path / (pick[2] == 'c' ? "camera" : "frame");
+    ASSERT_EQ(run_cli("reflect --method cluster --scene room-reflector " + pick + " --width 40 --ss 1 --out " +
+                      out.string()),
+              0)
+        << pick;
+    std::ifstream in(out / "results.json");
+    nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["metrics"]["frames"].get<double>(), 1.0) << pick;
+    EXPECT_TRUE(std::filesystem::exists(out / "cluster.png")) << pick;
+  }
 }
 
 TEST(ClusterCli, BadInputIsExitCodeTwoAndWritesNothing) {
   TempDir dir;
   const auto out = dir.path / "bad";
-  EXPECT_EQ(run_cli("reflect-cluster --scene room-reflector --ss 0 --out " + out.string()), 2);
-  EXPECT_EQ(run_cli("reflect-cluster --scene room-reflector --path nope --out " + out.string()), 2);
-  EXPECT_EQ(run_cli("reflect-cluster --scene room-reflector --gloss-rays 5000 --out " + out.string()), 2);
+  EXPECT_EQ(run_cli("reflect --method cluster --scene room-reflector --ss 0 --out " + out.string()), 2);
+  EXPECT_EQ(run_cli("reflect --method cluster --scene room-reflector --path nope --out " + out.string()), 2);
+  EXPECT_EQ(run_cli("reflect --method cluster --scene room-reflector --camera nope --out " + out.string()), 2);
+  EXPECT_EQ(run_cli("reflect --method cluster --scene room-reflector --path 0 --frame 100000 --out " + out.string()), 2);
+  EXPECT_EQ(run_cli("reflect --method cluster --scene room-reflector --gloss-rays 5000 --out " + out.string()), 2);
+  EXPECT_EQ(run_cli("reflect --method clusters --scene room-reflector --out " + out.string()), 2);
+  // The old subcommand is gone.
+  EXPECT_EQ(run_cli("reflect-cluster --scene room-reflector --out " + out.string()), 2);
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 

@@ -28,8 +28,9 @@ struct ClusterCamera {
   vec3 plane_point{0.0f};    // P_c = mean P_i
   vec3 plane_normal{0.0f};   // n_c = normalized mean n_i (faces the eye's side)
   float clip_offset = 0.0f;  // near plane: only points x with dot(x − P_c, n_c) > clip_offset
-                             // belong to the depth image (half the plane tolerance: the
-                             // fitting plane, clear of a planar reflector's own surface)
+                             // belong to the depth image: half the plane tolerance for a
+                             // planar cluster (the fitting plane, clear of the reflector's own
+                             // surface); for a curved one the lowest P_i minus the tolerance
   vec3 mirrored_eye{0.0f};   // e0
   float f = 1.0f;            // d_n / d_f (Eq. 6), in (0, 1]; 1 for a planar cluster
   float d_n = 0.0f;          // diagonal of the start points' box on the plane, seen from e0

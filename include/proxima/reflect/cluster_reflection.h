@@ -92,6 +92,16 @@ struct ClusterReflectionOptions {
   float fade_fraction = 0.1f;       // glossy hits in the last fraction of D fade to the environment
 };
 
+// Why a ray's Embree hit is absent from its cluster image (the first cause that applies).
+enum class OcclusionCause : uint8_t {
+  None = 0,
+  BehindNear = 1,    // behind the near (fitting) plane, clipped out of the image
+  OutsideImage = 2,  // projects outside the cluster image (outside the frustum)
+  OwnReflector = 3,  // on the cluster's own curved reflector, which its image leaves out
+  Hidden = 4,        // inside the frustum, hidden behind a nearer surface of the single-layer image
+};
+inline constexpr int kOcclusionCauses = 5;
+
 // Statistics of one frame (counts exact, times wall-clock).
 struct ClusterFrameStats {
   uint64_t clusters = 0;
@@ -107,6 +117,8 @@ struct ClusterFrameStats {
   uint64_t occlusion_error_rays = 0;
   uint64_t mirror_samples = 0;                  // samples with g = 0 (one ray each)
   uint64_t mirror_occlusion_error_samples = 0;  // of those, occlusion errors
+  uint64_t occlusion_cause_samples[kOcclusionCauses] = {};  // occlusion-error samples by the
+                                                           // cause of their first such ray
   uint64_t planar_clusters = 0;
   uint64_t planar_samples = 0;          // samples in planar clusters
   double clustering_ms = 0.0;           // step 2
@@ -126,6 +138,7 @@ struct ClusterReflections {
   std::vector<vec3> radiance;     // per sample: mean over its rays (G(d_i, g))
   std::vector<uint32_t> cluster;  // per sample: its cluster
   std::vector<uint8_t> flags;     // per sample: ClusterSampleFlag bits
+  std::vector<uint8_t> occlusion_cause;  // per sample: OcclusionCause of its first occlusion-error ray
   ClusterFrameStats stats;
 };
 

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <span>
 
 #include "proxima/core/cube_camera.h"
@@ -42,6 +43,10 @@ struct DistanceCubeMapOptions {
   // What to draw (at most one non-empty; both empty = the whole scene):
   std::span<const uint32_t> objects;  // only these object ids
   std::span<const uint32_t> exclude;  // every object but these (e.g. the reflector itself)
+  // Texel radiance of triangle (u, v) seen along `toward_viewer` (from the surface to c);
+  // unset = the reference's local model with shadows (DirectLight). The cluster method's
+  // comparison sets its unshadowed shading so both methods show the same surfaces' colors.
+  std::function<vec3(uint32_t triangle, float u, float v, vec3 toward_viewer)> shade;
 };
 
 // Renders the six faces around `center`. `rays` must hold `scene` (shadow rays see every
