@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cmd_reflect_temporal.h"
 #include "command.h"
 #include "proxima/core/error.h"
 #include "proxima/core/image_io.h"
@@ -37,6 +38,7 @@ struct ReflectFlags {
   int glossy_rays = 16;
   int reps = 3;
   double per_pixel_coverage = 0.05;  // LayerOptions::per_pixel_min_coverage
+  TemporalReflectFlags temporal;     // --method temporal (cmd_reflect_temporal.h)
 };
 
 // Error heat maps saturate here (0–255 units), the same for every method.
@@ -132,7 +134,7 @@ Command register_reflect(CLI::App& root) {
   add_threads_flag(app, f.common);
   add_seed_flag(app, f.common);
   add_out_flag(app, f.common, true);
-  app->add_option("--method", f.method, "envmap | rectified | average | layered | reference")
+  app->add_option("--method", f.method, "envmap | rectified | average | layered | reference | temporal")
       ->capture_default_str();
   app->add_flag("--compare", f.compare, "render every method and the reference; errors and the timing table");
   app->add_option("--d-e", f.d_e, "rectification tolerance d_e in meters")->capture_default_str();
@@ -151,9 +153,15 @@ Command register_reflect(CLI::App& root) {
       ->capture_default_str();
   app->add_option("--reps", f.reps, "timed frames per method, round-robin over the methods (median reported)")
       ->capture_default_str();
+  add_temporal_reflect_flags(app, f.temporal);
 
   return {
       app, [] {
+        if (f.method == "temporal") {
+          if (!f.camera.camera.empty()) fail_input("--camera: --method temporal follows --path");
+          TemporalReflectRun run{f.common, f.camera.path, f.compare, f.light_samples, f.glossy_rays, f.temporal};
+          return run_temporal_reflect(run);
+        }
         validate(f);
         ThreadLimit limit(f.common.threads);
         Scene scene = load_scene(f.common.scene);
