@@ -11,6 +11,9 @@ namespace proxima {
 namespace {
 
 constexpr size_t kRowGrain = 4;
+// Squared distance below this fraction of its neighbours' counts as an exact match (the
+// parabola would move it by < ~0.01 px).
+constexpr float kExactMatch = 1e-4f;
 
 vec3 pixel3(const ImageF& image, int x, int y) { return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)}; }
 
@@ -127,8 +130,11 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
           };
           const float b = former * former;
           const float l = sq(cx - 1, cy), rr = sq(cx + 1, cy), u = sq(cx, cy - 1), dn = sq(cx, cy + 1);
-          if (std::isfinite(l) && std::isfinite(rr)) sub.x = parabola_vertex(l, b, rr);
-          if (std::isfinite(u) && std::isfinite(dn)) sub.y = parabola_vertex(u, b, dn);
+          // An (almost) exact match stays put: near a zero of the distance its square is
+          // far from a parabola where the reflection is close (small s.r).
+          auto exact = [&](float p, float q) { return b <= kExactMatch * std::min(p, q); };
+          if (std::isfinite(l) && std::isfinite(rr) && !exact(l, rr)) sub.x = parabola_vertex(l, b, rr);
+          if (std::isfinite(u) && std::isfinite(dn) && !exact(u, dn)) sub.y = parabola_vertex(u, b, dn);
         }
         out.offset[i] = vec2(float(cx - x), float(cy - y)) + sub;
         out.valid[i] = 1;

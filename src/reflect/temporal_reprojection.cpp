@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "proxima/core/parallel.h"
-#include "proxima/reflect/temporal_offset_warp.h"
 
 namespace proxima {
 
@@ -15,7 +14,8 @@ constexpr size_t kSampleGrain = 1024;
 }  // namespace
 
 Reprojection reproject_reflections(const ReflectionFrame& frame, const ReflectionDepthImage& key,
-                                   const ImageF& radiance, const ImageU8* state, const ReprojectOptions& options) {
+                                   const ImageF& radiance, const ImageU8* state, const ReprojectOptions& options,
+                                   const WarpedMesh* mesh) {
   if (frame.supersample != 1) throw std::logic_error("reprojection: frame must have supersample 1");
   const size_t n = frame.sample_count();
   const int kw = key.object.width(), kh = key.object.height();
@@ -46,6 +46,7 @@ Reprojection reproject_reflections(const ReflectionFrame& frame, const Reflectio
         out.flag[i] = kReuseUnreliable;
         continue;
       }
+      if (mesh && warped_radiance_at(*mesh, q, out.radiance[i])) continue;
       // Bilinear over the usable pixels of the 2×2 around q (the nearest is one of them).
       const float fx = q.x - 0.5f, fy = q.y - 0.5f;
       const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));

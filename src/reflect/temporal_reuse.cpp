@@ -80,7 +80,8 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
     const IntermediateReflection mid = warp_reflections(state.key, offsets, options.warp);
     st.warp_ms = watch.elapsed_ms();
     watch.restart();
-    Reprojection r = reproject_reflections(frame, state.key, mid.radiance, &mid.state, options.reproject);
+    const WarpedMesh mesh{&state.key, &offsets, &mid};
+    Reprojection r = reproject_reflections(frame, state.key, mid.radiance, &mid.state, options.reproject, &mesh);
     st.reproject_ms = watch.elapsed_ms();
     st.disoccluded = r.disoccluded;
     st.unreliable = r.unreliable;

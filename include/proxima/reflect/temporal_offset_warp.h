@@ -5,7 +5,8 @@
 // where warped reflections overlap. Triangles stretched by more than `stretch_limit` in area
 // are drawn but mark their pixels unreliable; triangles across a depth discontinuity (or
 // with an INVALID corner) are not drawn, so the gaps they leave stay empty. Empty and
-// unreliable pixels are recomputed by the ray tracer.
+// unreliable pixels are recomputed by the ray tracer. Valid samples that no triangle
+// covers are splatted as points onto the nearest pixel, if it is still empty.
 #pragma once
 
 #include <cstdint>
@@ -24,15 +25,31 @@ struct WarpOptions {
                                       // fraction (max/min − 1) are not connected
 };
 
+inline constexpr uint32_t kNoWarpTriangle = 0xFFFFFFFFu;
+
 struct IntermediateReflection {
-  ImageF radiance;  // 3 channels, interpolated s.Lr of the nearest warped triangle
-  ImageF depth;     // its interpolated s.d + s.r, +inf where empty
-  ImageU8 state;    // WarpState
+  ImageF radiance;    // 3 channels, interpolated s.Lr of the nearest warped triangle
+  ImageF depth;       // its interpolated s.d + s.r, +inf where empty
+  ImageU8 state;      // WarpState
+  ImageU32 triangle;  // that triangle: 2·(y·width + x) + half of its grid quad, or kNoWarpTriangle
   uint64_t triangles = 0, stretched = 0, discontinuous = 0;
 };
 
 // Deterministic for any thread count (fixed row bands, triangles in a fixed order per band).
 IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const OffsetBuffer& offsets,
                                         const WarpOptions& options);
+
+// The warped mesh, for reading it at any point of the key grid.
+struct WarpedMesh {
+  const ReflectionDepthImage* key = nullptr;
+  const OffsetBuffer* offsets = nullptr;
+  const IntermediateReflection* image = nullptr;
+};
+
+// s.Lr of the warped mesh at continuous key-grid position q: the reliable triangles stored
+// in the 3×3 pixels around q, in a fixed order, evaluated at q itself. Reading the mesh
+// rather than the image's pixel centres resamples the key frame once, not twice (warp, then
+// bilinear reprojection). False when none of them contains q.
+bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance);
 
 }  // namespace proxima

@@ -16,6 +16,7 @@
 #include "proxima/core/image.h"
 #include "proxima/reflect/cluster_reflection.h"
 #include "proxima/reflect/temporal_depth_image.h"
+#include "proxima/reflect/temporal_offset_warp.h"
 
 namespace proxima {
 
@@ -37,8 +38,11 @@ struct Reprojection {
 };
 
 // `radiance` (3 channels) and `state` (WarpState, or null = everything reliable) are on the
-// key's pixel grid. `frame` at supersample 1.
+// key's pixel grid. With `mesh` (the warp that made them) a reused sample reads the warped
+// mesh at its exact projected position (warped_radiance_at), the bilinear mix of the image
+// only where that fails. `frame` at supersample 1.
 Reprojection reproject_reflections(const ReflectionFrame& frame, const ReflectionDepthImage& key,
-                                   const ImageF& radiance, const ImageU8* state, const ReprojectOptions& options);
+                                   const ImageF& radiance, const ImageU8* state, const ReprojectOptions& options,
+                                   const WarpedMesh* mesh = nullptr);
 
 }  // namespace proxima
