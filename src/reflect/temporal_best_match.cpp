@@ -77,7 +77,7 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
         const size_t i = size_t(y) * size_t(w) + size_t(x);
         const vec3 r = key_reflected_point(key, x, y);
         int cx = x, cy = y;
-        if (warm && previous->valid[i]) {
+        if (warm) {  // INVALID pixels too: their end point saves the next walk
           const int px = x + int(std::lround(previous->offset[i].x)), py = y + int(std::lround(previous->offset[i].y));
           if (s.same(px, py, object)) cx = px, cy = py;
         }
@@ -120,6 +120,7 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
         }
         if (!ok) {
           ++row_invalid[size_t(y)];
+          out.offset[i] = vec2(float(cx - x), float(cy - y));
           continue;
         }
         vec2 sub(0.0f);

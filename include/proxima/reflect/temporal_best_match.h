@@ -15,7 +15,8 @@
 namespace proxima {
 
 // Offset buffer O: per key pixel s* − s in key pixels (row-major), valid = 0 for INVALID
-// (no match inside the reflector's silhouette, or not a reflective pixel).
+// (no match inside the reflector's silhouette, or not a reflective pixel). An INVALID
+// reflective pixel keeps where its search ended, to warm-start the next frame's.
 struct OffsetBuffer {
   int width = 0, height = 0;
   std::vector<vec2> offset;
@@ -40,7 +41,8 @@ struct BestMatchStats {
 float match_distance(vec3 w_n, vec3 n_n, vec3 reflected, vec3 eye);
 
 // Algorithm 9 for every reflective pixel of `key` (parallel, deterministic). `previous` (same
-// size, may be null) warm-starts each search at s + its offset where valid.
+// size, may be null) warm-starts each search at s + its offset (valid or not) when that
+// lies on the same reflector.
 OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const OffsetBuffer* previous,
                                const BestMatchOptions& options, BestMatchStats* stats = nullptr);
 
