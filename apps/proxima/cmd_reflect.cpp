@@ -159,6 +159,7 @@ Command register_reflect(CLI::App& root) {
       app, [] {
         if (f.method == "temporal") {
           if (!f.camera.camera.empty()) fail_input("--camera: --method temporal follows --path");
+          if (f.camera.frame != 0) fail_input("--frame: --method temporal renders the whole path (see --frames)");
           TemporalReflectRun run{f.common, f.camera.path, f.compare, f.light_samples, f.glossy_rays, f.temporal};
           return run_temporal_reflect(run);
         }

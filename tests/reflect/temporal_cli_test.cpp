@@ -42,7 +42,8 @@ TEST(TemporalCli, BadInputIsExitCodeTwoAndWritesNothing) {
                                   base + "--path 0 --frames -1 --out " + out.string(),
                                   base + "--path 0 --frame-step 0 --out " + out.string(),
                                   base + "--path 0 --glossy-rays 5000 --out " + out.string(),
-                                  base + "--camera 0 --out " + out.string()}) {
+                                  base + "--camera 0 --out " + out.string(),
+                                  base + "--path 0 --frame 3 --out " + out.string()}) {
     const RunResult r = run_cli(args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
     EXPECT_NE(r.output.find("--"), std::string::npos) << r.output;  // names the flag
