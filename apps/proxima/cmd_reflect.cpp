@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cmd_reflect_cluster.h"
+#include "cmd_reflect_temporal.h"
 #include "command.h"
 #include "proxima/core/error.h"
 #include "proxima/core/image_io.h"
@@ -39,6 +40,7 @@ struct ReflectFlags {
   int glossy_rays = 16;
   int reps = 3;
   double per_pixel_coverage = 0.05;  // LayerOptions::per_pixel_min_coverage
+  TemporalReflectFlags temporal;     // --method temporal (cmd_reflect_temporal.h)
 };
 
 // Error heat maps saturate here (0–255 units), the same for every method.
@@ -155,7 +157,7 @@ Command register_reflect(CLI::App& root) {
   add_threads_flag(app, f.common);
   add_seed_flag(app, f.common);
   add_out_flag(app, f.common, true);
-  app->add_option("--method", f.method, "envmap | rectified | average | layered | reference | cluster")
+  app->add_option("--method", f.method, "envmap | rectified | average | layered | reference | cluster | temporal")
       ->capture_default_str();
   app->add_flag("--compare", f.compare,
                 "render every method and the reference; errors and the timing table (cluster: Embree on the "
@@ -178,10 +180,21 @@ Command register_reflect(CLI::App& root) {
   app->add_option("--reps", f.reps,
                   "timed frames per method, round-robin over the methods (median reported; cluster: 1 per frame)")
       ->capture_default_str();
+  // --frames, --frame-step and --image-frame are the cluster group's; temporal reads them too.
   add_cluster_reflect_flags(app, cluster);
+  add_temporal_reflect_flags(app, f.temporal);
 
   return {
       app, [app] {
+        if (f.method == "temporal") {
+          if (!f.camera.camera.empty()) fail_input("--camera: --method temporal follows --path");
+          if (f.camera.frame != 0) fail_input("--frame: --method temporal renders the whole path (see --frames)");
+          f.temporal.frames = cluster.frames;
+          f.temporal.frame_step = cluster.frame_step;
+          f.temporal.image_frame = cluster.image_frame;
+          TemporalReflectRun run{f.common, f.camera.path, f.compare, f.light_samples, f.glossy_rays, f.temporal};
+          return run_temporal_reflect(run);
+        }
         validate(f);
         if (f.method == "cluster") return run_cluster(f, *app, cluster);
         ThreadLimit limit(f.common.threads);

@@ -119,10 +119,10 @@ std::vector<vec3> envmap_reflections(const Scene& scene, const ReflectionFrame& 
 void add_cluster_reflect_flags(CLI::App* app, ClusterReflectFlags& f) {
   const auto group = "cluster (--method cluster)";
   app->add_option("--frames", f.frames,
-                  "cluster: with --path and no --frame, the path is divided into N frames (0 = its own count)")
+                  "cluster, temporal: with --path and no --frame, the path is divided into N frames (0 = its own count)")
       ->capture_default_str()
       ->group(group);
-  app->add_option("--frame-step", f.frame_step, "cluster: render every N-th of those frames")
+  app->add_option("--frame-step", f.frame_step, "cluster, temporal: render every N-th of those frames")
       ->capture_default_str()
       ->group(group);
   app->add_option("--ss", f.reflection.supersample, "cluster: K×K samples per pixel (the reference's sub-pixel grid)")
@@ -141,7 +141,7 @@ void add_cluster_reflect_flags(CLI::App* app, ClusterReflectFlags& f) {
   app->add_option("--resolution-scale", f.cluster.resolution_scale, "cluster: image texels per pixel footprint")
       ->capture_default_str()
       ->group(group);
-  app->add_option("--image-frame", f.image_frame, "cluster: frame whose images are written (-1 = the first rendered)")
+  app->add_option("--image-frame", f.image_frame, "cluster, temporal: frame whose images are written (-1 = cluster: the first rendered; temporal: the first that reuses a key frame)")
       ->capture_default_str()
       ->group(group);
   app->add_flag("--full-reference", f.full_reference,

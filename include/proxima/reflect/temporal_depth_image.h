@@ -1,0 +1,44 @@
+// The reflection depth image of a key frame (thesis ch. 5 §5.3): per pixel of the key view
+// B.1 normal s.n and depth s.d, B.2 reflectivity s.f, B.3 reflected radiance s.Lr and B.4
+// the reflection distance s.r (reflector → reflected surface along the reflection ray).
+// Built from a ReflectionFrame at one sample per pixel and the Embree trace of its rays, so
+// the stored Lr is exactly what full reflection ray tracing gives at that frame.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "proxima/core/camera.h"
+#include "proxima/core/image.h"
+#include "proxima/reflect/cluster_reflection.h"
+
+namespace proxima {
+
+// Object id of pixels that show no reflector.
+inline constexpr uint32_t kNoReflector = 0xFFFFFFFFu;
+
+struct ReflectionDepthImage {
+  Camera camera;      // key camera; E_old = camera.position
+  ImageU32 object;    // reflector object id (p.rID), kNoReflector elsewhere
+  ImageF position;    // W, world (3 channels), 0 elsewhere
+  ImageF normal;      // s.n, unit shading normal facing E_old (3 channels)
+  ImageF depth;       // s.d = −z_cam of W, +inf elsewhere
+  ImageF specular;    // s.f: the material's s (proxima's blend weight, docs/temporal.md)
+  ImageF radiance;    // s.Lr, mean over the sample's reflection rays (3 channels)
+  ImageF distance;    // s.r, clamped to max_distance for rays that escape
+  size_t reflective_pixels = 0;
+};
+
+// Mirror direction at a key pixel: reflect(W − E_old, s.n), unit.
+vec3 key_mirror_direction(const ReflectionDepthImage& key, int x, int y);
+
+// Reflected point R = W + reflect(W − E_old, s.n)·s.r (eq. 8).
+vec3 key_reflected_point(const ReflectionDepthImage& key, int x, int y);
+
+// `frame` must be prepared at supersample 1 (std::logic_error otherwise); `traced` is
+// trace_reflections of that frame. s.r is the mean finite hit distance over the sample's
+// rays (its one mirror ray, or the glossy lobe), max_distance when all escape.
+ReflectionDepthImage make_reflection_depth_image(const ReflectionFrame& frame, const TracedReflections& traced,
+                                                 float max_distance);
+
+}  // namespace proxima

@@ -1,0 +1,55 @@
+// Reflection offset (thesis ch. 5 §5.4.2): forward warp of the key frame's pixel grid mesh
+// (two triangles per 2×2 block of reflective pixels of one reflector) with every vertex
+// moved by its best-match offset, into an intermediate image on the key frame's pixel grid.
+// Vertices carry s.Lr; the depth test uses s.d + s.r so the nearer reflected surface wins
+// where warped reflections overlap. Triangles stretched by more than `stretch_limit` in area
+// are drawn but mark their pixels unreliable; triangles across a depth discontinuity (or
+// with an INVALID corner) are not drawn, so the gaps they leave stay empty. Empty and
+// unreliable pixels are recomputed by the ray tracer. Valid samples that no triangle
+// covers are splatted as points onto the nearest pixel, if it is still empty.
+#pragma once
+
+#include <cstdint>
+
+#include "proxima/core/image.h"
+#include "proxima/reflect/temporal_best_match.h"
+#include "proxima/reflect/temporal_depth_image.h"
+
+namespace proxima {
+
+enum WarpState : uint8_t { kWarpEmpty = 0, kWarpReliable = 1, kWarpUnreliable = 2 };
+
+struct WarpOptions {
+  float stretch_limit = 16.0f;        // warped / original triangle area above this → unreliable
+  float depth_discontinuity = 0.1f;   // corners whose s.d or s.d + s.r differ by more than this
+                                      // fraction (max/min − 1) are not connected
+};
+
+inline constexpr uint32_t kNoWarpTriangle = 0xFFFFFFFFu;
+
+struct IntermediateReflection {
+  ImageF radiance;    // 3 channels, interpolated s.Lr of the nearest warped triangle
+  ImageF depth;       // its interpolated s.d + s.r, +inf where empty
+  ImageU8 state;      // WarpState
+  ImageU32 triangle;  // that triangle: 2·(y·width + x) + half of its grid quad, or kNoWarpTriangle
+  uint64_t triangles = 0, stretched = 0, discontinuous = 0;
+};
+
+// Deterministic for any thread count (fixed row bands, triangles in a fixed order per band).
+IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const OffsetBuffer& offsets,
+                                        const WarpOptions& options);
+
+// The warped mesh, for reading it at any point of the key grid.
+struct WarpedMesh {
+  const ReflectionDepthImage* key = nullptr;
+  const OffsetBuffer* offsets = nullptr;
+  const IntermediateReflection* image = nullptr;
+};
+
+// s.Lr of the warped mesh at continuous key-grid position q: the reliable triangles stored
+// in the 3×3 pixels around q, in a fixed order, evaluated at q itself. Reading the mesh
+// rather than the image's pixel centres resamples the key frame once, not twice (warp, then
+// bilinear reprojection). False when none of them contains q.
+bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance);
+
+}  // namespace proxima

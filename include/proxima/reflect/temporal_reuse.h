@@ -1,0 +1,71 @@
+// Temporal reuse of reflections between frames (thesis ch. 5, Algorithm 8). Per frame, on
+// a ReflectionFrame at one sample per pixel (its G-buffer pass is the diffuse shading):
+// a key frame traces every reflection ray with Embree and stores the reflection depth
+// image; any other frame runs best match → offset warp → depth reprojection and traces
+// only the disoccluded and unreliable samples. The result composes as base + s·Lr
+// (compose_reflections), the same blend full ray tracing uses (docs/temporal.md).
+// Key-frame policy (§5.4.4): when a frame recomputes more than `keyframe_threshold` of its
+// reflective samples, the next frame is a key frame.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "proxima/reflect/cluster_reflection.h"
+#include "proxima/reflect/temporal_best_match.h"
+#include "proxima/reflect/temporal_depth_image.h"
+#include "proxima/reflect/temporal_offset_warp.h"
+#include "proxima/reflect/temporal_reprojection.h"
+#include "proxima/scene/scene.h"
+#include "proxima/trace/ray_scene.h"
+
+namespace proxima {
+
+struct TemporalOptions {
+  BestMatchOptions match;
+  WarpOptions warp;
+  ReprojectOptions reproject;
+  float keyframe_threshold = 0.3f;  // recomputed fraction above which the next frame is a key frame
+};
+
+// What persists between frames.
+struct TemporalState {
+  ReflectionDepthImage key;
+  OffsetBuffer previous;   // last frame's offsets (warm start), empty after a key frame
+  bool need_key = true;    // the next frame is a key frame
+  int frames_since_key = 0;
+};
+
+struct TemporalFrameStats {
+  bool key = false;
+  uint64_t reflective = 0;   // reflective samples of the frame
+  uint64_t recomputed = 0;   // traced on a non-key frame (disoccluded + unreliable)
+  uint64_t disoccluded = 0, unreliable = 0, invalid_offsets = 0;
+  double key_ms = 0.0;        // key frame: full trace + reflection depth image
+  double match_ms = 0.0;      // best match (Algorithm 9)
+  double warp_ms = 0.0;       // reflection offset (grid forward warp)
+  double reproject_ms = 0.0;  // depth-based reprojection
+  double recompute_ms = 0.0;  // tracing the flagged samples
+  double reflection_ms() const { return key_ms + match_ms + warp_ms + reproject_ms + recompute_ms; }
+  double recompute_fraction() const { return reflective ? double(recomputed) / double(reflective) : 0.0; }
+};
+
+// Reflected radiance per sample of `frame` (supersample 1; `rays` built from `scene`).
+// Updates `state` and applies the key-frame policy. `flags` (may be null) receives the
+// ReuseFlag of every sample (all kReuseOk on a key frame). Deterministic for any thread count.
+std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
+                                       TemporalState& state, const TemporalOptions& options,
+                                       TemporalFrameStats* stats = nullptr, std::vector<uint8_t>* flags = nullptr);
+
+// The baseline: the current key frame's Lr reprojected by depth alone; flagged samples are
+// traced, like the temporal method's. `recomputed` (may be null) receives their count.
+std::vector<vec3> direct_reprojection(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
+                                      const ReflectionDepthImage& key, const ReprojectOptions& options,
+                                      uint64_t* recomputed = nullptr);
+
+// Traces only the listed samples of `frame` (as trace_reflections, one radiance each).
+std::vector<vec3> trace_reflection_subset(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
+                                          std::span<const uint32_t> samples);
+
+}  // namespace proxima

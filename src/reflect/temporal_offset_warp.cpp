@@ -1,0 +1,180 @@
+// Reflection offset (thesis ch. 5 §5.4.2): grid-mesh forward warp by the best-match offsets.
+// A small screen-space triangle rasterizer of its own: raster/ rasterizes scene geometry
+// through a camera, while these triangles live on the key frame's pixel grid already.
+#include "proxima/reflect/temporal_offset_warp.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "proxima/core/parallel.h"
+
+namespace proxima {
+
+namespace {
+
+constexpr int kBandRows = 16;
+// Pixel centres this close outside an edge still count as covered, so a vertex sitting on
+// a pixel centre (offset 0) covers it despite rounding.
+constexpr float kEdgeSlack = 1e-3f;
+
+struct Vertex {
+  vec2 p;
+  float z;
+  vec3 lr;
+};
+
+float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }
+
+// Corners of the two triangles of grid quad (x, y)–(x+1, y+1), split along its main diagonal.
+constexpr int kCorner[2][3][2] = {{{0, 0}, {1, 0}, {1, 1}}, {{0, 0}, {1, 1}, {0, 1}}};
+
+Vertex warp_vertex(const ReflectionDepthImage& key, const OffsetBuffer& offsets, int x, int y) {
+  const size_t i = size_t(y) * size_t(key.object.width()) + size_t(x);
+  return Vertex{vec2(float(x) + 0.5f, float(y) + 0.5f) + offsets.offset[i], key.depth.at(x, y) + key.distance.at(x, y),
+                vec3(key.radiance.at(x, y, 0), key.radiance.at(x, y, 1), key.radiance.at(x, y, 2))};
+}
+
+}  // namespace
+
+bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance) {
+  const IntermediateReflection& image = *mesh.image;
+  const int w = image.triangle.width(), h = image.triangle.height();
+  const int cx = int(std::floor(q.x)), cy = int(std::floor(q.y));
+  uint32_t tried[9];
+  int n_tried = 0;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int x = cx + dx, y = cy + dy;
+      if (x < 0 || y < 0 || x >= w || y >= h || image.state.at(x, y) != kWarpReliable) continue;
+      const uint32_t id = image.triangle.at(x, y);
+      if (id == kNoWarpTriangle) continue;  // a splatted point
+      if (std::find(tried, tried + n_tried, id) != tried + n_tried) continue;
+      tried[n_tried++] = id;
+      const uint32_t quad = id / 2u, half = id % 2u;
+      const int qx = int(quad % uint32_t(w)), qy = int(quad / uint32_t(w));
+      Vertex v[3];
+      for (int k = 0; k < 3; ++k) v[k] = warp_vertex(*mesh.key, *mesh.offsets, qx + kCorner[half][k][0], qy + kCorner[half][k][1]);
+      const float area2 = cross2(v[1].p - v[0].p, v[2].p - v[0].p);
+      if (std::abs(area2) < 1e-12f) continue;
+      float e0 = cross2(v[2].p - v[1].p, q - v[1].p), e1 = cross2(v[0].p - v[2].p, q - v[2].p),
+            e2 = cross2(v[1].p - v[0].p, q - v[0].p);
+      if (area2 < 0.0f) e0 = -e0, e1 = -e1, e2 = -e2;
+      const float slack = kEdgeSlack * std::sqrt(std::abs(area2));
+      if (e0 < -slack || e1 < -slack || e2 < -slack) continue;
+      const float b0 = std::max(e0, 0.0f), b1 = std::max(e1, 0.0f), b2 = std::max(e2, 0.0f);
+      radiance = (b0 * v[0].lr + b1 * v[1].lr + b2 * v[2].lr) / (b0 + b1 + b2);
+      return true;
+    }
+  return false;
+}
+
+IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const OffsetBuffer& offsets,
+                                        const WarpOptions& options) {
+  const int w = key.object.width(), h = key.object.height();
+  IntermediateReflection out;
+  out.radiance = ImageF(w, h, 3, 0.0f);
+  out.depth = ImageF(w, h, 1, kInf);
+  out.state = ImageU8(w, h, 1, kWarpEmpty);
+  out.triangle = ImageU32(w, h, 1, kNoWarpTriangle);
+
+  auto vertex = [&](int x, int y) { return warp_vertex(key, offsets, x, y); };
+  auto valid = [&](int x, int y) {
+    return key.object.at(x, y) != kNoReflector && offsets.valid[size_t(y) * size_t(w) + size_t(x)];
+  };
+  const float jump = 1.0f + options.depth_discontinuity;
+  auto continuous = [&](std::array<float, 3> v) {
+    const auto [lo, hi] = std::minmax({v[0], v[1], v[2]});
+    return hi <= jump * lo;
+  };
+
+  // Triangles: quad (x, y)–(x+1, y+1) split along its main diagonal; id = 2·quad + half.
+  // Bin each into the row bands its bounding box touches (sequential: a fixed order).
+  struct Tri {
+    uint32_t id;
+    bool reliable;
+  };
+  const int bands = (h + kBandRows - 1) / kBandRows;
+  std::vector<std::vector<Tri>> band_tris(size_t(std::max(bands, 1)));
+  for (int y = 0; y + 1 < h; ++y)
+    for (int x = 0; x + 1 < w; ++x)
+      for (int half = 0; half < 2; ++half) {
+        int cx[3], cy[3];
+        for (int k = 0; k < 3; ++k) cx[k] = x + kCorner[half][k][0], cy[k] = y + kCorner[half][k][1];
+        if (!valid(cx[0], cy[0]) || !valid(cx[1], cy[1]) || !valid(cx[2], cy[2])) continue;
+        const uint32_t o = key.object.at(cx[0], cy[0]);
+        if (key.object.at(cx[1], cy[1]) != o || key.object.at(cx[2], cy[2]) != o) continue;
+        const Vertex a = vertex(cx[0], cy[0]), b = vertex(cx[1], cy[1]), c = vertex(cx[2], cy[2]);
+        if (!continuous({key.depth.at(cx[0], cy[0]), key.depth.at(cx[1], cy[1]), key.depth.at(cx[2], cy[2])}) ||
+            !continuous({a.z, b.z, c.z})) {
+          ++out.discontinuous;
+          continue;
+        }
+        ++out.triangles;
+        const float area = 0.5f * std::abs(cross2(b.p - a.p, c.p - a.p));
+        const bool reliable = area <= options.stretch_limit * 0.5f;  // original area: ½ pixel²
+        if (!reliable) ++out.stretched;
+        const float ymin = std::min({a.p.y, b.p.y, c.p.y}), ymax = std::max({a.p.y, b.p.y, c.p.y});
+        const int r0 = std::max(0, int(std::ceil(ymin - 0.5f - kEdgeSlack)));
+        const int r1 = std::min(h - 1, int(std::floor(ymax - 0.5f + kEdgeSlack)));
+        if (r0 > r1) continue;
+        const uint32_t id = 2u * (uint32_t(y) * uint32_t(w) + uint32_t(x)) + uint32_t(half);
+        for (int band = r0 / kBandRows; band <= r1 / kBandRows; ++band)
+          band_tris[size_t(band)].push_back({id, reliable});
+      }
+
+  parallel_for(size_t(bands), 1, [&](size_t first, size_t last) {
+    for (size_t band = first; band < last; ++band) {
+      const int y_lo = int(band) * kBandRows, y_hi = std::min(h, y_lo + kBandRows);
+      for (const Tri& t : band_tris[band]) {
+        const uint32_t quad = t.id / 2u, half = t.id % 2u;
+        const int qx = int(quad % uint32_t(w)), qy = int(quad / uint32_t(w));
+        Vertex v[3];
+        for (int k = 0; k < 3; ++k) v[k] = vertex(qx + kCorner[half][k][0], qy + kCorner[half][k][1]);
+        const float area2 = cross2(v[1].p - v[0].p, v[2].p - v[0].p);
+        if (std::abs(area2) < 1e-12f) continue;  // collapsed: covers no pixel centre
+        const float ymin = std::min({v[0].p.y, v[1].p.y, v[2].p.y}), ymax = std::max({v[0].p.y, v[1].p.y, v[2].p.y});
+        const float xmin = std::min({v[0].p.x, v[1].p.x, v[2].p.x}), xmax = std::max({v[0].p.x, v[1].p.x, v[2].p.x});
+        const int py0 = std::max(y_lo, int(std::ceil(ymin - 0.5f - kEdgeSlack)));
+        const int py1 = std::min(y_hi - 1, int(std::floor(ymax - 0.5f + kEdgeSlack)));
+        const int px0 = std::max(0, int(std::ceil(xmin - 0.5f - kEdgeSlack)));
+        const int px1 = std::min(w - 1, int(std::floor(xmax - 0.5f + kEdgeSlack)));
+        const float slack = kEdgeSlack * std::sqrt(std::abs(area2));  // in edge-function units
+        for (int py = py0; py <= py1; ++py)
+          for (int px = px0; px <= px1; ++px) {
+            const vec2 p(float(px) + 0.5f, float(py) + 0.5f);
+            // Barycentrics from edge functions, signed by the triangle's orientation.
+            float e0 = cross2(v[2].p - v[1].p, p - v[1].p), e1 = cross2(v[0].p - v[2].p, p - v[2].p),
+                  e2 = cross2(v[1].p - v[0].p, p - v[0].p);
+            if (area2 < 0.0f) e0 = -e0, e1 = -e1, e2 = -e2;
+            if (e0 < -slack || e1 < -slack || e2 < -slack) continue;
+            const float inv = 1.0f / std::abs(area2);
+            const float b0 = std::max(e0, 0.0f) * inv, b1 = std::max(e1, 0.0f) * inv, b2 = std::max(e2, 0.0f) * inv;
+            const float sum = b0 + b1 + b2;
+            const float z = (b0 * v[0].z + b1 * v[1].z + b2 * v[2].z) / sum;
+            if (!(z < out.depth.at(px, py))) continue;  // ties: the first triangle keeps the pixel
+            out.depth.at(px, py) = z;
+            const vec3 lr = (b0 * v[0].lr + b1 * v[1].lr + b2 * v[2].lr) / sum;
+            for (int c = 0; c < 3; ++c) out.radiance.at(px, py, c) = lr[c];
+            out.state.at(px, py) = t.reliable ? kWarpReliable : kWarpUnreliable;
+            out.triangle.at(px, py) = t.id;
+          }
+      }
+    }
+  });
+  // Valid samples no triangle reached (one-pixel-wide parts of a reflector, corners next
+  // to a dropped triangle) still land as points on the pixel nearest their warped position.
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (!valid(x, y)) continue;
+      const Vertex v = vertex(x, y);
+      const int px = int(std::floor(v.p.x)), py = int(std::floor(v.p.y));
+      if (px < 0 || py < 0 || px >= w || py >= h || out.state.at(px, py) != kWarpEmpty) continue;
+      out.depth.at(px, py) = v.z;
+      for (int c = 0; c < 3; ++c) out.radiance.at(px, py, c) = v.lr[c];
+      out.state.at(px, py) = kWarpReliable;
+    }
+  return out;
+}
+
+}  // namespace proxima

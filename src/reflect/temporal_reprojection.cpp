@@ -1,0 +1,79 @@
+// Depth-based reprojection (thesis ch. 5 §5.4, step 3), as a gather over the new frame's
+// reflective samples: deterministic, and each sample gets exactly one answer or a flag.
+#include "proxima/reflect/temporal_reprojection.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "proxima/core/parallel.h"
+
+namespace proxima {
+
+namespace {
+constexpr size_t kSampleGrain = 1024;
+}  // namespace
+
+Reprojection reproject_reflections(const ReflectionFrame& frame, const ReflectionDepthImage& key,
+                                   const ImageF& radiance, const ImageU8* state, const ReprojectOptions& options,
+                                   const WarpedMesh* mesh) {
+  if (frame.supersample != 1) throw std::logic_error("reprojection: frame must have supersample 1");
+  const size_t n = frame.sample_count();
+  const int kw = key.object.width(), kh = key.object.height();
+  Reprojection out;
+  out.radiance.assign(n, vec3(0.0f));
+  out.flag.assign(n, kReuseOk);
+  auto same_surface = [&](int x, int y, uint32_t object, float depth) {
+    return x >= 0 && y >= 0 && x < kw && y < kh && key.object.at(x, y) == object &&
+           std::abs(key.depth.at(x, y) - depth) <= options.depth_tolerance * depth;
+  };
+  auto reliable = [&](int x, int y) { return !state || state->at(x, y) == kWarpReliable; };
+
+  parallel_for(n, kSampleGrain, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      const auto proj = project(key.camera, frame.position[i]);
+      const uint32_t object = frame.reflector[i];
+      if (!proj) {
+        out.flag[i] = kReuseDisoccluded;
+        continue;
+      }
+      const vec2 q = proj->pixel;
+      const int nx = int(std::floor(q.x)), ny = int(std::floor(q.y));
+      if (!same_surface(nx, ny, object, proj->depth)) {
+        out.flag[i] = kReuseDisoccluded;
+        continue;
+      }
+      if (!reliable(nx, ny)) {
+        out.flag[i] = kReuseUnreliable;
+        continue;
+      }
+      if (mesh && warped_radiance_at(*mesh, q, out.radiance[i])) continue;
+      // Bilinear over the usable pixels of the 2×2 around q (the nearest is one of them).
+      const float fx = q.x - 0.5f, fy = q.y - 0.5f;
+      const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+      const float tx = fx - float(x0), ty = fy - float(y0);
+      vec3 sum(0.0f);
+      float weight = 0.0f;
+      for (int j = 0; j < 2; ++j)
+        for (int k = 0; k < 2; ++k) {
+          const int x = x0 + k, y = y0 + j;
+          if (!same_surface(x, y, object, proj->depth) || !reliable(x, y)) continue;
+          const float wt = (k ? tx : 1.0f - tx) * (j ? ty : 1.0f - ty);
+          if (wt <= 0.0f) continue;
+          sum += wt * vec3(radiance.at(x, y, 0), radiance.at(x, y, 1), radiance.at(x, y, 2));
+          weight += wt;
+        }
+      if (weight > 0.0f) {
+        out.radiance[i] = sum / weight;
+      } else {
+        out.radiance[i] = vec3(radiance.at(nx, ny, 0), radiance.at(nx, ny, 1), radiance.at(nx, ny, 2));
+      }
+    }
+  });
+  for (uint8_t f : out.flag) {
+    out.disoccluded += (f & kReuseDisoccluded) != 0;
+    out.unreliable += (f & kReuseUnreliable) != 0;
+  }
+  return out;
+}
+
+}  // namespace proxima

@@ -1,0 +1,112 @@
+// Temporal reuse of reflections (thesis ch. 5, Algorithm 8 and §5.4.4 key-frame policy).
+#include "proxima/reflect/temporal_reuse.h"
+
+#include <stdexcept>
+
+#include "proxima/core/timer.h"
+
+namespace proxima {
+
+namespace {
+
+// Reflection rays that escape store s.r = this × the scene diagonal: far enough that R
+// behaves like a direction in the match distance, finite for the warp's depth test.
+constexpr float kEscapeDistanceScale = 100.0f;
+
+// Traces the flagged samples and fills their radiance in.
+void recompute(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame, Reprojection& r) {
+  std::vector<uint32_t> todo;
+  for (size_t i = 0; i < r.flag.size(); ++i)
+    if (r.flag[i] != kReuseOk) todo.push_back(uint32_t(i));
+  const std::vector<vec3> traced = trace_reflection_subset(scene, rays, frame, todo);
+  for (size_t k = 0; k < todo.size(); ++k) r.radiance[todo[k]] = traced[k];
+}
+
+}  // namespace
+
+std::vector<vec3> trace_reflection_subset(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
+                                          std::span<const uint32_t> samples) {
+  // A frame holding just these samples' rays: trace_reflections reads pixel (for the
+  // count), origin, first_ray, direction and area_light_samples.
+  ReflectionFrame sub;
+  sub.area_light_samples = frame.area_light_samples;
+  sub.pixel.resize(samples.size());
+  sub.origin.resize(samples.size());
+  sub.first_ray.assign(samples.size() + 1, 0);
+  for (size_t k = 0; k < samples.size(); ++k) {
+    const uint32_t i = samples[k];
+    sub.pixel[k] = frame.pixel[i];
+    sub.origin[k] = frame.origin[i];
+    sub.first_ray[k + 1] = sub.first_ray[k] + (frame.first_ray[i + 1] - frame.first_ray[i]);
+  }
+  sub.direction.resize(sub.first_ray.back());
+  for (size_t k = 0; k < samples.size(); ++k) {
+    const uint32_t i = samples[k];
+    std::copy(frame.direction.begin() + frame.first_ray[i], frame.direction.begin() + frame.first_ray[i + 1],
+              sub.direction.begin() + sub.first_ray[k]);
+  }
+  return trace_reflections(scene, rays, sub).radiance;
+}
+
+std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
+                                       TemporalState& state, const TemporalOptions& options,
+                                       TemporalFrameStats* stats, std::vector<uint8_t>* flags) {
+  if (frame.supersample != 1) throw std::logic_error("temporal reflections: frame must have supersample 1");
+  TemporalFrameStats st;
+  st.reflective = frame.sample_count();
+  const bool size_changed =
+      state.key.camera.width != frame.camera.width || state.key.camera.height != frame.camera.height;
+  std::vector<vec3> radiance;
+  if (state.need_key || size_changed) {
+    // Key frame: trace everything, keep the reflection depth image.
+    Stopwatch watch;
+    TracedReflections traced = trace_reflections(scene, rays, frame);
+    state.key = make_reflection_depth_image(frame, traced, kEscapeDistanceScale * frame.scene_diagonal);
+    state.previous = {};
+    state.need_key = false;
+    state.frames_since_key = 0;
+    st.key = true;
+    st.key_ms = watch.elapsed_ms();
+    radiance = std::move(traced.radiance);
+    if (flags) flags->assign(frame.sample_count(), kReuseOk);
+  } else {
+    Stopwatch watch;
+    BestMatchStats ms;
+    OffsetBuffer offsets = best_match_search(state.key, frame.camera.position,
+                                             state.previous.width ? &state.previous : nullptr, options.match, &ms);
+    st.match_ms = watch.elapsed_ms();
+    st.invalid_offsets = ms.invalid;
+    watch.restart();
+    const IntermediateReflection mid = warp_reflections(state.key, offsets, options.warp);
+    st.warp_ms = watch.elapsed_ms();
+    watch.restart();
+    const WarpedMesh mesh{&state.key, &offsets, &mid};
+    Reprojection r = reproject_reflections(frame, state.key, mid.radiance, &mid.state, options.reproject, &mesh);
+    st.reproject_ms = watch.elapsed_ms();
+    st.disoccluded = r.disoccluded;
+    st.unreliable = r.unreliable;
+    st.recomputed = r.recompute();
+    watch.restart();
+    recompute(scene, rays, frame, r);
+    st.recompute_ms = watch.elapsed_ms();
+    state.previous = std::move(offsets);
+    ++state.frames_since_key;
+    // §5.4.4: too much recomputed → the next frame refreshes the key frame.
+    state.need_key = st.recompute_fraction() > double(options.keyframe_threshold);
+    radiance = std::move(r.radiance);
+    if (flags) *flags = std::move(r.flag);
+  }
+  if (stats) *stats = st;
+  return radiance;
+}
+
+std::vector<vec3> direct_reprojection(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
+                                      const ReflectionDepthImage& key, const ReprojectOptions& options,
+                                      uint64_t* recomputed) {
+  Reprojection r = reproject_reflections(frame, key, key.radiance, nullptr, options);
+  if (recomputed) *recomputed = r.recompute();
+  recompute(scene, rays, frame, r);
+  return std::move(r.radiance);
+}
+
+}  // namespace proxima

@@ -1,0 +1,238 @@
+// Temporal reuse of reflections (issue 8): exact reuse for an unchanged camera, the best
+// match against the analytic mirror correspondence, temporal vs direct reprojection on a
+// planar mirror, disocclusion flags, determinism.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "proxima/core/parallel.h"
+#include "proxima/eval/image_error.h"
+#include "proxima/reflect/temporal_reuse.h"
+#include "proxima/scene/procedural.h"
+#include "reflect_test_scenes.h"
+
+namespace proxima {
+
+namespace {
+
+using reflect_test::add_diffuse;
+using reflect_test::add_quad;
+
+// A 4 × 4 m floor mirror (y = 0, facing +Y), a smoothly textured 8 × 6 m wall behind it
+// (z = −2, facing +Z), a point light; optionally a small diffuse box floating between the
+// camera and the mirror (an occluder whose shadow on the key view disoccludes).
+Scene floor_mirror(bool occluder) {
+  Scene s;
+  s.name = "floor-mirror";
+  Texture tex;
+  tex.name = "waves";
+  tex.image = ImageF(32, 32, 3);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) {
+      tex.image.at(x, y, 0) = 0.5f + 0.4f * std::sin(0.39f * float(x));
+      tex.image.at(x, y, 1) = 0.5f + 0.4f * std::cos(0.29f * float(y));
+      tex.image.at(x, y, 2) = 0.5f + 0.3f * std::sin(0.2f * float(x + y));
+    }
+  s.textures.push_back(tex);
+  Material wall;
+  wall.diffuse = vec3(1.0f);
+  wall.diffuse_texture = 0;
+  const uint32_t wall_mat = add_material(s, wall);
+  const uint32_t mirror_mat = add_diffuse(s, vec3(0.5f), 1.0f);
+  add_quad(s, vec3(-2, 0, -2), vec3(0, 0, 4), vec3(4, 0, 0), mirror_mat, "mirror");
+  add_quad(s, vec3(-4, -1, -2), vec3(8, 0, 0), vec3(0, 6, 0), wall_mat, "wall");
+  if (occluder) {
+    Mesh box = make_box(vec3(0.3f));
+    for (vec3& p : box.positions) p += vec3(0.0f, 0.5f, 0.9f);
+    add_object(s, box, "box", add_diffuse(s, vec3(0.9f, 0.3f, 0.1f)));
+  }
+  s.point_lights.push_back({vec3(0.0f, 3.0f, 1.0f), vec3(12.0f)});
+  s.ambient = vec3(0.1f);
+  return s;
+}
+
+constexpr int kSize = 96;
+Camera eye_at(vec3 eye) { return look_at(eye, vec3(0.0f, 0.0f, -0.3f), vec3(0, 1, 0), 50.0f, kSize, kSize, 0.01f, 100.0f); }
+const vec3 kKeyEye(0.0f, 1.5f, 3.0f);
+const vec3 kMove(0.12f, 0.05f, -0.06f);  // the camera translation of the new frame
+
+ReflectionFrame frame_at(const Scene& scene, vec3 eye) {
+  ReflectionOptions o;
+  o.supersample = 1;
+  return prepare_reflection_frame(scene, eye_at(eye), o);
+}
+
+ImageU8 mask_of(const ReflectionFrame& frame, const std::vector<uint8_t>& keep) {
+  ImageU8 mask(frame.camera.width, frame.camera.height, 1, 0);
+  for (size_t i = 0; i < frame.sample_count(); ++i)
+    if (keep[i]) mask.data()[frame.pixel[i]] = 1;
+  return mask;
+}
+
+}  // namespace
+
+TEST(TemporalReflections, UnchangedCameraReproducesTheKeyFrameAndRecomputesNothing) {
+  const Scene scene = floor_mirror(true);
+  RayScene rays(scene);
+  const ReflectionFrame frame = frame_at(scene, kKeyEye);
+  ASSERT_GT(frame.sample_count(), 2000u);
+  TemporalState state;
+  TemporalFrameStats key_stats, stats;
+  const std::vector<vec3> key = temporal_reflections(scene, rays, frame, state, {}, &key_stats);
+  EXPECT_TRUE(key_stats.key);
+  const std::vector<vec3> again = temporal_reflections(scene, rays, frame, state, {}, &stats);
+  EXPECT_FALSE(stats.key);
+  EXPECT_EQ(stats.recomputed, 0u);
+  EXPECT_EQ(stats.invalid_offsets, 0u);
+  EXPECT_FALSE(state.need_key);
+  ASSERT_EQ(again.size(), key.size());
+  float worst = 0.0f;
+  for (size_t i = 0; i < key.size(); ++i)
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(again[i][c] - key[i][c]));
+  // Only float rounding (offsets of ~1e-7 px from the parabola fit and the projection).
+  EXPECT_LT(worst, 1e-5f);
+}
+
+TEST(TemporalReflections, BestMatchIsTheAnalyticMirrorCorrespondence) {
+  const Scene scene = floor_mirror(false);
+  RayScene rays(scene);
+  const ReflectionFrame frame = frame_at(scene, kKeyEye);
+  const ReflectionDepthImage key = make_reflection_depth_image(frame, trace_reflections(scene, rays, frame), 1e3f);
+  const vec3 eye = kKeyEye + kMove;
+  BestMatchStats st;
+  const OffsetBuffer offsets = best_match_search(key, eye, nullptr, {}, &st);
+  EXPECT_EQ(st.searched, frame.sample_count());
+  size_t checked = 0, matched = 0, valid_expected = 0;
+  float worst = 0.0f;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      if (key.object.at(x, y) == kNoReflector) continue;
+      // The point of the mirror plane y = 0 that reflects R towards the new eye: where the
+      // line from the eye to R mirrored in the plane crosses it.
+      vec3 r = key_reflected_point(key, x, y);
+      const vec3 r_mirrored(r.x, -r.y, r.z);
+      const float t = eye.y / (eye.y - r_mirrored.y);
+      const vec3 w_star = eye + t * (r_mirrored - eye);
+      const auto p = project(key.camera, w_star);
+      ASSERT_TRUE(p.has_value());
+      // Only where the analytic match lies well inside the mirror's image (not within 2
+      // pixels of its silhouette, where Algorithm 9 may rightly give INVALID).
+      const int px = int(std::floor(p->pixel.x)), py = int(std::floor(p->pixel.y));
+      bool interior = px >= 2 && py >= 2 && px < kSize - 2 && py < kSize - 2;
+      for (int dy = -2; interior && dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx)
+          if (key.object.at(px + dx, py + dy) == kNoReflector) interior = false;
+      if (!interior) continue;
+      ++valid_expected;
+      const size_t i = size_t(y) * kSize + size_t(x);
+      if (!offsets.valid[i]) continue;
+      ++checked;
+      const vec2 expected = p->pixel - vec2(float(x) + 0.5f, float(y) + 0.5f);
+      const float err = std::max(std::abs(offsets.offset[i].x - expected.x), std::abs(offsets.offset[i].y - expected.y));
+      worst = std::max(worst, err);
+      matched += err <= 1.0f;
+    }
+  ASSERT_GT(valid_expected, 1000u);
+  EXPECT_EQ(checked, valid_expected);  // no interior match is INVALID
+  EXPECT_EQ(matched, checked) << "worst offset error " << worst << " px";
+  // The camera moved: the offsets are not all zero (the test is not vacuous).
+  float longest = 0.0f;
+  for (size_t i = 0; i < offsets.offset.size(); ++i)
+    if (offsets.valid[i]) longest = std::max(longest, glm::length(offsets.offset[i]));
+  EXPECT_GT(longest, 3.0f);
+}
+
+TEST(TemporalReflections, DirectReprojectionIsWrongWhereTemporalReuseIsRight) {
+  const Scene scene = floor_mirror(false);
+  RayScene rays(scene);
+  const ReflectionFrame frame0 = frame_at(scene, kKeyEye);
+  const ReflectionDepthImage key = make_reflection_depth_image(frame0, trace_reflections(scene, rays, frame0), 1e3f);
+  const ReflectionFrame frame1 = frame_at(scene, kKeyEye + kMove);
+  const OffsetBuffer offsets = best_match_search(key, frame1.camera.position, nullptr, {});
+  const IntermediateReflection mid = warp_reflections(key, offsets, {});
+  const WarpedMesh mesh{&key, &offsets, &mid};
+  const Reprojection temporal = reproject_reflections(frame1, key, mid.radiance, &mid.state, {}, &mesh);
+  const Reprojection direct = reproject_reflections(frame1, key, key.radiance, nullptr, {});
+  const TracedReflections truth = trace_reflections(scene, rays, frame1);
+  // Compare on the samples both methods reuse (recomputed ones would be exact).
+  std::vector<uint8_t> both(frame1.sample_count());
+  size_t reused = 0;
+  for (size_t i = 0; i < both.size(); ++i) reused += both[i] = temporal.flag[i] == kReuseOk && direct.flag[i] == kReuseOk;
+  ASSERT_GT(reused, frame1.sample_count() / 2);
+  const ImageU8 mask = mask_of(frame1, both);
+  const ImageF reference = compose_reflections(frame1, truth.radiance);
+  const double temporal_mae = compare_images(compose_reflections(frame1, temporal.radiance), reference, &mask).mae_avg;
+  const double direct_mae = compare_images(compose_reflections(frame1, direct.radiance), reference, &mask).mae_avg;
+  std::printf("planar mirror, %zu reused samples: temporal MAE %.3f, direct MAE %.3f, recomputed %llu of %zu\n", reused,
+              temporal_mae, direct_mae, static_cast<unsigned long long>(temporal.recompute()), frame1.sample_count());
+  // Stated bounds (0–255 display scale): temporal ≤ 1.0 (the issue's goal), direct ≥ 3.0.
+  EXPECT_LE(temporal_mae, 1.0);
+  EXPECT_GE(direct_mae, 3.0);
+  EXPECT_GT(direct_mae, 4.0 * temporal_mae);
+  // Most of the mirror is reused, not recomputed.
+  EXPECT_LT(double(temporal.recompute()), 0.25 * double(frame1.sample_count()));
+}
+
+TEST(TemporalReflections, DisoccludedPixelsAreFlaggedForRecomputation) {
+  const Scene scene = floor_mirror(true);
+  RayScene rays(scene);
+  const ReflectionFrame frame0 = frame_at(scene, kKeyEye);
+  const ReflectionDepthImage key = make_reflection_depth_image(frame0, trace_reflections(scene, rays, frame0), 1e3f);
+  // A sideways move so the box uncovers part of the mirror.
+  const ReflectionFrame frame1 = frame_at(scene, kKeyEye + vec3(0.3f, 0.0f, 0.0f));
+  const OffsetBuffer offsets = best_match_search(key, frame1.camera.position, nullptr, {});
+  const IntermediateReflection mid = warp_reflections(key, offsets, {});
+  const Reprojection r = reproject_reflections(frame1, key, mid.radiance, &mid.state, {});
+  // Ground truth: the segment from the key eye to the sample's point is blocked.
+  size_t hidden = 0, flagged = 0;
+  const float eps = 1e-3f;
+  for (size_t i = 0; i < frame1.sample_count(); ++i) {
+    const vec3 d = frame1.position[i] - kKeyEye;
+    if (!rays.occluded(Ray{kKeyEye, d, 0.0f, 1.0f - eps})) continue;
+    ++hidden;
+    flagged += (r.flag[i] & kReuseDisoccluded) != 0;
+  }
+  ASSERT_GT(hidden, 30u);
+  // Pixel-centre sampling of the key view can disagree with the exact ray within a pixel
+  // of the box's silhouette; everything else must be flagged.
+  EXPECT_GE(double(flagged), 0.95 * double(hidden)) << flagged << " of " << hidden;
+  EXPECT_GE(r.disoccluded, flagged);
+}
+
+TEST(TemporalReflections, IdenticalForAnyThreadCount) {
+  const Scene scene = floor_mirror(true);
+  RayScene rays(scene);
+  auto run = [&](int threads) {
+    ThreadLimit limit(threads);
+    TemporalState state;
+    std::vector<vec3> out;
+    for (int f = 0; f < 3; ++f) {
+      const std::vector<vec3> r = temporal_reflections(scene, rays, frame_at(scene, kKeyEye + float(f) * kMove), state, {});
+      out.insert(out.end(), r.begin(), r.end());
+    }
+    return out;
+  };
+  const std::vector<vec3> one = run(1), two = run(2);
+  ASSERT_EQ(one.size(), two.size());
+  for (size_t i = 0; i < one.size(); ++i) ASSERT_EQ(one[i], two[i]) << i;
+}
+
+TEST(TemporalReflections, KeyFramePolicyFollowsTheThreshold) {
+  const Scene scene = floor_mirror(true);
+  RayScene rays(scene);
+  TemporalState state;
+  TemporalOptions strict;
+  strict.keyframe_threshold = 0.0f;  // any recomputed sample forces the next key frame
+  TemporalFrameStats st;
+  temporal_reflections(scene, rays, frame_at(scene, kKeyEye), state, strict, &st);
+  EXPECT_TRUE(st.key);
+  temporal_reflections(scene, rays, frame_at(scene, kKeyEye + vec3(0.3f, 0, 0)), state, strict, &st);
+  EXPECT_FALSE(st.key);
+  ASSERT_GT(st.recomputed, 0u);
+  EXPECT_TRUE(state.need_key);
+  temporal_reflections(scene, rays, frame_at(scene, kKeyEye + vec3(0.3f, 0, 0)), state, strict, &st);
+  EXPECT_TRUE(st.key);
+}
+
+}  // namespace proxima
