@@ -201,11 +201,12 @@ CornerVertices corner_vertices(const Samples& s, const DepthImage& offset, const
   const vec2 corner{float(i), float(j)};
   for (int root = 0; root < 4; ++root) {
     if (!has[root] || find(root) != root) continue;
-    bool accepts_h = false;
-    if (h_valid)
-      for (int m = 0; m < 4; ++m)
-        if (has[m] && find(m) == root && same_surface(s.points[k[m]], s.normals[k[m]], s.depth[k[m]], s.focal, h))
-          accepts_h = true;
+    // H's sample must be on every member's surface (one member is not enough: it could be
+    // off another member's tangent plane, bending that member's quad).
+    bool accepts_h = h_valid;
+    for (int m = 0; m < 4 && accepts_h; ++m)
+      if (has[m] && find(m) == root && !same_surface(s.points[k[m]], s.normals[k[m]], s.depth[k[m]], s.focal, h))
+        accepts_h = false;
     int v;
     if (accepts_h) {
       if (h_vertex < 0) {

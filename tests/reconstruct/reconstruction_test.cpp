@@ -67,7 +67,7 @@ TEST(Reconstruction, HybridPlaneIsWatertightAndCoversItsImage) {
   HybridStats stats;
   const Mesh mesh = hybrid_of(scene, cam, &stats);
   const size_t samples = sample_count(image);
-  ASSERT_GT(samples, 500u);
+  ASSERT_GT(samples, 300u);
   ASSERT_LT(samples, size_t(cam.width * cam.height));  // the plane's edges are in view
   EXPECT_EQ(mesh.triangles.size(), 2 * samples);
   EXPECT_EQ(stats.samples, samples);
@@ -160,8 +160,11 @@ TEST(Reconstruction, IsolatedPixelGivesAQuadConventionalDropsIt) {
     }
 }
 
-// Fraction of the image's pixels whose re-rendered depth is within `tolerance` pixel
-// footprints of the image's (both empty counts as a match).
+// Fraction of the image's pixels whose re-rendered depth d' matches the image's depth d
+// (both empty counts as a match): |d' − d| · |n·v| ≤ tolerance · d / f, with v the unit
+// view ray and n the sample's normal — the re-rendered point lies within `tolerance` pixel
+// footprints of the sample's tangent plane, the guarantee the continuity test gives the
+// quad's corners (a plain depth bound would fail wherever a surface is seen edge-on).
 double depth_match(const Mesh& mesh, const DepthImage& image, float tolerance) {
   const Scene rec = reconstruction_scene(std::span<const Mesh>(&mesh, 1));
   RasterOptions o;
@@ -172,8 +175,15 @@ double depth_match(const Mesh& mesh, const DepthImage& image, float tolerance) {
   for (int y = 0; y < image.depth.height(); ++y)
     for (int x = 0; x < image.depth.width(); ++x) {
       const float want = image.depth.at(x, y), got = depth.at(x, y);
-      if (std::isinf(want)) ok += std::isinf(got);
-      else ok += std::abs(got - want) <= tolerance * want / f;
+      if (std::isinf(want)) {
+        ok += std::isinf(got);
+        continue;
+      }
+      const vec3 n(image.normal.at(x, y, 0), image.normal.at(x, y, 1), image.normal.at(x, y, 2));
+      const vec3 v = ray_through(image.camera, vec2(float(x) + 0.5f, float(y) + 0.5f)).dir;
+      // Depth → distance along the ray: divide by v·forward.
+      const float along = std::abs(got - want) / glm::dot(v, camera_forward(image.camera));
+      ok += along * std::abs(glm::dot(n, v)) <= tolerance * want / f;
     }
   return double(ok) / double(image.depth.pixel_count());
 }

@@ -59,8 +59,8 @@ struct HybridStats {
 // (corners (x,y), (x,y+1), (x+1,y+1), (x+1,y) on the camera rays through them), split
 // into c0c1c2 and c2c3c0, counter-clockwise seen from the camera. Corners are shared:
 // at each pixel corner the (up to four) samples around it are grouped by continuity
-// with their edge neighbours; a group takes H's sample there if it is continuous with a
-// member, else one vertex at the mean of the members' tangent-plane intersections (each
+// with their edge neighbours; a group takes H's sample there if it is on the surface of
+// every member, else one vertex at the mean of the members' tangent-plane intersections (each
 // clamped to kMaxCornerDepthOffset footprints in depth). So a continuous surface comes
 // out watertight and each sample covers exactly its pixel square seen from the camera.
 // Needs depth, triangle, normal of both images. Deterministic for any thread count.
