@@ -69,5 +69,6 @@ Command register_demo(CLI::App& root);
 Command register_visibility(CLI::App& root);
 Command register_sample(CLI::App& root);
 Command register_reflect(CLI::App& root);
+Command register_shadows(CLI::App& root);
 
 }  // namespace proxima::cli

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
       cli::register_visibility(root),
       cli::register_sample(root),
       cli::register_reflect(root),
+      cli::register_shadows(root),
   };
   try {
     root.parse(argc, argv);

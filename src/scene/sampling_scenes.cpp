@@ -116,13 +116,13 @@ Scene make_nest_scene() {
   return s;
 }
 
-Scene make_grass_scene() {
+Scene make_grass_scene(int blade_count) {
   Scene s;
   s.name = "grass";
   Pcg32 rng(derive_seed(0x67726173u, 1));
   Mesh blades;
   constexpr int kSegments = 3;  // per blade side: 2·kSegments triangles
-  for (int i = 0; i < 4660; ++i) {
+  for (int i = 0; i < blade_count; ++i) {
     const uint32_t first_vertex = uint32_t(blades.positions.size());
     const uint32_t first_triangle = uint32_t(blades.triangles.size());
     const vec3 root(uniform(rng, -2.0f, 2.0f), 0.0f, uniform(rng, -2.0f, 2.0f));

@@ -13,8 +13,11 @@ namespace proxima {
 // a bowl of radius 1 m on a ground plane.
 Scene make_nest_scene();
 
-// Grass: ~56k triangles, ~4,600 curved double-sided blades (0.2–0.6 m) on a 4 × 4 m patch.
-Scene make_grass_scene();
+// Grass: ~56k triangles, 4,660 curved double-sided blades (0.2–0.6 m, 12 triangles each)
+// on a 4 × 4 m patch. `blades` changes the density on the same patch (the first blades
+// are the same for any count): the growing grass of thesis Figure 20.
+inline constexpr int kGrassBlades = 4660;
+Scene make_grass_scene(int blades = kGrassBlades);
 
 // City: ~50k triangles, a 64 × 64 grid of box buildings (12 triangles each, heights
 // 0.5–6 m on 1 m lots with 0.4 m streets) on a ground plane.

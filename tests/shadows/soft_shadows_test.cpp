@@ -1,0 +1,151 @@
+// Soft shadows (thesis ch. 3, Algorithm 5): light setup, shadow-map visibility against
+// exact Embree rays on a known scene, the §3.4.2 errors, reconstructed occluders close to
+// the geometry, and thread-count independence.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "proxima/core/error.h"
+#include "proxima/core/parallel.h"
+#include "proxima/scene/procedural.h"
+#include "proxima/shadows/light_visibility.h"
+#include "proxima/shadows/occluders.h"
+#include "proxima/shadows/shadow_error.h"
+
+namespace proxima {
+namespace {
+
+// Ground 4×4 m at y = 0, a 1×1 m box standing on it, a point light 3 m up.
+Scene box_scene() {
+  Scene s;
+  Material m;
+  m.diffuse = vec3(0.5f);
+  const uint32_t mat = add_material(s, m);
+  add_object(s, make_plane(4.0f, 4.0f, 1, 1), "ground", mat);
+  Mesh box = make_box(vec3(1.0f), 1);
+  transform_mesh(box, glm::translate(mat4(1.0f), vec3(0, 0.5f, 0)));
+  add_object(s, box, "box", mat);
+  s.point_lights.push_back(PointLight{vec3(0, 3, 0), vec3(10)});
+  return s;
+}
+
+Camera box_view(int res) { return look_at(vec3(0, 4.0f, 3.0f), vec3(0), vec3(0, 1, 0), 60.0f, res, res, 0.05f, 50.0f); }
+
+TEST(SoftShadows, LightIsAHorizontalSquareSizedByTheSceneDiagonal) {
+  const Scene s = box_scene();
+  const AreaLight light = shadow_light(s, 0.5f);
+  const std::vector<vec3> c = light_corners(light);
+  EXPECT_NEAR(glm::length(c[2] - c[0]), 0.5f * scene_bounds(s).diagonal(), 1e-4f);
+  EXPECT_NEAR(glm::length(light.point(0.5f, 0.5f) - vec3(0, 3, 0)), 0.0f, 1e-5f);
+  EXPECT_NEAR(light.normal().y, -1.0f, 1e-6f);
+  const std::vector<vec3> samples = light_samples(light, 4);
+  ASSERT_EQ(samples.size(), 16u);
+  EXPECT_NEAR(samples[0].x, c[0].x + light.edge_u.x / 8.0f, 1e-5f);
+}
+
+struct LightSetup {
+  Scene scene = box_scene();
+  AreaLight light;
+  std::vector<vec3> samples;
+  Receivers receivers;
+  LightCameras cams;
+  explicit LightSetup(float size, int n, int res) {
+    light = shadow_light(scene, size);
+    samples = light_samples(light, n);
+    receivers = render_receivers(scene, box_view(res));
+    std::vector<vec3> eyes = samples;
+    for (const vec3& c : light_corners(light)) eyes.push_back(c);
+    cams = fit_light_cameras(scene, light, receivers, eyes);
+  }
+};
+
+TEST(SoftShadows, ShadowMapsAgreeWithShadowRays) {
+  LightSetup s(0.3f, 4, 64);
+  const RayScene rays(s.scene);
+  ShadowMapOptions o;
+  o.resolution = 256;
+  const LightVisibility maps = shadow_map_visibility(s.scene, s.receivers, s.samples, s.cams, o);
+  const LightVisibility exact = ray_visibility(rays, s.scene, s.receivers, s.samples);
+  const ShadowError e = compare_visibility(maps, exact, s.receivers);
+  EXPECT_LT(e.visibility_mean, 4.0);  // of 255: shadow-map aliasing at the edges only
+  // The box shadows the ground right beside it: some pixels see few samples, others all.
+  int dark = 0, lit = 0;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x)
+      if (s.receivers.mask.at(x, y)) {
+        dark += exact.lit_count(x, y) == 0;
+        lit += exact.lit_count(x, y) == 16;
+      }
+  EXPECT_GT(dark, 20);
+  EXPECT_GT(lit, 200);
+}
+
+TEST(SoftShadows, ErrorsCountWrongSamplesAndColourTheirSign) {
+  LightSetup s(0.3f, 2, 8);
+  LightVisibility truth(8, 8, 4), approx(8, 8, 4);
+  // Pixel (1, 1): truth sees samples 0, 1; approx sees 1, 2, 3 → 3 wrong, one too many lit.
+  truth.bits[size_t(1 * 8 + 1)] = 0b0011;
+  approx.bits[size_t(1 * 8 + 1)] = 0b1110;
+  // Pixel (2, 1): truth sees all, approx none → too dark.
+  truth.bits[size_t(1 * 8 + 2)] = 0b1111;
+  Receivers r = s.receivers;
+  r.mask = ImageU8(8, 8, 1, 1);
+  const ShadowError e = compare_visibility(approx, truth, r);
+  EXPECT_DOUBLE_EQ(e.visibility_max, 255.0);
+  EXPECT_DOUBLE_EQ(e.intensity_max, 255.0);
+  EXPECT_DOUBLE_EQ(e.visibility_mean, (3 * 255.0 / 4 + 255.0) / 64);
+  EXPECT_DOUBLE_EQ(e.intensity_mean, (255.0 / 4 + 255.0) / 64);
+  EXPECT_GT(e.image.at(1, 1, 1), 0.0f);  // too bright: green
+  EXPECT_EQ(e.image.at(1, 1, 0), 0.0f);
+  EXPECT_GT(e.image.at(2, 1, 0), 0.0f);  // too dark: red
+  EXPECT_EQ(e.image.at(2, 1, 1), 0.0f);
+  EXPECT_EQ(compare_visibility(truth, truth, r).visibility_max, 0.0);
+}
+
+TEST(SoftShadows, ReconstructedOccludersCastTheGeometrysShadow) {
+  LightSetup s(0.3f, 4, 64);
+  ShadowMapOptions sm;
+  sm.resolution = 256;
+  const LightVisibility truth = shadow_map_visibility(s.scene, s.receivers, s.samples, s.cams, sm);
+  OccluderOptions o;
+  o.resolution = 128;
+  for (ShadowSampling sampling : {ShadowSampling::Nrr, ShadowSampling::Conventional, ShadowSampling::Peeling}) {
+    const Occluders occ = build_occluders(s.scene, nullptr, s.light, s.cams, sampling, o);
+    EXPECT_GT(occ.samples, 1000u) << shadow_sampling_name(sampling);
+    const LightVisibility v = shadow_map_visibility(occ.scene, s.receivers, s.samples, s.cams, sm);
+    const ShadowError e = compare_visibility(v, truth, s.receivers);
+    EXPECT_LT(e.visibility_mean, 5.0) << shadow_sampling_name(sampling);
+  }
+  const Occluders geometry = build_occluders(s.scene, nullptr, s.light, s.cams, ShadowSampling::Geometry, o);
+  EXPECT_EQ(geometry.scene.triangles.size(), s.scene.triangles.size());
+}
+
+TEST(SoftShadows, SameVisibilityForAnyThreadCount) {
+  LightSetup s(0.5f, 3, 48);
+  ShadowMapOptions sm;
+  sm.resolution = 128;
+  const RayScene rays(s.scene);
+  LightVisibility a, b, c, d;
+  {
+    ThreadLimit one(1);
+    a = shadow_map_visibility(s.scene, s.receivers, s.samples, s.cams, sm);
+    c = ray_visibility(rays, s.scene, s.receivers, s.samples);
+  }
+  {
+    ThreadLimit two(2);
+    b = shadow_map_visibility(s.scene, s.receivers, s.samples, s.cams, sm);
+    d = ray_visibility(rays, s.scene, s.receivers, s.samples);
+  }
+  EXPECT_EQ(a.bits, b.bits);
+  EXPECT_EQ(c.bits, d.bits);
+}
+
+TEST(SoftShadows, ParsesSamplingNames) {
+  EXPECT_EQ(parse_shadow_sampling("nrr", "--sampling"), ShadowSampling::Nrr);
+  EXPECT_EQ(parse_shadow_sampling("peeling", "--sampling"), ShadowSampling::Peeling);
+  EXPECT_THROW(parse_shadow_sampling("nrr-pixel", "--sampling"), InputError);
+  EXPECT_THROW(parse_reconstruction("points", "--reconstruction"), InputError);
+}
+
+}  // namespace
+}  // namespace proxima
