@@ -34,6 +34,25 @@ double shoelace(const LPoly& poly) {
   return 0.5 * a;
 }
 
+// Removes vertices closer than `tol` pixels to their successor (the edge that follows the
+// removed vertex keeps its label): a near-zero edge has an arbitrary direction and, used as
+// a clipping line, would cut away part of a beam (holes in the map).
+void drop_tiny_edges(LPoly& poly, double tol = 1e-6) {
+  const double tol2 = tol * tol;
+  size_t i = 0;
+  while (poly.size() >= 3 && i < poly.size()) {
+    const size_t j = (i + 1) % poly.size();
+    const dvec2 d = poly[j].p - poly[i].p;
+    if (glm::dot(d, d) < tol2) {
+      poly[i].label = poly[j].label;
+      poly.erase(poly.begin() + long(j));
+      if (j < i) --i;
+    } else {
+      ++i;
+    }
+  }
+}
+
 // Keeps the part of `poly` left of the directed line a → b; new edges along the line get `label`.
 LPoly clip_left(const LPoly& poly, const dvec2& a, const dvec2& b, uint32_t label) {
   LPoly out;
@@ -51,6 +70,7 @@ LPoly clip_left(const LPoly& poly, const dvec2& a, const dvec2& b, uint32_t labe
       out.push_back({x, cin ? label : cur.label});
     }
   }
+  drop_tiny_edges(out);
   return out;
 }
 
@@ -122,19 +142,34 @@ class Tracer {
       dvec3 d = wp_.vertices[verts[i]].position - c_.eye;
       cam.push_back({{glm::dot(d, c_.right), glm::dot(d, c_.up), glm::dot(d, c_.forward)}, edges[i]});
     }
+    // Clip to depth ≥ zmin, then to the frame grown by a 1-pixel guard band (pixel u ≥ −g
+    // ⇔ f·x + (cx + g)·z ≥ 0, etc.), so projected coordinates stay near the image: a face
+    // grazing the eye would otherwise project to ~1e7 px and lose the precision the
+    // region clipping needs. New edges lie outside the frame (kImageBorder).
+    const double g = 1.0, w = 2.0 * c_.cx, h = 2.0 * c_.cy;
+    const glm::dvec4 bounds[5] = {{0.0, 0.0, 1.0, -zmin_},
+                             {c_.f, 0.0, c_.cx + g, 0.0},
+                             {-c_.f, 0.0, w + g - c_.cx, 0.0},
+                             {0.0, -c_.f, c_.cy + g, 0.0},
+                             {0.0, c_.f, h + g - c_.cy, 0.0}};
     std::vector<std::pair<dvec3, uint32_t>> clipped;
-    for (size_t i = 0; i < n; ++i) {
-      const auto& [a, la] = cam[i];
-      const auto& [b, lb] = cam[(i + 1) % n];
-      bool ain = a.z >= zmin_, bin = b.z >= zmin_;
-      if (ain) clipped.push_back({a, la});
-      if (ain != bin) {
-        dvec3 x = a + (b - a) * ((zmin_ - a.z) / (b.z - a.z));
-        clipped.push_back({x, ain ? kImageBorder : la});
+    for (const glm::dvec4& k : bounds) {
+      clipped.clear();
+      const size_t m = cam.size();
+      for (size_t i = 0; i < m; ++i) {
+        const auto& [a, la] = cam[i];
+        const auto& [b, lb] = cam[(i + 1) % m];
+        const double sa = glm::dot(dvec3(k), a) + k.w, sb = glm::dot(dvec3(k), b) + k.w;
+        const bool ain = sa >= 0.0, bin = sb >= 0.0;
+        if (ain) clipped.push_back({a, la});
+        if (ain != bin) clipped.push_back({a + (b - a) * (sa / (sa - sb)), ain ? kImageBorder : la});
       }
+      cam.swap(clipped);
+      if (cam.size() < 3) return {};
     }
     LPoly out;
-    for (const auto& [p, l] : clipped) out.push_back({{c_.cx + c_.f * p.x / p.z, c_.cy - c_.f * p.y / p.z}, l});
+    for (const auto& [p, l] : cam) out.push_back({{c_.cx + c_.f * p.x / p.z, c_.cy - c_.f * p.y / p.z}, l});
+    drop_tiny_edges(out);
     if (out.size() >= 3 && shoelace(out) < 0.0) {
       LPoly rev;
       const size_t m = out.size();
