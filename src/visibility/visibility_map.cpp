@@ -53,9 +53,10 @@ void drop_tiny_edges(LPoly& poly, double tol = 1e-6) {
   }
 }
 
-// Keeps the part of `poly` left of the directed line a → b; new edges along the line get `label`.
-LPoly clip_left(const LPoly& poly, const dvec2& a, const dvec2& b, uint32_t label) {
-  LPoly out;
+// Keeps the part of `poly` left of the directed line a → b in `out`; new edges along the
+// line get `label`.
+void clip_left(const LPoly& poly, const dvec2& a, const dvec2& b, uint32_t label, LPoly& out) {
+  out.clear();
   const size_t n = poly.size();
   const dvec2 d = b - a;
   const double tol = 1e-12 * std::max(1.0, glm::dot(d, d));
@@ -71,7 +72,19 @@ LPoly clip_left(const LPoly& poly, const dvec2& a, const dvec2& b, uint32_t labe
     }
   }
   drop_tiny_edges(out);
-  return out;
+}
+
+struct Box2 {
+  dvec2 lo{INFINITY}, hi{-INFINITY};
+};
+
+Box2 box_of(const LPoly& poly) {
+  Box2 b;
+  for (const LVert& v : poly) {
+    b.lo = glm::min(b.lo, v.p);
+    b.hi = glm::max(b.hi, v.p);
+  }
+  return b;
 }
 
 struct Camera64 {
@@ -93,30 +106,44 @@ class Tracer {
     eye_tol_ = 1e-9 * wp.scale;
   }
 
-  void trace(uint32_t start, const LPoly& frame, VisibilityMap& map) {
+  // Starts from every cell holding the eye: an eye on a face (edge, vertex) of the BSP
+  // sees each cell's half-space through that cell only, since the faces through the eye
+  // are seen edge-on and skipped.
+  void trace(const std::vector<uint32_t>& start, const LPoly& frame, VisibilityMap& map) {
     struct Item {
       uint32_t cell;
       LPoly region;
     };
-    std::vector<Item> stack = {{start, frame}};
+    std::vector<Item> stack;
+    for (uint32_t c : start) stack.push_back({c, frame});
+    LPoly q, r, tmp;
     while (!stack.empty()) {
       Item item = std::move(stack.back());
       stack.pop_back();
       ++map.stats.cells_visited;
+      // Faces whose projection's bounding box misses the region's by more than the clip
+      // tolerance would clip to nothing: skip them before clipping (same result, cheaper).
+      Box2 rb = box_of(item.region);
+      rb.lo -= dvec2(1e-6);
+      rb.hi += dvec2(1e-6);
       for (uint32_t f : wp_.faces_of_cell(item.cell)) {
         const Face& face = wp_.faces[f];
         const double d = face.plane.distance(c_.eye);
         if (face.cell[1] == item.cell ? d <= eye_tol_ : d >= -eye_tol_) continue;  // not seen from inside
-        LPoly q = project_face(f);
+        project_face(f, q);
         if (q.size() < 3) continue;
-        LPoly r = q;
-        for (size_t k = 0; k < item.region.size() && r.size() >= 3; ++k)
-          r = clip_left(r, item.region[k].p, item.region[(k + 1) % item.region.size()].p, item.region[k].label);
+        const Box2 qb = box_of(q);
+        if (qb.lo.x > rb.hi.x || qb.lo.y > rb.hi.y || qb.hi.x < rb.lo.x || qb.hi.y < rb.lo.y) continue;
+        r = q;
+        for (size_t k = 0; k < item.region.size() && r.size() >= 3; ++k) {
+          clip_left(r, item.region[k].p, item.region[(k + 1) % item.region.size()].p, item.region[k].label, tmp);
+          r.swap(tmp);
+        }
         if (r.size() < 3 || shoelace(r) <= 1e-9) continue;
         ++map.stats.beams;
         const uint32_t next = wp_.cell_across(f, item.cell);
         if (!face.opaque() && next != kNone) {
-          stack.push_back({next, std::move(r)});
+          stack.push_back({next, r});
           continue;
         }
         MapRegion region;
@@ -132,12 +159,14 @@ class Tracer {
   }
 
   // The face clipped to depth ≥ zmin, projected to pixels, counter-clockwise (positive
-  // shoelace area); edges labeled with their winged-pair edges.
-  LPoly project_face(uint32_t f) const {
+  // shoelace area), into `out`; edges labeled with their winged-pair edges.
+  void project_face(uint32_t f, LPoly& out) {
+    out.clear();
     auto verts = wp_.face_vertices(f);
     auto edges = wp_.face_edges(f);
     const size_t n = verts.size();
-    std::vector<std::pair<dvec3, uint32_t>> cam;  // (camera-space right/up/depth, label)
+    auto& cam = cam_;  // (camera-space right/up/depth, label)
+    cam.clear();
     for (size_t i = 0; i < n; ++i) {
       dvec3 d = wp_.vertices[verts[i]].position - c_.eye;
       cam.push_back({{glm::dot(d, c_.right), glm::dot(d, c_.up), glm::dot(d, c_.forward)}, edges[i]});
@@ -152,7 +181,7 @@ class Tracer {
                              {-c_.f, 0.0, w + g - c_.cx, 0.0},
                              {0.0, -c_.f, c_.cy + g, 0.0},
                              {0.0, c_.f, h + g - c_.cy, 0.0}};
-    std::vector<std::pair<dvec3, uint32_t>> clipped;
+    auto& clipped = clipped_;
     for (const glm::dvec4& k : bounds) {
       clipped.clear();
       const size_t m = cam.size();
@@ -165,9 +194,8 @@ class Tracer {
         if (ain != bin) clipped.push_back({a + (b - a) * (sa / (sa - sb)), ain ? kImageBorder : la});
       }
       cam.swap(clipped);
-      if (cam.size() < 3) return {};
+      if (cam.size() < 3) return;
     }
-    LPoly out;
     for (const auto& [p, l] : cam) out.push_back({{c_.cx + c_.f * p.x / p.z, c_.cy - c_.f * p.y / p.z}, l});
     drop_tiny_edges(out);
     if (out.size() >= 3 && shoelace(out) < 0.0) {
@@ -176,7 +204,6 @@ class Tracer {
       for (size_t k = 0; k < m; ++k) rev.push_back({out[m - 1 - k].p, out[(2 * m - 2 - k) % m].label});
       out = std::move(rev);
     }
-    return out;
   }
 
   // Occluding contour test for winged-pair edge e (spin around it).
@@ -207,6 +234,7 @@ class Tracer {
   const WingedPair& wp_;
   Camera64 c_;
   double zmin_, eye_tol_;
+  std::vector<std::pair<dvec3, uint32_t>> cam_, clipped_;  // project_face scratch
   std::unordered_map<uint32_t, bool> silhouette_cache_;
 };
 
@@ -331,8 +359,8 @@ VisibilityMap trace_visibility_map(const WingedPair& wp, const Camera& camera) {
   VisibilityMap map;
   map.width = camera.width;
   map.height = camera.height;
-  const uint32_t start = locate_cell(wp, dvec3(camera.position));
-  if (start == kNone) fail_input("camera at (" + std::to_string(camera.position.x) + ", " +
+  const std::vector<uint32_t> start = locate_cells(wp, dvec3(camera.position));
+  if (start.empty()) fail_input("camera at (" + std::to_string(camera.position.x) + ", " +
                                  std::to_string(camera.position.y) + ", " + std::to_string(camera.position.z) +
                                  ") is outside the winged pair's outer box");
   const double w = camera.width, h = camera.height;

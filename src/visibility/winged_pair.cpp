@@ -39,22 +39,32 @@ bool finalize(WingedPair& wp) {
   return true;
 }
 
-uint32_t locate_cell(const WingedPair& wp, const dvec3& p) {
+namespace {
+
+bool contains(const WingedPair& wp, uint32_t c, const dvec3& p) {
   const double tol = 1e-9 * wp.scale;
-  for (uint32_t c = 0; c < wp.cells.size(); ++c) {
-    bool inside = true;
-    for (uint32_t f : wp.faces_of_cell(c)) {
-      const Face& face = wp.faces[f];
-      double d = face.plane.distance(p);
-      // The cell is behind (cell[0]) or in front of (cell[1]) the face plane.
-      if (face.cell[0] == c ? d > tol : d < -tol) {
-        inside = false;
-        break;
-      }
-    }
-    if (inside && !wp.faces_of_cell(c).empty()) return c;
+  for (uint32_t f : wp.faces_of_cell(c)) {
+    const Face& face = wp.faces[f];
+    const double d = face.plane.distance(p);
+    // The cell is behind (cell[0]) or in front of (cell[1]) the face plane.
+    if (face.cell[0] == c ? d > tol : d < -tol) return false;
   }
+  return !wp.faces_of_cell(c).empty();
+}
+
+}  // namespace
+
+uint32_t locate_cell(const WingedPair& wp, const dvec3& p) {
+  for (uint32_t c = 0; c < wp.cells.size(); ++c)
+    if (contains(wp, c, p)) return c;
   return kNone;
+}
+
+std::vector<uint32_t> locate_cells(const WingedPair& wp, const dvec3& p) {
+  std::vector<uint32_t> out;
+  for (uint32_t c = 0; c < wp.cells.size(); ++c)
+    if (contains(wp, c, p)) out.push_back(c);
+  return out;
 }
 
 }  // namespace proxima::visibility

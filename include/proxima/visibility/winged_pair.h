@@ -91,4 +91,8 @@ bool finalize(WingedPair& wp);
 // order when p lies on a shared face); kNone outside the outer box.
 uint32_t locate_cell(const WingedPair& wp, const dvec3& p);
 
+// Every cell whose closed interior contains p within the model tolerance: one for a point
+// inside a cell, 2 or more for a point on a face, edge or vertex; empty outside the box.
+std::vector<uint32_t> locate_cells(const WingedPair& wp, const dvec3& p);
+
 }  // namespace proxima::visibility
