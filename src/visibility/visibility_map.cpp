@@ -35,8 +35,10 @@ double shoelace(const LPoly& poly) {
 }
 
 // Removes vertices closer than `tol` pixels to their successor (the edge that follows the
-// removed vertex keeps its label): a near-zero edge has an arbitrary direction and, used as
-// a clipping line, would cut away part of a beam (holes in the map).
+// removed vertex keeps its label) and the tips of spikes (a turn of ~180°: the polygon runs
+// out along a line and back). A near-zero edge has an arbitrary direction, and a spike's
+// two edges are one line in both directions; used as clipping lines either cuts away part
+// of a later beam (holes in the map).
 void drop_tiny_edges(LPoly& poly, double tol = 1e-6) {
   const double tol2 = tol * tol;
   size_t i = 0;
@@ -49,6 +51,18 @@ void drop_tiny_edges(LPoly& poly, double tol = 1e-6) {
       if (j < i) --i;
     } else {
       ++i;
+    }
+  }
+  for (bool changed = true; changed && poly.size() >= 3;) {
+    changed = false;
+    for (size_t k = 0; k < poly.size() && poly.size() >= 3; ++k) {
+      const size_t n = poly.size();
+      const dvec2 a = poly[k].p - poly[(k + n - 1) % n].p, b = poly[(k + 1) % n].p - poly[k].p;
+      if (glm::dot(a, b) < 0.0 && std::abs(cross2(a, b)) <= 1e-9 * glm::length(a) * glm::length(b)) {
+        poly.erase(poly.begin() + long(k));  // the incoming edge's label stays on the remaining edge
+        changed = true;
+        break;
+      }
     }
   }
 }
@@ -269,10 +283,46 @@ uint32_t find_root(std::vector<uint32_t>& parent, uint32_t x) {
 
 // Planar map from the regions: segments grouped by source, cut at every vertex on the
 // same source line into elementary edges with their left and right regions.
+// Ids of supporting lines on the image plane: segments within 1e-5 px of one line share an
+// id, so a boundary's two sides meet even when they lie on different (collinear) winged-pair
+// edges — a polygon edge split by the BSP on one side, a face edge of the beam on the other.
+class LineIndex {
+ public:
+  uint32_t id(const dvec2& a, const dvec2& b) {
+    dvec2 d = glm::normalize(b - a);
+    if (d.x < 0.0 || (d.x == 0.0 && d.y < 0.0)) d = -d;
+    const double theta = std::atan2(d.y, d.x), rho = cross2(d, a);
+    const int64_t kt = std::llround(theta * 1e5), kr = std::llround(rho * 1e3);
+    for (int64_t dt = -1; dt <= 1; ++dt)
+      for (int64_t dr = -1; dr <= 1; ++dr) {
+        auto it = buckets_.find(key(kt + dt, kr + dr));
+        if (it == buckets_.end()) continue;
+        for (uint32_t l : it->second) {
+          const Line& line = lines_[l];
+          if (std::abs(cross2(line.d, a - line.p)) < 1e-5 && std::abs(cross2(line.d, b - line.p)) < 1e-5) return l;
+        }
+      }
+    lines_.push_back({a, d});
+    buckets_[key(kt, kr)].push_back(uint32_t(lines_.size() - 1));
+    return uint32_t(lines_.size() - 1);
+  }
+
+ private:
+  struct Line {
+    dvec2 p, d;
+  };
+  static uint64_t key(int64_t t, int64_t r) { return (uint64_t(t) << 32) ^ uint64_t(uint32_t(r)); }
+  std::vector<Line> lines_;
+  std::unordered_map<uint64_t, std::vector<uint32_t>> buckets_;
+};
+
+// Planar map from the regions: segments grouped by supporting line, cut at every vertex on
+// the line into elementary edges with their left and right regions.
 void build_planar_map(VisibilityMap& map, Tracer& tracer) {
   Welder welder(map.vertices);
+  LineIndex lines;
   struct Seg {
-    uint32_t a, b, region;
+    uint32_t a, b, region, source;
   };
   std::unordered_map<uint64_t, std::vector<Seg>> groups;
   for (uint32_t r = 0; r < map.regions.size(); ++r) {
@@ -281,16 +331,18 @@ void build_planar_map(VisibilityMap& map, Tracer& tracer) {
     for (size_t i = 0; i < n; ++i) {
       uint32_t a = welder.id(reg.vertices[i]), b = welder.id(reg.vertices[(i + 1) % n]);
       if (a == b) continue;
-      uint64_t source = reg.edge_source[i];
-      if (source == kImageBorder) {
+      uint64_t group;
+      if (reg.edge_source[i] == kImageBorder) {
         // One group per image side.
         const dvec2 mid = 0.5 * (reg.vertices[i] + reg.vertices[(i + 1) % n]);
-        source = (uint64_t(1) << 32) | uint64_t(mid.y < 0.5 ? 0 : mid.y > map.height - 0.5 ? 1 : mid.x < 0.5 ? 2 : 3);
+        group = (uint64_t(1) << 32) | uint64_t(mid.y < 0.5 ? 0 : mid.y > map.height - 0.5 ? 1 : mid.x < 0.5 ? 2 : 3);
+      } else {
+        group = lines.id(reg.vertices[i], reg.vertices[(i + 1) % n]);
       }
-      groups[source].push_back({a, b, r});
+      groups[group].push_back({a, b, r, reg.edge_source[i]});
     }
   }
-  for (auto& [source, segs] : groups) {
+  for (auto& [group, segs] : groups) {
     const dvec2 o = map.vertices[segs.front().a];
     const dvec2 dir = glm::normalize(map.vertices[segs.front().b] - o);
     auto t_of = [&](uint32_t v) { return glm::dot(map.vertices[v] - o, dir); };
@@ -304,17 +356,23 @@ void build_planar_map(VisibilityMap& map, Tracer& tracer) {
                             [](const auto& x, const auto& y) { return x.second == y.second; }),
                 stops.end());
     std::vector<uint32_t> left(stops.size(), kNone), right(stops.size(), kNone);
+    std::vector<uint32_t> lsrc(stops.size(), kNone), rsrc(stops.size(), kNone);
     for (const Seg& s : segs) {
       double ta = t_of(s.a), tb = t_of(s.b);
       bool forward = tb > ta;
       double lo = std::min(ta, tb), hi = std::max(ta, tb);
-      for (size_t k = 0; k + 1 < stops.size(); ++k) {
+      // Stops are sorted by t: start at the first one at or after lo.
+      size_t k0 = size_t(std::lower_bound(stops.begin(), stops.end(), std::pair<double, uint32_t>{lo, 0}) - stops.begin());
+      k0 = k0 > 0 ? k0 - 1 : 0;
+      for (size_t k = k0; k + 1 < stops.size(); ++k) {
         double mid = 0.5 * (stops[k].first + stops[k + 1].first);
-        if (mid <= lo || mid >= hi) continue;
+        if (mid >= hi) break;
+        if (mid <= lo) continue;
         (forward ? left : right)[k] = s.region;
+        (forward ? lsrc : rsrc)[k] = s.source;
       }
     }
-    const bool border = source >> 32 == 1;
+    const bool border = group >> 32 == 1;
     for (size_t k = 0; k + 1 < stops.size(); ++k) {
       if (left[k] == kNone && right[k] == kNone) continue;
       MapEdge e;
@@ -322,10 +380,12 @@ void build_planar_map(VisibilityMap& map, Tracer& tracer) {
       e.vertex[1] = stops[k + 1].second;
       e.region[0] = left[k];
       e.region[1] = right[k];
-      e.source = border ? kImageBorder : uint32_t(source);
+      e.source = border ? kImageBorder : (lsrc[k] != kNone ? lsrc[k] : rsrc[k]);
       const uint32_t pl = left[k] == kNone ? kNone : map.regions[left[k]].polygon;
       const uint32_t pr = right[k] == kNone ? kNone : map.regions[right[k]].polygon;
-      e.silhouette = !border && left[k] != kNone && right[k] != kNone && pl != pr && tracer.silhouette(uint32_t(source));
+      // Either side's edge may be the occluding one (the other a collinear BSP edge).
+      e.silhouette = !border && left[k] != kNone && right[k] != kNone && pl != pr &&
+                     (tracer.silhouette(lsrc[k]) || (rsrc[k] != lsrc[k] && tracer.silhouette(rsrc[k])));
       map.stats.silhouette_edges += e.silhouette;
       map.edges.push_back(e);
     }
