@@ -2,6 +2,8 @@
 // links, cell face lists from the faces' cell references, point location.
 #include "proxima/visibility/winged_pair.h"
 
+#include <cmath>
+
 namespace proxima::visibility {
 
 bool finalize(WingedPair& wp) {
@@ -36,6 +38,17 @@ bool finalize(WingedPair& wp) {
   for (uint32_t f = 0; f < wp.faces.size(); ++f)
     for (uint32_t c : wp.faces[f].cell)
       if (c != kNone) wp.cell_face[count[c]++] = f;
+  wp.cell_lo.assign(wp.cells.size(), dvec3(INFINITY));
+  wp.cell_hi.assign(wp.cells.size(), dvec3(-INFINITY));
+  for (uint32_t f = 0; f < wp.faces.size(); ++f)
+    for (uint32_t c : wp.faces[f].cell) {
+      if (c == kNone) continue;
+      for (uint32_t i = wp.loop_offset[f]; i < wp.loop_offset[f + 1]; ++i) {
+        const dvec3& p = wp.vertices[wp.loop_vertex[i]].position;
+        wp.cell_lo[c] = glm::min(wp.cell_lo[c], p);
+        wp.cell_hi[c] = glm::max(wp.cell_hi[c], p);
+      }
+    }
   return true;
 }
 
@@ -43,6 +56,9 @@ namespace {
 
 bool contains(const WingedPair& wp, uint32_t c, const dvec3& p) {
   const double tol = 1e-9 * wp.scale;
+  // The bounding box first: a cheap rejection of almost every cell.
+  if (glm::any(glm::lessThan(p, wp.cell_lo[c] - dvec3(tol))) || glm::any(glm::greaterThan(p, wp.cell_hi[c] + dvec3(tol))))
+    return false;
   for (uint32_t f : wp.faces_of_cell(c)) {
     const Face& face = wp.faces[f];
     const double d = face.plane.distance(p);

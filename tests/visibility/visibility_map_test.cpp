@@ -48,8 +48,10 @@ TEST(BeamTrace, InsideAClosedBoxEveryPixelSeesAWall) {
   EXPECT_EQ(map.stats.visible_polygons, 5u);  // a 90° view down the box misses the wall behind
   EXPECT_EQ(map.stats.silhouette_edges, 0u);  // only creases between walls
   // Regions tile the frame, so every map edge inside it has a region on both sides.
-  for (const MapEdge& e : map.edges)
-    if (e.source != kImageBorder) EXPECT_TRUE(e.region[0] != kNone && e.region[1] != kNone);
+  for (const MapEdge& e : map.edges) {
+    if (e.source == kImageBorder) continue;
+    EXPECT_TRUE(e.region[0] != kNone && e.region[1] != kNone);
+  }
   ImageU32 labels = rasterize_map(map);
   for (uint32_t id : labels.data()) ASSERT_NE(id, kNone);
   double area = 0;

@@ -67,6 +67,7 @@ struct WingedPair {
   // the counter-clockwise vertex and edge loop of each face, and the faces of each cell.
   std::vector<uint32_t> loop_offset, loop_vertex, loop_edge;  // face f: [loop_offset[f], [f+1])
   std::vector<uint32_t> cell_face_offset, cell_face;          // cell c: [offset[c], [c+1])
+  std::vector<dvec3> cell_lo, cell_hi;  // each cell's bounding box (fast point location)
 
   std::span<const uint32_t> face_vertices(uint32_t f) const {
     return {loop_vertex.data() + loop_offset[f], loop_offset[f + 1] - loop_offset[f]};
