@@ -357,10 +357,21 @@ void Builder::carve(uint32_t s, const std::vector<Fragment>& coplanar) {
 
 uint32_t Builder::choose_splitter(const std::vector<Fragment>& frags) {
   const size_t k = std::min<size_t>(size_t(std::max(1, options_.candidates)), frags.size());
+  // Candidates: k evenly spaced fragments plus the `largest` of largest area — big
+  // occluders (floor slabs, long walls) whose planes rarely split anything and keep
+  // distant parts of the model (other floors) from fragmenting each other's cells.
+  std::vector<uint32_t> candidates;
+  for (size_t c = 0; c < k; ++c) candidates.push_back(frags[c * frags.size() / k].polygon);
+  const size_t big = std::min<size_t>(size_t(std::max(0, options_.largest)), frags.size());
+  if (big > 0) {
+    std::vector<std::pair<double, uint32_t>> by_area;
+    for (const Fragment& f : frags) by_area.push_back({-glm::length(newell_normal(f.v)), f.polygon});
+    std::partial_sort(by_area.begin(), by_area.begin() + long(big), by_area.end());
+    for (size_t c = 0; c < big; ++c) candidates.push_back(by_area[c].second);
+  }
   uint32_t best = frags.front().polygon;
   double best_score = INFINITY;
-  for (size_t c = 0; c < k; ++c) {
-    const uint32_t poly = frags[c * frags.size() / k].polygon;
+  for (const uint32_t poly : candidates) {
     const Plane& h = model_.polygons[poly].plane;
     size_t front = 0, back = 0, split = 0;
     for (const Fragment& f : frags) {

@@ -34,9 +34,43 @@ double shoelace(const LPoly& poly) {
   return 0.5 * a;
 }
 
-// Keeps the part of `poly` left of the directed line a → b; new edges along the line get `label`.
-LPoly clip_left(const LPoly& poly, const dvec2& a, const dvec2& b, uint32_t label) {
-  LPoly out;
+// Removes vertices closer than `tol` pixels to their successor (the edge that follows the
+// removed vertex keeps its label) and the tips of spikes (a turn of ~180°: the polygon runs
+// out along a line and back). A near-zero edge has an arbitrary direction, and a spike's
+// two edges are one line in both directions; used as clipping lines either cuts away part
+// of a later beam (holes in the map).
+void drop_tiny_edges(LPoly& poly, double tol = 1e-6) {
+  const double tol2 = tol * tol;
+  size_t i = 0;
+  while (poly.size() >= 3 && i < poly.size()) {
+    const size_t j = (i + 1) % poly.size();
+    const dvec2 d = poly[j].p - poly[i].p;
+    if (glm::dot(d, d) < tol2) {
+      poly[i].label = poly[j].label;
+      poly.erase(poly.begin() + long(j));
+      if (j < i) --i;
+    } else {
+      ++i;
+    }
+  }
+  for (bool changed = true; changed && poly.size() >= 3;) {
+    changed = false;
+    for (size_t k = 0; k < poly.size() && poly.size() >= 3; ++k) {
+      const size_t n = poly.size();
+      const dvec2 a = poly[k].p - poly[(k + n - 1) % n].p, b = poly[(k + 1) % n].p - poly[k].p;
+      if (glm::dot(a, b) < 0.0 && std::abs(cross2(a, b)) <= 1e-9 * glm::length(a) * glm::length(b)) {
+        poly.erase(poly.begin() + long(k));  // the incoming edge's label stays on the remaining edge
+        changed = true;
+        break;
+      }
+    }
+  }
+}
+
+// Keeps the part of `poly` left of the directed line a → b in `out`; new edges along the
+// line get `label`.
+void clip_left(const LPoly& poly, const dvec2& a, const dvec2& b, uint32_t label, LPoly& out) {
+  out.clear();
   const size_t n = poly.size();
   const dvec2 d = b - a;
   const double tol = 1e-12 * std::max(1.0, glm::dot(d, d));
@@ -51,7 +85,20 @@ LPoly clip_left(const LPoly& poly, const dvec2& a, const dvec2& b, uint32_t labe
       out.push_back({x, cin ? label : cur.label});
     }
   }
-  return out;
+  drop_tiny_edges(out);
+}
+
+struct Box2 {
+  dvec2 lo{INFINITY}, hi{-INFINITY};
+};
+
+Box2 box_of(const LPoly& poly) {
+  Box2 b;
+  for (const LVert& v : poly) {
+    b.lo = glm::min(b.lo, v.p);
+    b.hi = glm::max(b.hi, v.p);
+  }
+  return b;
 }
 
 struct Camera64 {
@@ -73,30 +120,44 @@ class Tracer {
     eye_tol_ = 1e-9 * wp.scale;
   }
 
-  void trace(uint32_t start, const LPoly& frame, VisibilityMap& map) {
+  // Starts from every cell holding the eye: an eye on a face (edge, vertex) of the BSP
+  // sees each cell's half-space through that cell only, since the faces through the eye
+  // are seen edge-on and skipped.
+  void trace(const std::vector<uint32_t>& start, const LPoly& frame, VisibilityMap& map) {
     struct Item {
       uint32_t cell;
       LPoly region;
     };
-    std::vector<Item> stack = {{start, frame}};
+    std::vector<Item> stack;
+    for (uint32_t c : start) stack.push_back({c, frame});
+    LPoly q, r, tmp;
     while (!stack.empty()) {
       Item item = std::move(stack.back());
       stack.pop_back();
       ++map.stats.cells_visited;
+      // Faces whose projection's bounding box misses the region's by more than the clip
+      // tolerance would clip to nothing: skip them before clipping (same result, cheaper).
+      Box2 rb = box_of(item.region);
+      rb.lo -= dvec2(1e-6);
+      rb.hi += dvec2(1e-6);
       for (uint32_t f : wp_.faces_of_cell(item.cell)) {
         const Face& face = wp_.faces[f];
         const double d = face.plane.distance(c_.eye);
         if (face.cell[1] == item.cell ? d <= eye_tol_ : d >= -eye_tol_) continue;  // not seen from inside
-        LPoly q = project_face(f);
+        project_face(f, q);
         if (q.size() < 3) continue;
-        LPoly r = q;
-        for (size_t k = 0; k < item.region.size() && r.size() >= 3; ++k)
-          r = clip_left(r, item.region[k].p, item.region[(k + 1) % item.region.size()].p, item.region[k].label);
+        const Box2 qb = box_of(q);
+        if (qb.lo.x > rb.hi.x || qb.lo.y > rb.hi.y || qb.hi.x < rb.lo.x || qb.hi.y < rb.lo.y) continue;
+        r = q;
+        for (size_t k = 0; k < item.region.size() && r.size() >= 3; ++k) {
+          clip_left(r, item.region[k].p, item.region[(k + 1) % item.region.size()].p, item.region[k].label, tmp);
+          r.swap(tmp);
+        }
         if (r.size() < 3 || shoelace(r) <= 1e-9) continue;
         ++map.stats.beams;
         const uint32_t next = wp_.cell_across(f, item.cell);
         if (!face.opaque() && next != kNone) {
-          stack.push_back({next, std::move(r)});
+          stack.push_back({next, r});
           continue;
         }
         MapRegion region;
@@ -112,36 +173,51 @@ class Tracer {
   }
 
   // The face clipped to depth ≥ zmin, projected to pixels, counter-clockwise (positive
-  // shoelace area); edges labeled with their winged-pair edges.
-  LPoly project_face(uint32_t f) const {
+  // shoelace area), into `out`; edges labeled with their winged-pair edges.
+  void project_face(uint32_t f, LPoly& out) {
+    out.clear();
     auto verts = wp_.face_vertices(f);
     auto edges = wp_.face_edges(f);
     const size_t n = verts.size();
-    std::vector<std::pair<dvec3, uint32_t>> cam;  // (camera-space right/up/depth, label)
+    auto& cam = cam_;  // (camera-space right/up/depth, label)
+    cam.clear();
     for (size_t i = 0; i < n; ++i) {
       dvec3 d = wp_.vertices[verts[i]].position - c_.eye;
       cam.push_back({{glm::dot(d, c_.right), glm::dot(d, c_.up), glm::dot(d, c_.forward)}, edges[i]});
     }
-    std::vector<std::pair<dvec3, uint32_t>> clipped;
-    for (size_t i = 0; i < n; ++i) {
-      const auto& [a, la] = cam[i];
-      const auto& [b, lb] = cam[(i + 1) % n];
-      bool ain = a.z >= zmin_, bin = b.z >= zmin_;
-      if (ain) clipped.push_back({a, la});
-      if (ain != bin) {
-        dvec3 x = a + (b - a) * ((zmin_ - a.z) / (b.z - a.z));
-        clipped.push_back({x, ain ? kImageBorder : la});
+    // Clip to depth ≥ zmin, then to the frame grown by a 1-pixel guard band (pixel u ≥ −g
+    // ⇔ f·x + (cx + g)·z ≥ 0, etc.), so projected coordinates stay near the image: a face
+    // grazing the eye would otherwise project to ~1e7 px and lose the precision the
+    // region clipping needs. New edges lie outside the frame (kImageBorder).
+    const double g = 1.0, w = 2.0 * c_.cx, h = 2.0 * c_.cy;
+    const glm::dvec4 bounds[5] = {{0.0, 0.0, 1.0, -zmin_},
+                             {c_.f, 0.0, c_.cx + g, 0.0},
+                             {-c_.f, 0.0, w + g - c_.cx, 0.0},
+                             {0.0, -c_.f, c_.cy + g, 0.0},
+                             {0.0, c_.f, h + g - c_.cy, 0.0}};
+    auto& clipped = clipped_;
+    for (const glm::dvec4& k : bounds) {
+      clipped.clear();
+      const size_t m = cam.size();
+      for (size_t i = 0; i < m; ++i) {
+        const auto& [a, la] = cam[i];
+        const auto& [b, lb] = cam[(i + 1) % m];
+        const double sa = glm::dot(dvec3(k), a) + k.w, sb = glm::dot(dvec3(k), b) + k.w;
+        const bool ain = sa >= 0.0, bin = sb >= 0.0;
+        if (ain) clipped.push_back({a, la});
+        if (ain != bin) clipped.push_back({a + (b - a) * (sa / (sa - sb)), ain ? kImageBorder : la});
       }
+      cam.swap(clipped);
+      if (cam.size() < 3) return;
     }
-    LPoly out;
-    for (const auto& [p, l] : clipped) out.push_back({{c_.cx + c_.f * p.x / p.z, c_.cy - c_.f * p.y / p.z}, l});
+    for (const auto& [p, l] : cam) out.push_back({{c_.cx + c_.f * p.x / p.z, c_.cy - c_.f * p.y / p.z}, l});
+    drop_tiny_edges(out);
     if (out.size() >= 3 && shoelace(out) < 0.0) {
       LPoly rev;
       const size_t m = out.size();
       for (size_t k = 0; k < m; ++k) rev.push_back({out[m - 1 - k].p, out[(2 * m - 2 - k) % m].label});
       out = std::move(rev);
     }
-    return out;
   }
 
   // Occluding contour test for winged-pair edge e (spin around it).
@@ -172,6 +248,7 @@ class Tracer {
   const WingedPair& wp_;
   Camera64 c_;
   double zmin_, eye_tol_;
+  std::vector<std::pair<dvec3, uint32_t>> cam_, clipped_;  // project_face scratch
   std::unordered_map<uint32_t, bool> silhouette_cache_;
 };
 
@@ -206,10 +283,46 @@ uint32_t find_root(std::vector<uint32_t>& parent, uint32_t x) {
 
 // Planar map from the regions: segments grouped by source, cut at every vertex on the
 // same source line into elementary edges with their left and right regions.
+// Ids of supporting lines on the image plane: segments within 1e-5 px of one line share an
+// id, so a boundary's two sides meet even when they lie on different (collinear) winged-pair
+// edges — a polygon edge split by the BSP on one side, a face edge of the beam on the other.
+class LineIndex {
+ public:
+  uint32_t id(const dvec2& a, const dvec2& b) {
+    dvec2 d = glm::normalize(b - a);
+    if (d.x < 0.0 || (d.x == 0.0 && d.y < 0.0)) d = -d;
+    const double theta = std::atan2(d.y, d.x), rho = cross2(d, a);
+    const int64_t kt = std::llround(theta * 1e5), kr = std::llround(rho * 1e3);
+    for (int64_t dt = -1; dt <= 1; ++dt)
+      for (int64_t dr = -1; dr <= 1; ++dr) {
+        auto it = buckets_.find(key(kt + dt, kr + dr));
+        if (it == buckets_.end()) continue;
+        for (uint32_t l : it->second) {
+          const Line& line = lines_[l];
+          if (std::abs(cross2(line.d, a - line.p)) < 1e-5 && std::abs(cross2(line.d, b - line.p)) < 1e-5) return l;
+        }
+      }
+    lines_.push_back({a, d});
+    buckets_[key(kt, kr)].push_back(uint32_t(lines_.size() - 1));
+    return uint32_t(lines_.size() - 1);
+  }
+
+ private:
+  struct Line {
+    dvec2 p, d;
+  };
+  static uint64_t key(int64_t t, int64_t r) { return (uint64_t(t) << 32) ^ uint64_t(uint32_t(r)); }
+  std::vector<Line> lines_;
+  std::unordered_map<uint64_t, std::vector<uint32_t>> buckets_;
+};
+
+// Planar map from the regions: segments grouped by supporting line, cut at every vertex on
+// the line into elementary edges with their left and right regions.
 void build_planar_map(VisibilityMap& map, Tracer& tracer) {
   Welder welder(map.vertices);
+  LineIndex lines;
   struct Seg {
-    uint32_t a, b, region;
+    uint32_t a, b, region, source;
   };
   std::unordered_map<uint64_t, std::vector<Seg>> groups;
   for (uint32_t r = 0; r < map.regions.size(); ++r) {
@@ -218,16 +331,18 @@ void build_planar_map(VisibilityMap& map, Tracer& tracer) {
     for (size_t i = 0; i < n; ++i) {
       uint32_t a = welder.id(reg.vertices[i]), b = welder.id(reg.vertices[(i + 1) % n]);
       if (a == b) continue;
-      uint64_t source = reg.edge_source[i];
-      if (source == kImageBorder) {
+      uint64_t group;
+      if (reg.edge_source[i] == kImageBorder) {
         // One group per image side.
         const dvec2 mid = 0.5 * (reg.vertices[i] + reg.vertices[(i + 1) % n]);
-        source = (uint64_t(1) << 32) | uint64_t(mid.y < 0.5 ? 0 : mid.y > map.height - 0.5 ? 1 : mid.x < 0.5 ? 2 : 3);
+        group = (uint64_t(1) << 32) | uint64_t(mid.y < 0.5 ? 0 : mid.y > map.height - 0.5 ? 1 : mid.x < 0.5 ? 2 : 3);
+      } else {
+        group = lines.id(reg.vertices[i], reg.vertices[(i + 1) % n]);
       }
-      groups[source].push_back({a, b, r});
+      groups[group].push_back({a, b, r, reg.edge_source[i]});
     }
   }
-  for (auto& [source, segs] : groups) {
+  for (auto& [group, segs] : groups) {
     const dvec2 o = map.vertices[segs.front().a];
     const dvec2 dir = glm::normalize(map.vertices[segs.front().b] - o);
     auto t_of = [&](uint32_t v) { return glm::dot(map.vertices[v] - o, dir); };
@@ -241,17 +356,23 @@ void build_planar_map(VisibilityMap& map, Tracer& tracer) {
                             [](const auto& x, const auto& y) { return x.second == y.second; }),
                 stops.end());
     std::vector<uint32_t> left(stops.size(), kNone), right(stops.size(), kNone);
+    std::vector<uint32_t> lsrc(stops.size(), kNone), rsrc(stops.size(), kNone);
     for (const Seg& s : segs) {
       double ta = t_of(s.a), tb = t_of(s.b);
       bool forward = tb > ta;
       double lo = std::min(ta, tb), hi = std::max(ta, tb);
-      for (size_t k = 0; k + 1 < stops.size(); ++k) {
+      // Stops are sorted by t: start at the first one at or after lo.
+      size_t k0 = size_t(std::lower_bound(stops.begin(), stops.end(), std::pair<double, uint32_t>{lo, 0}) - stops.begin());
+      k0 = k0 > 0 ? k0 - 1 : 0;
+      for (size_t k = k0; k + 1 < stops.size(); ++k) {
         double mid = 0.5 * (stops[k].first + stops[k + 1].first);
-        if (mid <= lo || mid >= hi) continue;
+        if (mid >= hi) break;
+        if (mid <= lo) continue;
         (forward ? left : right)[k] = s.region;
+        (forward ? lsrc : rsrc)[k] = s.source;
       }
     }
-    const bool border = source >> 32 == 1;
+    const bool border = group >> 32 == 1;
     for (size_t k = 0; k + 1 < stops.size(); ++k) {
       if (left[k] == kNone && right[k] == kNone) continue;
       MapEdge e;
@@ -259,10 +380,12 @@ void build_planar_map(VisibilityMap& map, Tracer& tracer) {
       e.vertex[1] = stops[k + 1].second;
       e.region[0] = left[k];
       e.region[1] = right[k];
-      e.source = border ? kImageBorder : uint32_t(source);
+      e.source = border ? kImageBorder : (lsrc[k] != kNone ? lsrc[k] : rsrc[k]);
       const uint32_t pl = left[k] == kNone ? kNone : map.regions[left[k]].polygon;
       const uint32_t pr = right[k] == kNone ? kNone : map.regions[right[k]].polygon;
-      e.silhouette = !border && left[k] != kNone && right[k] != kNone && pl != pr && tracer.silhouette(uint32_t(source));
+      // Either side's edge may be the occluding one (the other a collinear BSP edge).
+      e.silhouette = !border && left[k] != kNone && right[k] != kNone && pl != pr &&
+                     (tracer.silhouette(lsrc[k]) || (rsrc[k] != lsrc[k] && tracer.silhouette(rsrc[k])));
       map.stats.silhouette_edges += e.silhouette;
       map.edges.push_back(e);
     }
@@ -296,8 +419,8 @@ VisibilityMap trace_visibility_map(const WingedPair& wp, const Camera& camera) {
   VisibilityMap map;
   map.width = camera.width;
   map.height = camera.height;
-  const uint32_t start = locate_cell(wp, dvec3(camera.position));
-  if (start == kNone) fail_input("camera at (" + std::to_string(camera.position.x) + ", " +
+  const std::vector<uint32_t> start = locate_cells(wp, dvec3(camera.position));
+  if (start.empty()) fail_input("camera at (" + std::to_string(camera.position.x) + ", " +
                                  std::to_string(camera.position.y) + ", " + std::to_string(camera.position.z) +
                                  ") is outside the winged pair's outer box");
   const double w = camera.width, h = camera.height;

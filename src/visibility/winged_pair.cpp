@@ -2,6 +2,8 @@
 // links, cell face lists from the faces' cell references, point location.
 #include "proxima/visibility/winged_pair.h"
 
+#include <cmath>
+
 namespace proxima::visibility {
 
 bool finalize(WingedPair& wp) {
@@ -36,25 +38,49 @@ bool finalize(WingedPair& wp) {
   for (uint32_t f = 0; f < wp.faces.size(); ++f)
     for (uint32_t c : wp.faces[f].cell)
       if (c != kNone) wp.cell_face[count[c]++] = f;
+  wp.cell_lo.assign(wp.cells.size(), dvec3(INFINITY));
+  wp.cell_hi.assign(wp.cells.size(), dvec3(-INFINITY));
+  for (uint32_t f = 0; f < wp.faces.size(); ++f)
+    for (uint32_t c : wp.faces[f].cell) {
+      if (c == kNone) continue;
+      for (uint32_t i = wp.loop_offset[f]; i < wp.loop_offset[f + 1]; ++i) {
+        const dvec3& p = wp.vertices[wp.loop_vertex[i]].position;
+        wp.cell_lo[c] = glm::min(wp.cell_lo[c], p);
+        wp.cell_hi[c] = glm::max(wp.cell_hi[c], p);
+      }
+    }
   return true;
 }
 
-uint32_t locate_cell(const WingedPair& wp, const dvec3& p) {
+namespace {
+
+bool contains(const WingedPair& wp, uint32_t c, const dvec3& p) {
   const double tol = 1e-9 * wp.scale;
-  for (uint32_t c = 0; c < wp.cells.size(); ++c) {
-    bool inside = true;
-    for (uint32_t f : wp.faces_of_cell(c)) {
-      const Face& face = wp.faces[f];
-      double d = face.plane.distance(p);
-      // The cell is behind (cell[0]) or in front of (cell[1]) the face plane.
-      if (face.cell[0] == c ? d > tol : d < -tol) {
-        inside = false;
-        break;
-      }
-    }
-    if (inside && !wp.faces_of_cell(c).empty()) return c;
+  // The bounding box first: a cheap rejection of almost every cell.
+  if (glm::any(glm::lessThan(p, wp.cell_lo[c] - dvec3(tol))) || glm::any(glm::greaterThan(p, wp.cell_hi[c] + dvec3(tol))))
+    return false;
+  for (uint32_t f : wp.faces_of_cell(c)) {
+    const Face& face = wp.faces[f];
+    const double d = face.plane.distance(p);
+    // The cell is behind (cell[0]) or in front of (cell[1]) the face plane.
+    if (face.cell[0] == c ? d > tol : d < -tol) return false;
   }
+  return !wp.faces_of_cell(c).empty();
+}
+
+}  // namespace
+
+uint32_t locate_cell(const WingedPair& wp, const dvec3& p) {
+  for (uint32_t c = 0; c < wp.cells.size(); ++c)
+    if (contains(wp, c, p)) return c;
   return kNone;
+}
+
+std::vector<uint32_t> locate_cells(const WingedPair& wp, const dvec3& p) {
+  std::vector<uint32_t> out;
+  for (uint32_t c = 0; c < wp.cells.size(); ++c)
+    if (contains(wp, c, p)) out.push_back(c);
+  return out;
 }
 
 }  // namespace proxima::visibility

@@ -11,6 +11,7 @@ namespace proxima::visibility {
 
 struct BspOptions {
   int candidates = 16;         // polygon planes scored per split (evenly spaced over the cell's)
+  int largest = 8;             // plus this many of the cell's largest-area fragments
   double split_weight = 4.0;   // score = split_weight · fragments split + |front − back|
   double epsilon = 1e-6;       // plane-side tolerance, relative to the model scale
   double box_margin = 0.25;    // outer box = polygon bounds grown by this × scale on each side

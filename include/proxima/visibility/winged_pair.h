@@ -67,6 +67,7 @@ struct WingedPair {
   // the counter-clockwise vertex and edge loop of each face, and the faces of each cell.
   std::vector<uint32_t> loop_offset, loop_vertex, loop_edge;  // face f: [loop_offset[f], [f+1])
   std::vector<uint32_t> cell_face_offset, cell_face;          // cell c: [offset[c], [c+1])
+  std::vector<dvec3> cell_lo, cell_hi;  // each cell's bounding box (fast point location)
 
   std::span<const uint32_t> face_vertices(uint32_t f) const {
     return {loop_vertex.data() + loop_offset[f], loop_offset[f + 1] - loop_offset[f]};
@@ -90,5 +91,9 @@ bool finalize(WingedPair& wp);
 // The cell whose closed interior contains p within the model tolerance (first in index
 // order when p lies on a shared face); kNone outside the outer box.
 uint32_t locate_cell(const WingedPair& wp, const dvec3& p);
+
+// Every cell whose closed interior contains p within the model tolerance: one for a point
+// inside a cell, 2 or more for a point on a face, edge or vertex; empty outside the box.
+std::vector<uint32_t> locate_cells(const WingedPair& wp, const dvec3& p);
 
 }  // namespace proxima::visibility
