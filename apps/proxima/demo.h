@@ -83,6 +83,9 @@ Window worst_window(const ImageF& error, int size);
 // The window of `image`, enlarged `zoom`× (nearest neighbour, so pixels stay visible).
 ImageF crop_zoom(const ImageF& image, const Window& w, int zoom);
 
+// Images side by side, each box-filtered down by `shrink` (heights must match), 4 px gaps.
+ImageF side_by_side(const std::vector<ImageF>& images, int shrink);
+
 // Writes `image` as <out>/<file> (PNG, linear → sRGB) and adds it as `role`.
 void write_image(Context& c, Section& s, const std::string& role, const std::string& file, const ImageF& image);
 

@@ -95,6 +95,12 @@ void envmap_section(Context& c) {
     write_image(c, section, std::string("room-parallax: error of ") + kMethods[i],
                 par.dir + "/heat_" + kMethods[i] + ".png", error_heatmap(errors[i], kReflectionHeatMax));
   add_heatmap_legend(c, section, kReflectionHeatMax);
+  // One strip for the README: reference, plain, rectified, and the two errors.
+  write_image(c, section, "overview: reference | plain env map | rectified | error of plain | error of rectified",
+              par.dir + "/overview.png",
+              side_by_side({reference, colors[0], colors[1], error_heatmap(errors[0], kReflectionHeatMax),
+                            error_heatmap(errors[1], kReflectionHeatMax)},
+                           2));
   // Zoom where plain env mapping is worst: the sphere's reflection.
   const Window w = worst_window(errors[0], std::max(32, s.width / 8));
   const int zoom = std::max(2, 256 / w.size);

@@ -133,6 +133,29 @@ ImageF crop_zoom(const ImageF& image, const Window& w, int zoom) {
   return out;
 }
 
+ImageF side_by_side(const std::vector<ImageF>& images, int shrink) {
+  int width = 0, height = 0;
+  for (const ImageF& im : images) {
+    width += im.width() / shrink + 4;
+    height = std::max(height, im.height() / shrink);
+  }
+  ImageF out(std::max(1, width - 4), std::max(1, height), 3, 1.0f);
+  int x0 = 0;
+  for (const ImageF& im : images) {
+    const int w = im.width() / shrink, h = im.height() / shrink;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int k = 0; k < 3; ++k) {
+          float sum = 0.0f;
+          for (int j = 0; j < shrink; ++j)
+            for (int i = 0; i < shrink; ++i) sum += im.at(x * shrink + i, y * shrink + j, std::min(k, im.channels() - 1));
+          out.at(x0 + x, y, k) = sum / float(shrink * shrink);
+        }
+    x0 += w + 4;
+  }
+  return out;
+}
+
 void write_image(Context& c, Section& s, const std::string& role, const std::string& file, const ImageF& image) {
   std::filesystem::create_directories((c.out / file).parent_path());
   write_png_linear(c.out / file, image);

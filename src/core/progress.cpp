@@ -19,7 +19,10 @@ std::string progress_line(const std::string& stage, const std::string& what, int
   std::string line = stage + " ";
   if (bar_width > 0) {
     const int filled = total > 0 ? std::clamp(done * bar_width / total, 0, bar_width) : 0;
-    line += "[" + std::string(size_t(filled), '#') + std::string(size_t(bar_width - filled), '.') + "] ";
+    line += '[';
+    line.append(size_t(filled), '#');
+    line.append(size_t(bar_width - filled), '.');
+    line += "] ";
   }
   line += std::to_string(done) + "/" + std::to_string(total);
   if (!what.empty()) line += " " + what;
