@@ -13,7 +13,7 @@ struct Settings {
 };
 Settings settings(const Context& c) {
   if (c.full) return {1024, 768, 512, 7, {64, 128, 256, 512, 1024}};
-  return {512, 384, 256, 3, {64, 128, 256}};
+  return {512, 384, 256, 3, {64, 128, 256, 512}};
 }
 
 const char* const kMethods[] = {"envmap", "rectified", "average", "layered"};

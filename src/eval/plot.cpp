@@ -38,7 +38,7 @@ std::string tick_label(double v) {
   if (v == 0.0) return "0";
   char buf[32];
   double a = std::fabs(v);
-  if (a >= 1e5 || a < 1e-3) std::snprintf(buf, sizeof buf, "%.0e", v);
+  if (a >= 1e7 || a < 1e-3) std::snprintf(buf, sizeof buf, "%.2g", v);
   else std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
 }
