@@ -1,9 +1,11 @@
 // Google Benchmark micro-benchmarks of environment maps with distance (issue 6) on
-// room-reflector: filtered cube-map samples (coherent and random directions), the frame's
-// reflector visibility, and the shading pass per method at 1024×768 with a 512² map,
-// 1 thread. The figures in docs/RESULTS.md come from `proxima reflect --compare`; these
+// room-reflector (filtered cube-map samples, coherent and random directions) and on the
+// paper's two Table 1 reflectors, room-reflector and room-car (the frame's reflector
+// visibility and the shading pass per method at 1024×768 with a 512² map), 1 thread. The figures in docs/RESULTS.md come from `proxima reflect --compare`; these
 // are for profiling.
 #include <benchmark/benchmark.h>
+
+#include <string>
 
 #include "proxima/core/parallel.h"
 #include "proxima/core/rng.h"
@@ -15,7 +17,8 @@ namespace {
 using namespace proxima;
 
 struct RoomReflector {
-  Scene scene = make_builtin_scene("room-reflector");
+  explicit RoomReflector(const char* name) : scene(make_builtin_scene(name)) {}
+  Scene scene;
   RayScene rays{scene};
   std::vector<uint32_t> reflectors = reflective_objects(scene);
   vec3 center = projection_center(scene, reflectors);
@@ -35,9 +38,12 @@ struct RoomReflector {
   ReflectorPixels pixels = rasterize_reflector_pixels(scene, camera, reflectors);
 };
 
-const RoomReflector& room() {
-  static const RoomReflector r;
-  return r;
+constexpr const char* kScenes[] = {"room-reflector", "room-car"};
+
+const RoomReflector& room(int64_t index = 0) {
+  static const RoomReflector reflector(kScenes[0]);
+  static const RoomReflector car(kScenes[1]);
+  return index == 0 ? reflector : car;
 }
 
 std::vector<vec3> directions(bool coherent) {
@@ -68,14 +74,15 @@ void BM_SampleDistance(benchmark::State& state) {
 BENCHMARK(BM_SampleDistance)->Arg(0)->Arg(1)->ArgName("coherent");
 
 void BM_ReflectorVisibility(benchmark::State& state) {
-  const RoomReflector& r = room();
+  const RoomReflector& r = room(state.range(0));
   ThreadLimit limit(1);
   for (auto _ : state) benchmark::DoNotOptimize(rasterize_reflector_pixels(r.scene, r.camera, r.reflectors));
+  state.SetLabel(kScenes[state.range(0)]);
 }
-BENCHMARK(BM_ReflectorVisibility)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ReflectorVisibility)->Arg(0)->Arg(1)->ArgName("scene")->Unit(benchmark::kMillisecond);
 
 void BM_ShadeReflector(benchmark::State& state) {
-  const RoomReflector& r = room();
+  const RoomReflector& r = room(state.range(1));
   ThreadLimit limit(1);
   EnvmapInputs in;
   in.method = EnvmapMethod(state.range(0));
@@ -84,8 +91,11 @@ void BM_ShadeReflector(benchmark::State& state) {
   in.rectify.D = 12.0f;
   for (auto _ : state)
     benchmark::DoNotOptimize(shade_reflector_pixels(r.scene, r.rays, r.camera, r.pixels, in));
-  state.SetLabel(method_name(in.method));
+  state.SetLabel(std::string(kScenes[state.range(1)]) + " " + method_name(in.method));
 }
-BENCHMARK(BM_ShadeReflector)->Arg(0)->Arg(1)->Arg(2)->ArgName("method")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ShadeReflector)
+    ->ArgsProduct({{0, 1, 2}, {0, 1}})
+    ->ArgNames({"method", "scene"})
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace

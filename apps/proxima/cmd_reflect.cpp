@@ -13,7 +13,7 @@
 #include "proxima/core/parallel.h"
 #include "proxima/core/timer.h"
 #include "proxima/eval/image_error.h"
-#include "proxima/reflect/direct_light.h"
+#include "proxima/trace/direct_light.h"
 #include "proxima/reflect/envmap_reflection.h"
 #include "proxima/scene/load.h"
 #include "proxima/scene/shading.h"

@@ -43,15 +43,18 @@ void reference_section(Context& c) {
 void raster_section(Context& c) {
   c.progress->step("every built-in camera, 512×512");
   Table table{"rasterized vs ray-cast triangle ids, 512×512",
-              {"scene", "camera", "agreement_pct", "edge_ties", "depth_ties", "other"},
+              {"scene", "camera", "agreement_pct", "edge_ties", "on_shared_edge", "depth_ties", "other"},
               {}};
-  double min_pct = 100.0;
+  double min_pct = 100.0, min_with_ties = 100.0;
   for (const CameraAgreement& a : raster_agreement_on_builtins(512)) {
     const IdAgreement& g = a.agreement;
     min_pct = std::min(min_pct, g.agreement_pct());
-    table.rows.push_back({a.scene, a.camera, g.agreement_pct(), double(g.edge), double(g.depth), double(g.other)});
+    min_with_ties = std::min(min_with_ties, g.agreement_with_ties_pct());
+    table.rows.push_back({a.scene, a.camera, g.agreement_pct(), double(g.edge), double(g.on_shared_edge),
+                          double(g.depth), double(g.other)});
   }
   c.results->metrics["id_agreement_pct"] = min_pct;
+  c.results->metrics["id_agreement_with_ties_pct"] = min_with_ties;
   c.results->tables.push_back(table);
   c.results->sections.push_back(
       {"raster", "Software rasterizer vs Embree",

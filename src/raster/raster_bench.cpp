@@ -69,6 +69,9 @@ std::optional<RayHit> intersect(const Scene& scene, uint32_t triangle, const Cam
   return RayHit{u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0, depth};
 }
 
+// A center this close (pixels) to both triangles' boundaries lies on their shared edge.
+constexpr double kSharedEdgePx = 1e-4;
+
 // Screen distance (pixels) from (px, py) to the boundary of the triangle's projection;
 // nullopt when a vertex is not in front of the camera.
 std::optional<double> edge_distance(const Scene& scene, uint32_t triangle, const Camera& camera, double px,
@@ -131,6 +134,11 @@ IdAgreement compare_id_buffers(const Scene& scene, const Camera& camera, const I
       };
       if (near_edge(r) || near_edge(e)) {
         ++a.edge;
+        auto on_boundary = [&](uint32_t t) {
+          const auto d = t == kNoTriangle ? std::nullopt : edge_distance(scene, t, camera, cx, cy);
+          return d && *d <= kSharedEdgePx;
+        };
+        if (on_boundary(r) && on_boundary(e)) ++a.on_shared_edge;
         continue;
       }
       if (r != kNoTriangle && e != kNoTriangle) {

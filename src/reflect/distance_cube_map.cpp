@@ -7,7 +7,7 @@
 //   d_inf                                     kDistanceInf (+inf: every distance is below it)
 // The paper renders the map on the GPU with alpha initialised to d_inf; here each face is
 // a raster/ G-buffer (triangle, barycentrics, object) and each covered texel is shaded
-// with the reference's local model, Embree shadows included (reflect/direct_light.h).
+// with the reference's local model, Embree shadows included (trace/direct_light.h).
 #include "proxima/reflect/distance_cube_map.h"
 
 #include <algorithm>
@@ -18,7 +18,7 @@
 #include "proxima/core/parallel.h"
 #include "proxima/core/rng.h"
 #include "proxima/raster/rasterizer.h"
-#include "proxima/reflect/direct_light.h"
+#include "proxima/trace/direct_light.h"
 
 namespace proxima {
 namespace {

@@ -18,7 +18,7 @@
 #include "proxima/core/parallel.h"
 #include "proxima/core/rng.h"
 #include "proxima/raster/rasterizer.h"
-#include "proxima/reflect/direct_light.h"
+#include "proxima/trace/direct_light.h"
 #include "proxima/scene/shading.h"
 
 namespace proxima {

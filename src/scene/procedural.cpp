@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cassert>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -64,6 +65,24 @@ Mesh make_sphere(float radius, int segments, int rings) {
       if (i != rings - 1) m.triangles.push_back({a, c, d});
       if (i != 0) m.triangles.push_back({a, d, b});
     }
+  }
+  return m;
+}
+
+Mesh make_superellipsoid(vec3 radii, float exponent, int segments, int rings) {
+  assert(exponent > 0.0f && radii.x > 0.0f && radii.y > 0.0f && radii.z > 0.0f);
+  Mesh m = make_sphere(1.0f, segments, rings);
+  auto signed_pow = [](float x, float e) { return std::copysign(std::pow(std::abs(x), e), x); };
+  for (size_t i = 0; i < m.positions.size(); ++i) {
+    vec3 n = m.normals[i];
+    vec3 p, g;
+    for (int c = 0; c < 3; ++c) {
+      p[c] = radii[c] * signed_pow(n[c], exponent);
+      // ∇ of Σ|p_i/r_i|^(2/e) at p, up to a positive factor: sign(n_i)·|n_i|^(2−e) / r_i.
+      g[c] = signed_pow(n[c], 2.0f - exponent) / radii[c];
+    }
+    m.positions[i] = p;
+    m.normals[i] = glm::normalize(g);
   }
   return m;
 }

@@ -16,35 +16,12 @@
 #include "proxima/core/parallel.h"
 #include "proxima/core/rng.h"
 #include "proxima/scene/shading.h"
+#include "proxima/trace/direct_light.h"
 
 namespace proxima {
 namespace {
 
 constexpr int kTileSize = 16;
-
-// Secondary rays start this far (× scene diagonal) off the surface, along the geometric
-// normal on the side they leave from, so they do not re-hit their own triangle.
-constexpr float kRelativeEpsilon = 1e-4f;
-
-struct SurfacePoint {
-  vec3 p;
-  vec3 n;   // unit shading normal, on the side the ray came from
-  vec3 ng;  // unit geometric normal, same side
-  const Material* material;
-};
-
-// The hit seen along `dir`: the geometric normal flipped to face back along the ray, the
-// shading normal flipped into its hemisphere (vertex normals may disagree with the winding).
-SurfacePoint surface_point(const Scene& scene, const Hit& hit, vec3 dir) {
-  SurfacePoint sp;
-  sp.p = triangle_point(scene, hit.triangle, hit.u, hit.v);
-  sp.ng = triangle_normal(scene, hit.triangle);
-  if (glm::dot(sp.ng, dir) > 0.0f) sp.ng = -sp.ng;
-  sp.n = shading_normal(scene, hit.triangle, hit.u, hit.v);
-  if (glm::dot(sp.n, sp.ng) < 0.0f) sp.n = -sp.n;
-  sp.material = &scene.materials[scene.triangle_material[hit.triangle]];
-  return sp;
-}
 
 // Primary ray through continuous pixel coordinates, clipped to the camera's [near, far]
 // slab like a rasterizer's depth range.
@@ -59,10 +36,7 @@ Ray primary_ray(const Camera& camera, vec3 forward, vec2 pixel) {
 class Tracer {
  public:
   Tracer(const Scene& scene, const RayScene& rays, const ReferenceOptions& options)
-      : scene_(scene),
-        rays_(rays),
-        options_(options),
-        epsilon_(kRelativeEpsilon * std::max(scene_bounds(scene).diagonal(), 1e-3f)) {}
+      : scene_(scene), rays_(rays), options_(options), light_(scene, rays, options.area_light_samples) {}
 
   // Radiance arriving along `ray` (towards its origin). `bounce` = reflections taken so far.
   // `lobe` is scratch for options.glossy_rays samples; only bounce 0 fills it, so the
@@ -70,21 +44,13 @@ class Tracer {
   vec3 radiance(const Ray& ray, int bounce, Pcg32& rng, std::span<vec2> lobe) const {
     Hit hit = rays_.intersect(ray);
     if (!hit.valid()) return environment_radiance(scene_.environment, ray.dir);
-    SurfacePoint sp = surface_point(scene_, hit, ray.dir);
-    const Material& m = *sp.material;
-
-    ShadingTerms terms;
-    terms.emission = m.emission;
-    terms.ambient = scene_.ambient;
-    terms.albedo = surface_diffuse(scene_, hit.triangle, hit.u, hit.v);
-    terms.specular = m.specular;
-    // Direct light is weighted by (1 − s)·albedo: skip its shadow rays when that is zero.
-    if (m.specular < 1.0f && terms.albedo != vec3(0.0f)) terms.direct_irradiance = direct(sp, rng);
-
-    if (m.specular > 0.0f && bounce < options_.max_bounces) {
+    SurfacePoint sp = surface_point_seen(scene_, hit.triangle, hit.u, hit.v, ray.dir);
+    ShadingTerms terms = light_.local_terms(sp, rng);
+    const float s = terms.specular;
+    if (s > 0.0f && bounce < options_.max_bounces) {
       vec3 mirror = reflect(glm::normalize(ray.dir), sp.n);
-      Ray reflected{offset_origin(sp), mirror, 0.0f, kInf};
-      float half_angle = glossy_lobe_half_angle(m.gloss);
+      Ray reflected{light_.offset_origin(sp), mirror, 0.0f, kInf};
+      float half_angle = glossy_lobe_half_angle(scene_.materials[scene_.triangle_material[hit.triangle]].gloss);
       if (bounce == 0 && half_angle > 0.0f) {
         stratified_samples_2d(lobe, rng);
         vec3 sum(0.0f);
@@ -103,46 +69,10 @@ class Tracer {
   }
 
  private:
-  vec3 offset_origin(const SurfacePoint& sp) const { return sp.p + epsilon_ * sp.ng; }
-
-  // Unoccluded from `origin` to `target`; the segment stops epsilon short of the target so
-  // a luminaire modelled as geometry at the light's position does not shadow itself.
-  bool visible(vec3 origin, vec3 target) const {
-    vec3 d = target - origin;
-    float length = glm::length(d);
-    if (length <= epsilon_) return true;
-    return !rays_.occluded(Ray{origin, d, 0.0f, 1.0f - epsilon_ / length});
-  }
-
-  // Σ over lights of the shadowed irradiance at sp.
-  vec3 direct(const SurfacePoint& sp, Pcg32& rng) const {
-    vec3 origin = offset_origin(sp);
-    vec3 sum(0.0f);
-    for (const PointLight& light : scene_.point_lights) {
-      vec3 e = point_light_irradiance(light, sp.p, sp.n);
-      if (e != vec3(0.0f) && visible(origin, light.position)) sum += e;
-    }
-    int n = options_.area_light_samples;
-    for (const AreaLight& light : scene_.area_lights) {
-      vec3 light_sum(0.0f);
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-          float xi1 = rng.next_float();
-          float xi2 = rng.next_float();
-          vec2 ab = stratum_sample(i, j, n, xi1, xi2);
-          vec3 q = light.point(ab.x, ab.y);
-          vec3 e = area_light_sample_irradiance(light, q, sp.p, sp.n);
-          if (e != vec3(0.0f) && visible(origin, q)) light_sum += e;
-        }
-      sum += light_sum / float(n * n);
-    }
-    return sum;
-  }
-
   const Scene& scene_;
   const RayScene& rays_;
   const ReferenceOptions& options_;
-  float epsilon_;
+  DirectLight light_;
 };
 
 void validate_options(const ReferenceOptions& o) {
@@ -170,7 +100,7 @@ ItemBuffer trace_item_buffer(const Scene& scene, const RayScene& rays, const Cam
         Ray ray = primary_ray(camera, forward, vec2(float(x) + 0.5f, float(y) + 0.5f));
         Hit hit = rays.intersect(ray);
         if (!hit.valid()) continue;
-        SurfacePoint sp = surface_point(scene, hit, ray.dir);
+        SurfacePoint sp = surface_point_seen(scene, hit.triangle, hit.u, hit.v, ray.dir);
         out.triangle.at(x, y) = hit.triangle;
         out.depth.at(x, y) = hit.t * glm::dot(ray.dir, forward);
         for (int c = 0; c < 3; ++c) {

@@ -64,6 +64,7 @@ constexpr Minimum kMinimums[] = {
     {"city", 45000, 0, 0, 1, false},
     {"tree", 100000, 0, 0, 1, false},
     {"room-teapot", 39800, 1, 1, 2},
+    {"room-car", 39936, 1, 1, 2},
     {"room-parallax", 2176, 1, 0, 2},
 };
 

@@ -141,6 +141,43 @@ TEST(ProceduralSphere, ClosedOutwardWithAnalyticVolume) {
   }
 }
 
+// Every vertex on the implicit surface Σ|p_i/r_i|^(2/e) = 1, normals along its gradient
+// (checked by finite differences), closed and outward; e = 1 is the ellipsoid.
+TEST(ProceduralSuperellipsoid, OnTheSurfaceWithGradientNormals) {
+  const vec3 r{1.5f, 0.32f, 0.68f};
+  for (float e : {1.0f, 0.55f, 0.3f}) {
+    SCOPED_TRACE(e);
+    Mesh m = make_superellipsoid(r, e, 48, 24);
+    EXPECT_EQ(m.triangles.size(), 2u * 48u * 23u);
+    expect_watertight(m);
+    expect_well_formed(m);
+    EXPECT_GT(signed_volume(m), 0.0);
+    auto f = [&](dvec3 p) {
+      double sum = 0.0;
+      for (int c = 0; c < 3; ++c) sum += std::pow(std::abs(p[c] / double(r[c])), 2.0 / double(e));
+      return sum;
+    };
+    for (size_t i = 0; i < m.positions.size(); ++i) {
+      dvec3 p(m.positions[i]);
+      EXPECT_NEAR(f(p), 1.0, 1e-4) << "vertex " << i;
+      // Finite-difference gradient (skipped at the axis extremes, where it has a kink for e < 1).
+      const double h = 1e-5;
+      dvec3 g;
+      for (int c = 0; c < 3; ++c) {
+        dvec3 d(0.0);
+        d[c] = h;
+        g[c] = (f(p + d) - f(p - d)) / (2.0 * h);
+      }
+      if (glm::length(g) < 1e-3) continue;
+      EXPECT_GT(glm::dot(glm::normalize(g), dvec3(m.normals[i])), 0.999) << "vertex " << i;
+    }
+  }
+  Mesh ellipsoid = make_superellipsoid(vec3(1.0f), 1.0f, 32, 16);
+  Mesh sphere = make_sphere(1.0f, 32, 16);
+  for (size_t i = 0; i < sphere.positions.size(); ++i)
+    EXPECT_LT(glm::length(ellipsoid.positions[i] - sphere.positions[i]), 1e-6f);
+}
+
 TEST(ProceduralCylinder, TriangleCounts) {
   EXPECT_EQ(make_cylinder(1.0f, 2.0f, 64, 16, false).triangles.size(), 2u * 64u * 16u);
   EXPECT_EQ(make_cylinder(1.0f, 2.0f, 64, 16, true).triangles.size(), 2u * 64u * 16u + 2u * 64u);

@@ -3,7 +3,7 @@
 // radiance of the environment surface (RGB) and, in the alpha channel, that surface's
 // Euclidean distance to c; d_inf (+inf here) where nothing is hit. Rendered with the
 // software rasterizer (raster/), one 90° face camera per face (core/cube_camera.h);
-// texels are shaded with the reference's local model (reflect/direct_light.h).
+// texels are shaded with the reference's local model (trace/direct_light.h).
 #pragma once
 
 #include <array>

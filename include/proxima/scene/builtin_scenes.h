@@ -26,6 +26,8 @@ struct BuiltinSceneInfo {
 //   "walk", "pan".
 // Appended for environment maps with distance (issue 6):
 // - room-teapot: room-reflector with a 39,800-triangle mirror teapot instead of the cylinder.
+// - room-car: room-reflector with a 39,936-triangle car-like mirror body (two
+//   superellipsoids) instead of the cylinder.
 // - room-parallax: the room with a mirror cylinder and a red sphere between it and the
 //   checkered front wall; cameras "left", "right" (the layered env-map parallax test).
 std::vector<BuiltinSceneInfo> builtin_scenes();

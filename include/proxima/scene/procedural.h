@@ -16,6 +16,11 @@ Mesh make_cylinder(float radius, float height, int segments, int rings, bool cap
 // Torus around Y: major radius R, minor radius r. 2·major_segments·minor_segments triangles.
 Mesh make_torus(float major_radius, float minor_radius, int major_segments, int minor_segments);
 
+// Superellipsoid Σ|x_i / r_i|^(2/e) = 1 with semi-axes `radii`: the UV sphere's vertices
+// n mapped to r_i·sign(n_i)·|n_i|^e, with the analytic normals. e = 1 is an ellipsoid,
+// e → 0 a box with ever sharper rounded edges. 2·segments·(rings−1) triangles.
+Mesh make_superellipsoid(vec3 radii, float exponent, int segments, int rings);
+
 // Axis-aligned box centered at the origin with the given full size; faces outward,
 // each face split into subdivisions² quads.
 Mesh make_box(vec3 size, int subdivisions = 1);

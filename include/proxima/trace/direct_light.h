@@ -1,9 +1,8 @@
-// Local shading of a surface point exactly as the reference renderer evaluates it at a hit
-// (docs/shading.md, trace/reference_renderer.cpp): emission, ambient and Lambert direct
+// Local shading of a surface point (docs/shading.md): emission, ambient and Lambert direct
 // light with Embree shadow rays — one per point light, n×n jittered stratified rays per
-// area light — drawn from the caller's random stream in the reference's order. Everything
-// of the model except s·L_refl, so an approximation of L_refl built on this differs from
-// the reference only where it approximates the reflected radiance.
+// area light — drawn from the caller's random stream. The reference renderer shades every
+// hit with it, so an approximation of L_refl built on it (reflect/) differs from the
+// reference only where it approximates the reflected radiance.
 #pragma once
 
 #include <cstdint>

@@ -1,7 +1,6 @@
-// Local shading with Embree shadows, mirroring trace/reference_renderer.cpp's Tracer::direct
-// and surface_point line for line (same epsilon, same random-number order), so techniques
-// in reflect/ shade environment texels and reflector pixels exactly as the ground truth.
-#include "proxima/reflect/direct_light.h"
+// Local shading with Embree shadows: the reference renderer's (trace/reference_renderer.cpp)
+// and the one techniques in reflect/ shade environment texels and reflector pixels with.
+#include "proxima/trace/direct_light.h"
 
 #include <algorithm>
 
