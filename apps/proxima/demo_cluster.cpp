@@ -85,11 +85,18 @@ void cluster_section(Context& c) {
                           metric(r, "depth_images_ms_avg"), metric(r, "intersection_ms_avg")});
     if (i == 0) {
       // Images of the first frame, the heat map on the reflection sections' common scale.
-      const ImageF color = read_child_image(c, run.dir + "/color.png");
+      // The cluster frame is "color" from reflect-cluster, "cluster" from reflect --method cluster.
+      auto file_of = [&](const char* role, const char* fallback) {
+        auto it = r.images.find(role);
+        return run.dir + "/" + (it != r.images.end() ? it->second : std::string(fallback));
+      };
+      const std::string color_file =
+          r.images.count("cluster") ? file_of("cluster", "cluster.png") : file_of("color", "color.png");
+      const ImageF color = read_child_image(c, color_file);
       const ImageF reference = read_child_image(c, run.dir + "/reference.png");
       const ImageF err = error_image(color, reference);
       add_image(c, section, where + ": Embree, same rays", run.dir + "/reference.png");
-      add_image(c, section, where + ": cluster depth images", run.dir + "/color.png");
+      add_image(c, section, where + ": cluster depth images", color_file);
       write_image(c, section, where + ": error", run.dir + "/heat.png", error_heatmap(err, kReflectionHeatMax));
       add_image(c, section, where + ": clusters (red: environment fallback, yellow: occlusion error)",
                 run.dir + "/clusters.png");
