@@ -2,7 +2,8 @@
 # Installs the Debian packages proxima builds with, only those that are missing.
 # Idempotent; works as root, or through sudo when not root and sudo is available.
 # --fuzz also installs clang with its sanitizer and libFuzzer runtimes (scripts/fuzz.sh,
-# CI); `make test` and `make demo` do not need them.
+# CI); `make test` and `make demo` do not need them. --browser also installs Chromium, for
+# scripts/screenshot-report.sh (headless check + screenshot of the demo report).
 set -euo pipefail
 
 packages=(
@@ -14,9 +15,13 @@ packages=(
   # software OpenGL through EGL, measured side by side with proxima's rasterizer.
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
 )
-if [ "${1:-}" = --fuzz ]; then
-  packages+=(clang libclang-rt-dev zlib1g-dev)
-fi
+for arg in "$@"; do
+  case "$arg" in
+    --fuzz) packages+=(clang libclang-rt-dev zlib1g-dev) ;;
+    --browser) packages+=(chromium) ;;
+    *) echo "install-deps: unknown option $arg (--fuzz, --browser)" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

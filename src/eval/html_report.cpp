@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "proxima/core/atomic_file.h"
+#include "proxima/eval/plot.h"
 
 namespace proxima {
 namespace {
@@ -61,7 +62,7 @@ pre{padding:.5em;overflow-x:auto} table{border-collapse:collapse;margin:1em 0}
 caption{text-align:left;font-weight:600;padding:.3em 0} th,td{border:1px solid #ccc;padding:.2em .6em}
 td.num{text-align:right;font-variant-numeric:tabular-nums} th{background:#f0f0f0}
 .figures{display:flex;flex-wrap:wrap;gap:1em} figure{margin:0} figure img{max-width:380px;image-rendering:pixelated}
-figcaption{font-size:13px;color:#555}
+figcaption{font-size:13px;color:#555;max-width:380px} figure.plot figcaption{max-width:560px}
 )";
 
 }  // namespace
@@ -97,6 +98,17 @@ std::string report_html(const Results& results, const std::string& title) {
         out << "<figure><img src=\"" << escape(it->second) << "\" alt=\"" << escape(role)
             << "\"><figcaption>" << escape(role) << "</figcaption></figure>\n";
       }
+      out << "</div>\n";
+    }
+    if (!s.plots.empty()) {
+      out << "<div class=\"figures\">\n";
+      for (const PlotSpec& p : s.plots)
+        for (const Table& t : results.tables)
+          if (t.title == p.table) {
+            out << "<figure class=\"plot\">" << svg_chart(chart_from_table(p, t)) << "<figcaption>from table: "
+                << escape(t.title) << "</figcaption></figure>\n";
+            break;
+          }
       out << "</div>\n";
     }
     for (const auto& name : s.tables)

@@ -76,9 +76,14 @@ void write_results_json(const std::filesystem::path& path, const Results& result
   j["machine"] = {{"cpu", results.cpu.empty() ? cpu_model() : results.cpu},
                   {"hardware_threads", std::thread::hardware_concurrency()}};
   nlohmann::json sections = nlohmann::json::array();
-  for (const Section& s : results.sections)
+  for (const Section& s : results.sections) {
+    nlohmann::json plots = nlohmann::json::array();
+    for (const PlotSpec& p : s.plots)
+      plots.push_back({{"title", p.title}, {"table", p.table}, {"kind", p.kind}, {"x", p.x}, {"y", p.y},
+                       {"x_label", p.x_label}, {"y_label", p.y_label}, {"log_y", p.log_y}});
     sections.push_back({{"id", s.id}, {"title", s.title}, {"text", s.text}, {"tables", s.tables},
-                        {"images", s.images}, {"commands", s.commands}});
+                        {"images", s.images}, {"commands", s.commands}, {"plots", plots}});
+  }
   j["sections"] = sections;
   write_text_file(path, j.dump(2) + "\n");
 }
@@ -120,11 +125,18 @@ Results read_results_json(const std::filesystem::path& path) {
       r.tables.push_back(std::move(table));
     }
     r.images = j.value("images", std::map<std::string, std::string>{});
-    for (const auto& s : j.value("sections", nlohmann::json::array()))
-      r.sections.push_back({s.at("id").get<std::string>(), s.at("title").get<std::string>(),
-                            s.value("text", std::string()), s.value("tables", std::vector<std::string>{}),
-                            s.value("images", std::vector<std::string>{}),
-                            s.value("commands", std::vector<std::string>{})});
+    for (const auto& s : j.value("sections", nlohmann::json::array())) {
+      Section section{s.at("id").get<std::string>(), s.at("title").get<std::string>(),
+                      s.value("text", std::string()), s.value("tables", std::vector<std::string>{}),
+                      s.value("images", std::vector<std::string>{}),
+                      s.value("commands", std::vector<std::string>{})};
+      for (const auto& p : s.value("plots", nlohmann::json::array()))
+        section.plots.push_back({p.at("title").get<std::string>(), p.at("table").get<std::string>(),
+                                 p.value("kind", std::string("line")), p.at("x").get<std::string>(),
+                                 p.at("y").get<std::vector<std::string>>(), p.value("x_label", std::string()),
+                                 p.value("y_label", std::string()), p.value("log_y", false)});
+      r.sections.push_back(std::move(section));
+    }
     return r;
   } catch (const nlohmann::json::exception& e) {
     fail_input(path.string() + ": malformed results.json: " + e.what());

@@ -22,7 +22,9 @@ constexpr const char* kFixture = R"({
   "images": {"cornell_reference": "cornell_reference.png"},
   "sections": [{"id": "reference", "title": "Reference renders", "text": "First paragraph.\n\nSecond.",
                 "tables": ["reference renders"], "images": ["cornell_reference"],
-                "commands": ["proxima render --scene cornell"]}]
+                "commands": ["proxima render --scene cornell"],
+                "plots": [{"title": "render time", "table": "reference renders", "kind": "bar", "x": "scene",
+                           "y": ["render_ms"], "y_label": "ms"}]}]
 })";
 
 TEST(HtmlReport, EveryNumberComesFromResultsJson) {
@@ -41,6 +43,11 @@ TEST(HtmlReport, EveryNumberComesFromResultsJson) {
   // The table no section names still appears, after the sections.
   EXPECT_GT(html.find("<caption>loose</caption>"), html.find("<caption>reference renders</caption>"));
   EXPECT_NE(html.find("<td class=\"num\">1.25</td>"), std::string::npos);
+  // The plot is inline SVG drawn from the same table cells.
+  EXPECT_NE(html.find("<svg class=\"chart\""), std::string::npos);
+  EXPECT_NE(html.find("<title>render_ms, cornell: 12.5</title>"), std::string::npos) << html;
+  EXPECT_NE(html.find("<title>render_ms, a&lt;b: 3</title>"), std::string::npos);
+  EXPECT_EQ(r.sections[0].plots.at(0).y, std::vector<std::string>{"render_ms"});
   // Self-contained: no scripts, no remote fetches.
   EXPECT_EQ(html.find("<script"), std::string::npos);
   EXPECT_EQ(html.find("http"), std::string::npos);

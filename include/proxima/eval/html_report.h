@@ -13,7 +13,7 @@ namespace proxima {
 // Page layout: title; machine (CPU, threads), build, commit, command — all from `results`;
 // contents; each
 // Section with its text, tables (matched by title), images (matched by role, with the
-// role as caption) and commands; then the tables no section names.
+// role as caption), plots (inline SVG charts of table columns, eval/plot.h) and commands; then the tables no section names.
 std::string report_html(const Results& results, const std::string& title);
 
 // Writes report_html into out_dir/index.html atomically.

@@ -2,8 +2,9 @@
 // {"command": [...argv], "threads": N, "build": "Release", "commit": "...",
 //  "metrics": {"name_unit": number}, "tables": [{"title", "columns", "rows"}], "images": {...},
 //  "machine": {"cpu", "hardware_threads"}, "sections": [{"id", "title", "text", "tables",
-//  "images", "commands"}]}
-// "sections" group tables (by title) and images (by role) for the HTML report; optional.
+//  "images", "commands", "plots"}]}
+// "sections" group tables (by title), images (by role) and plots of table columns for the
+// HTML report; optional.
 #pragma once
 
 #include <filesystem>
@@ -20,6 +21,19 @@ struct Table {
   std::vector<std::vector<std::variant<std::string, double>>> rows;
 };
 
+// A chart of one table's columns (drawn by eval/plot.h, so its numbers are the table's):
+// kind "line" plots each y column against the numeric x column; "bar" groups bars by the
+// x column's cells.
+struct PlotSpec {
+  std::string title;
+  std::string table;  // Table::title
+  std::string kind = "line";
+  std::string x;                // column name
+  std::vector<std::string> y;   // column names, one series each
+  std::string x_label, y_label;
+  bool log_y = false;
+};
+
 // One part of a report: prose, then the tables and images it names, then the commands that
 // reproduce its figures.
 struct Section {
@@ -29,6 +43,7 @@ struct Section {
   std::vector<std::string> tables;    // Table::title of each table shown here
   std::vector<std::string> images;    // roles (keys of Results::images) shown here
   std::vector<std::string> commands;  // shell commands reproducing the section's figures
+  std::vector<PlotSpec> plots = {};
 };
 
 struct Results {

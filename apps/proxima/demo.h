@@ -1,0 +1,98 @@
+// `proxima demo` sections: one function per technique, each adding its prose, tables,
+// images, plots and reproducing commands to the report's Results. A technique joins the
+// demo with one demo_<technique>.cpp and one line in demo_sections() (cmd_demo.cpp).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "command.h"
+#include "proxima/core/image.h"
+#include "proxima/core/progress.h"
+#include "proxima/eval/results.h"
+
+namespace proxima::cli::demo {
+
+struct Context {
+  bool full = false;  // the papers' settings instead of the ≤ 10-minute ones
+  int threads = 0;    // passed on to every child run (0 = all cores)
+  uint64_t seed = 1;
+  int width = 512, height = 512;  // reference renders
+  std::filesystem::path out;      // the report's directory
+  std::string out_arg;            // --out as given, for the reproducing commands
+  Results* results = nullptr;
+  Progress* progress = nullptr;
+  CLI::App* root = nullptr;
+};
+
+// One technique's section. `steps` is its number of progress steps (child runs).
+struct SectionDef {
+  std::string id;
+  std::string stage;  // progress label
+  std::function<int(const Context&)> steps;
+  std::function<void(Context&)> run;
+};
+
+// Every section, in page order (cmd_demo.cpp).
+std::vector<SectionDef> demo_sections();
+
+// The sections themselves (demo_<technique>.cpp).
+void reference_section(Context& c);
+void raster_section(Context& c);
+void sampling_section(Context& c);
+void envmap_section(Context& c);
+void cluster_section(Context& c);
+void visibility_section(Context& c);
+int sampling_steps(const Context& c);
+int envmap_steps(const Context& c);
+int cluster_steps(const Context& c);
+int visibility_steps(const Context& c);
+
+// A finished child run: its results and where they are, relative to the report.
+struct ChildRun {
+  Results results;
+  std::string dir;      // relative to Context::out
+  std::string command;  // the shell command reproducing it
+};
+
+// Runs this binary as `proxima <args> --out <out>/<dir> [--threads N]` (one progress step),
+// its stdout and stderr into <dir>/log.txt, and reads back its results.json. Throws
+// std::runtime_error naming the log when the run fails.
+ChildRun run_child(Context& c, const std::string& dir, std::vector<std::string> args, bool pass_threads = true);
+
+// A metric of a child run, NaN if it did not write it.
+double metric(const Results& r, const std::string& name);
+
+// Adds image file `file` (relative to the report) under `role` to the report and section.
+void add_image(Context& c, Section& s, const std::string& role, const std::string& file);
+
+// Reads an 8-bit image written by a child (linear RGB).
+ImageF read_child_image(const Context& c, const std::string& file);
+
+// The size × size window (on a stride of size / 8) with the largest summed error.
+struct Window {
+  int x = 0, y = 0, size = 0;
+};
+Window worst_window(const ImageF& error, int size);
+
+// The window of `image`, enlarged `zoom`× (nearest neighbour, so pixels stay visible).
+ImageF crop_zoom(const ImageF& image, const Window& w, int zoom);
+
+// Images side by side, each box-filtered down by `shrink` (heights must match), 4 px gaps.
+ImageF side_by_side(const std::vector<ImageF>& images, int shrink);
+
+// Writes `image` as <out>/<file> (PNG, linear → sRGB) and adds it as `role`.
+void write_image(Context& c, Section& s, const std::string& role, const std::string& file, const ImageF& image);
+
+// Error heat maps of the reflection sections share this scale (0–255 display units).
+constexpr float kReflectionHeatMax = 32.0f;
+
+// Adds the heat-map legend (once per report) to the section.
+void add_heatmap_legend(Context& c, Section& s, float max_error);
+
+// "12.3" — short numbers for table cells that combine several values.
+std::string fixed(double v, int decimals);
+
+}  // namespace proxima::cli::demo

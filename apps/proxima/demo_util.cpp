@@ -1,0 +1,161 @@
+// Shared machinery of the demo sections (demo.h): child runs, images, crops.
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "demo.h"
+#include "proxima/core/image_io.h"
+#include "proxima/eval/image_error.h"
+
+namespace proxima::cli::demo {
+
+std::string fixed(double v, int decimals) {
+  if (!std::isfinite(v)) return "–";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+namespace {
+
+std::string shell_quote(const std::string& a) {
+  if (!a.empty() && a.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=,:") ==
+                        std::string::npos)
+    return a;
+  std::string q = "'";
+  for (char ch : a) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  return q + "'";
+}
+
+std::string tail_of(const std::filesystem::path& log) {
+  std::ifstream in(log);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  std::string out;
+  for (size_t i = lines.size() > 5 ? lines.size() - 5 : 0; i < lines.size(); ++i) out += "\n  " + lines[i];
+  return out;
+}
+
+}  // namespace
+
+ChildRun run_child(Context& c, const std::string& dir, std::vector<std::string> args, bool pass_threads) {
+  const std::filesystem::path out = c.out / dir;
+  std::filesystem::create_directories(out);
+  args.push_back("--out");
+  args.push_back(out.string());
+  if (pass_threads && c.threads > 0) {
+    args.push_back("--threads");
+    args.push_back(std::to_string(c.threads));
+  }
+  ChildRun run;
+  run.dir = dir;
+  run.command = "proxima";
+  for (size_t i = 0; i < args.size(); ++i)
+    run.command += " " + shell_quote(args[i] == out.string() ? (std::filesystem::path(c.out_arg) / dir).string() : args[i]);
+  c.progress->step(dir);
+
+  const std::filesystem::path log = out / "log.txt";
+  std::vector<std::string> argv_s{"proxima"};
+  argv_s.insert(argv_s.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::fflush(nullptr);
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("demo: fork failed for " + run.command);
+  if (pid == 0) {
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      dup2(fd, 1);
+      dup2(fd, 2);
+      close(fd);
+    }
+    execv("/proc/self/exe", argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw std::runtime_error("`" + run.command + "` failed (log " + log.string() + "):" + tail_of(log));
+  run.results = read_results_json(out / "results.json");
+  return run;
+}
+
+double metric(const Results& r, const std::string& name) {
+  auto it = r.metrics.find(name);
+  return it == r.metrics.end() ? std::nan("") : it->second;
+}
+
+void add_image(Context& c, Section& s, const std::string& role, const std::string& file) {
+  c.results->images[role] = file;
+  s.images.push_back(role);
+}
+
+ImageF read_child_image(const Context& c, const std::string& file) { return read_image_linear(c.out / file, 3); }
+
+Window worst_window(const ImageF& error, int size) {
+  Window best{0, 0, std::min({size, error.width(), error.height()})};
+  const int n = best.size, stride = std::max(1, n / 8);
+  double best_sum = -1.0;
+  for (int y = 0; y + n <= error.height(); y += stride)
+    for (int x = 0; x + n <= error.width(); x += stride) {
+      double sum = 0.0;
+      for (int j = y; j < y + n; ++j)
+        for (int i = x; i < x + n; ++i) sum += error.at(i, j);
+      if (sum > best_sum) best_sum = sum, best.x = x, best.y = y;
+    }
+  return best;
+}
+
+ImageF crop_zoom(const ImageF& image, const Window& w, int zoom) {
+  ImageF out(w.size * zoom, w.size * zoom, image.channels());
+  for (int y = 0; y < out.height(); ++y)
+    for (int x = 0; x < out.width(); ++x)
+      for (int k = 0; k < image.channels(); ++k) out.at(x, y, k) = image.at(w.x + x / zoom, w.y + y / zoom, k);
+  return out;
+}
+
+ImageF side_by_side(const std::vector<ImageF>& images, int shrink) {
+  int width = 0, height = 0;
+  for (const ImageF& im : images) {
+    width += im.width() / shrink + 4;
+    height = std::max(height, im.height() / shrink);
+  }
+  ImageF out(std::max(1, width - 4), std::max(1, height), 3, 1.0f);
+  int x0 = 0;
+  for (const ImageF& im : images) {
+    const int w = im.width() / shrink, h = im.height() / shrink;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int k = 0; k < 3; ++k) {
+          float sum = 0.0f;
+          for (int j = 0; j < shrink; ++j)
+            for (int i = 0; i < shrink; ++i) sum += im.at(x * shrink + i, y * shrink + j, std::min(k, im.channels() - 1));
+          out.at(x0 + x, y, k) = sum / float(shrink * shrink);
+        }
+    x0 += w + 4;
+  }
+  return out;
+}
+
+void write_image(Context& c, Section& s, const std::string& role, const std::string& file, const ImageF& image) {
+  std::filesystem::create_directories((c.out / file).parent_path());
+  write_png_linear(c.out / file, image);
+  add_image(c, s, role, file);
+}
+
+void add_heatmap_legend(Context& c, Section& s, float max_error) {
+  const std::string file = "heatmap_legend_0_" + fixed(max_error, 0) + ".png";
+  if (!std::filesystem::exists(c.out / file)) write_png_linear(c.out / file, heatmap_legend(256, 20));
+  add_image(c, s, "heat-map legend: error 0 (left, black) to ≥ " + fixed(max_error, 0) + " (right, yellow), 0–255 display scale", file);
+}
+
+}  // namespace proxima::cli::demo
