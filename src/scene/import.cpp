@@ -10,11 +10,13 @@
 //   inverted by write_obj as  Ks = (s, s, s), Ns = 1001^(1 − g) − 1 (Ns in [0, 1000]).
 #include "proxima/scene/import.h"
 
+#include <assimp/BaseImporter.h>
+#include <assimp/importerdesc.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-#include <pthread.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <assimp/Importer.hpp>
@@ -22,11 +24,12 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <exception>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <unordered_set>
 #include <system_error>
@@ -294,49 +297,16 @@ std::string obj_token(const std::string& name, const std::string& fallback) {
   return t;
 }
 
-// Runs `fn` on a thread with a `bytes` stack and rethrows what it throws.
-template <typename F>
-void run_with_stack(size_t bytes, F&& fn) {
-  std::exception_ptr error;
-  auto body = [&] {
-    try {
-      fn();
-    } catch (...) {
-      error = std::current_exception();
-    }
-  };
-  using Body = decltype(body);
-  pthread_attr_t attr;
-  pthread_attr_init(&attr);
-  pthread_attr_setstacksize(&attr, bytes);
-  pthread_t thread;
-  const int rc = pthread_create(
-      &thread, &attr, [](void* b) -> void* { (*static_cast<Body*>(b))(); return nullptr; }, &body);
-  pthread_attr_destroy(&attr);
-  if (rc != 0) fail_input("cannot start the import thread");
-  pthread_join(thread, nullptr);
-  if (error) std::rethrow_exception(error);
-}
-
 Scene import_assimp(const fs::path& path);
 
 }  // namespace
 
-// assimp's readers, post-processing and aiNode destructor recurse over the node graph, so a
-// deeply nested file overflows an 8 MB stack inside assimp (a 100000-deep glTF chain did).
-// The import runs on a thread whose stack grows with the file: a nesting level takes at
-// least ~12 bytes of file and at most ~700 bytes of assimp's stack (measured on glTF), so
-// 64 bytes of stack per byte of file, between 16 MiB and 1 GiB (address space; pages are
-// committed only when touched). Small files get small stacks, which keeps sanitizer
-// builds fast.
-Scene import_mesh_file(const fs::path& path) {
-  std::error_code ec;
-  const uintmax_t bytes = fs::file_size(path, ec);
-  const size_t stack = std::clamp<uintmax_t>(ec ? 0 : bytes * 64, size_t(16) << 20, size_t(1) << 30);
-  Scene scene;
-  run_with_stack(stack, [&] { scene = import_assimp(path); });
-  return scene;
-}
+// assimp's glTF reader, post-processing and aiNode destructor recurse once per nesting
+// level; a 100000-deep glTF chain overflowed the stack. Rather than running assimp on a
+// thread whose stack grows with the file, files nested deeper than kMaxNodeDepth /
+// kMaxJsonNesting are refused before assimp reads them (check_json_nesting), so the
+// recursion is bounded and the import runs on the caller's thread.
+Scene import_mesh_file(const fs::path& path) { return import_assimp(path); }
 
 namespace {
 
@@ -370,14 +340,141 @@ void check_ply_header(const fs::path& path) {
   }
 }
 
+// The importers proxima is tested and fuzzed with (OBJ, PLY, glTF 2.0); assimp's other ~45
+// (FBX, Collada, 3DS, …) would be reached by content sniffing even for a `.obj` file that
+// OBJ's reader declines, and are neither tested nor fuzzed here.
+constexpr const char* kImporters[] = {"Wavefront Object Importer", "Stanford Polygon Library (PLY) Importer",
+                                      "glTF2 Importer"};
+constexpr const char* kExtensions[] = {".obj", ".ply", ".gltf", ".glb"};
+
+void keep_tested_importers(Assimp::Importer& importer) {
+  std::vector<Assimp::BaseImporter*> others;
+  for (size_t i = 0; i < importer.GetImporterCount(); ++i) {
+    const char* name = importer.GetImporterInfo(i)->mName;
+    if (std::none_of(std::begin(kImporters), std::end(kImporters), [&](const char* k) { return std::strcmp(k, name) == 0; }))
+      others.push_back(importer.GetImporter(i));
+  }
+  for (Assimp::BaseImporter* other : others) {
+    importer.UnregisterLoader(other);
+    delete other;  // the Importer deletes only the loaders still registered
+  }
+}
+
+std::string file_head(const fs::path& path, size_t bytes) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(bytes, '\0');
+  in.read(head.data(), std::streamsize(head.size()));
+  head.resize(size_t(in.gcount()));
+  return head;
+}
+
+// The glTF node graph: a forest (each node has at most one parent, no cycles), at most
+// kMaxNodeDepth deep. assimp recurses along it, and on a cycle forever.
+void check_node_graph(const std::string& file, const nlohmann::json& gltf) {
+  if (!gltf.is_object() || !gltf.contains("nodes") || !gltf["nodes"].is_array()) return;
+  const nlohmann::json& nodes = gltf["nodes"];
+  const size_t n = nodes.size();
+  auto fail = [&](const std::string& why) { fail_input(file + ": glTF node graph " + why); };
+  std::vector<std::vector<size_t>> children(n);
+  std::vector<int> parents(n, 0);
+  for (size_t i = 0; i < n; ++i) {
+    if (!nodes[i].is_object() || !nodes[i].contains("children") || !nodes[i]["children"].is_array()) continue;
+    for (const nlohmann::json& c : nodes[i]["children"]) {
+      if (!c.is_number_unsigned() || c.get<uint64_t>() >= n) fail("has a child index out of range in node " + std::to_string(i));
+      const size_t child = c.get<size_t>();
+      if (++parents[child] > 1) fail("is not a tree: node " + std::to_string(child) + " has two parents");
+      children[i].push_back(child);
+    }
+  }
+  std::vector<std::pair<size_t, int>> stack;  // (node, depth)
+  size_t reached = 0;
+  for (size_t i = 0; i < n; ++i)
+    if (parents[i] == 0) stack.push_back({i, 1});
+  while (!stack.empty()) {
+    const auto [node, depth] = stack.back();
+    stack.pop_back();
+    ++reached;
+    if (depth > kMaxNodeDepth)
+      fail("is more than " + std::to_string(kMaxNodeDepth) + " levels deep");
+    for (size_t c : children[node]) stack.push_back({c, depth + 1});
+  }
+  if (reached != n) fail("has a cycle");
+}
+
+// A file assimp may read as glTF JSON (a `.gltf`, the JSON chunk of a `.glb`, or any file
+// starting with `{` that the glTF reader would accept by content) must nest at most
+// kMaxJsonNesting deep (rapidjson recurses per level) and have a sane node graph. nlohmann's
+// parser does not recurse, so it can check what rapidjson would overflow on.
+void check_json_nesting(const fs::path& path) {
+  const std::string file = path.string();
+  std::string head = file_head(path, 20);
+  std::string json_text;
+  if (head.size() >= 4 && head.compare(0, 4, "glTF") == 0) {
+    // GLB: 12-byte header, then chunk 0 = (length, "JSON", bytes).
+    std::ifstream in(path, std::ios::binary);
+    unsigned char h[20] = {};
+    in.read(reinterpret_cast<char*>(h), 20);
+    if (in.gcount() < 20) return;  // assimp reports the truncated header
+    const uint32_t length = uint32_t(h[12]) | uint32_t(h[13]) << 8 | uint32_t(h[14]) << 16 | uint32_t(h[15]) << 24;
+    if (std::memcmp(h + 16, "JSON", 4) != 0) return;  // not glTF 2.0 GLB: assimp refuses it
+    std::error_code ec;
+    const uintmax_t bytes = fs::file_size(path, ec);
+    if (ec || length > bytes - 20) fail_input(file + ": GLB JSON chunk is longer than the file");
+    json_text.resize(length);
+    in.read(json_text.data(), std::streamsize(length));
+  } else {
+    const size_t first = head.find_first_not_of(" \t\r\n");
+    if (first == std::string::npos || (head[first] != '{' && head[first] != '[')) return;
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    json_text = text.str();
+  }
+  // Nesting first, by a scan (nlohmann's callback parser is quadratic on long arrays).
+  int depth = 0;
+  bool in_string = false, escaped = false;
+  for (const char c : json_text) {
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '{' || c == '[') {
+      if (++depth > kMaxJsonNesting)
+        fail_input(file + ": JSON nested more than " + std::to_string(kMaxJsonNesting) + " levels deep");
+    } else if (c == '}' || c == ']') {
+      --depth;
+    }
+  }
+  nlohmann::json gltf;
+  try {
+    gltf = nlohmann::json::parse(json_text);
+  } catch (const nlohmann::json::exception&) {
+    return;  // not JSON after all (an OBJ starting with `{`?): assimp decides
+  }
+  check_node_graph(file, gltf);
+}
+
+void check_extension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (std::none_of(std::begin(kExtensions), std::end(kExtensions), [&](const char* k) { return ext == k; }))
+    fail_input(path.string() + ": unsupported mesh format '" + ext +
+               "' (mesh files are .obj, .ply, .gltf or .glb; convert others to glTF)");
+}
+
 Scene import_assimp(const fs::path& path) {
   const std::string file = path.string();
   std::error_code ec;
   if (!fs::exists(path, ec)) fail_input(file + ": no such file");
   if (!fs::is_regular_file(path, ec)) fail_input(file + ": not a regular file");
 
+  check_extension(path);
   check_ply_header(path);
+  check_json_nesting(path);
   Assimp::Importer importer;
+  keep_tested_importers(importer);
   // SortByPType puts lines and points into meshes of their own, which add_node skips.
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                          aiProcess_GenSmoothNormals | aiProcess_SortByPType |

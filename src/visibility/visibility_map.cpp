@@ -77,12 +77,18 @@ class Tracer {
     struct Item {
       uint32_t cell;
       LPoly region;
+      size_t depth;  // cells the beam has passed through
     };
-    std::vector<Item> stack = {{start, frame}};
+    std::vector<Item> stack = {{start, frame, 1}};
     while (!stack.empty()) {
       Item item = std::move(stack.back());
       stack.pop_back();
       ++map.stats.cells_visited;
+      // Every sightline of a beam passes through all the cells of its chain, and a
+      // sightline crosses a convex cell once: a longer chain means cells that overlap (a
+      // corrupt --load file; found by winged_pair_fuzz), and tracing would never end.
+      if (item.depth > wp_.cells.size())
+        fail_input("inconsistent winged pair: a beam passes through more cells than there are (overlapping cells)");
       for (uint32_t f : wp_.faces_of_cell(item.cell)) {
         const Face& face = wp_.faces[f];
         const double d = face.plane.distance(c_.eye);
@@ -96,7 +102,7 @@ class Tracer {
         ++map.stats.beams;
         const uint32_t next = wp_.cell_across(f, item.cell);
         if (!face.opaque() && next != kNone) {
-          stack.push_back({next, std::move(r)});
+          stack.push_back({next, std::move(r), item.depth + 1});
           continue;
         }
         MapRegion region;

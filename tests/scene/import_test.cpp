@@ -6,6 +6,7 @@
 #include <string>
 
 #include "proxima/core/error.h"
+#include "proxima/core/limits.h"
 #include "proxima/core/image_io.h"
 #include "test_util.h"
 
@@ -268,15 +269,61 @@ std::string deep_gltf(int depth) {
 }
 
 // Regression (issue 13): a glTF node chain 100000 deep overflowed the stack (a crash inside
-// assimp's recursive node building). The graph is now flattened without recursion and
-// assimp runs on a thread with a large stack; every level's transform still applies.
+// assimp's recursive node building). Graphs up to kMaxNodeDepth levels load, every level's
+// transform applied; deeper ones are refused before assimp recurses into them.
 TEST(ImportTest, DeepNodeGraphLoadsWithoutStackOverflow) {
   TempDir dir;
-  const int depth = 100000;
-  write_file(dir.path / "deep.gltf", deep_gltf(depth));
+  write_file(dir.path / "deep.gltf", deep_gltf(kMaxNodeDepth));
   const Scene s = import_mesh_file(dir.path / "deep.gltf");
   ASSERT_EQ(s.triangles.size(), 1u);
-  EXPECT_FLOAT_EQ(s.positions[0].x, float(depth - 1));  // depth − 1 translations of +1 in x
+  EXPECT_FLOAT_EQ(s.positions[0].x, float(kMaxNodeDepth - 1));  // depth − 1 translations of +1 in x
+  for (int depth : {kMaxNodeDepth + 1, 100000}) {
+    write_file(dir.path / "deeper.gltf", deep_gltf(depth));
+    const std::string msg = error_of([&] { import_mesh_file(dir.path / "deeper.gltf"); });
+    EXPECT_NE(msg.find("deeper.gltf: glTF node graph is more than 1000 levels deep"), std::string::npos) << msg;
+  }
+}
+
+// Review (issue 13): assimp's glTF reader (rapidjson) recurses per JSON nesting level, and its
+// node builder follows cycles forever; both are refused before assimp reads the file.
+TEST(ImportTest, DeepJsonNestingAndNodeCyclesAreRefusedBeforeAssimp) {
+  TempDir dir;
+  const std::string deep = R"({"asset": {"version": "2.0"}, "extras": )" + std::string(200000, '[') +
+                           std::string(200000, ']') + "}";
+  write_file(dir.path / "nested.gltf", deep);
+  std::string msg = error_of([&] { import_mesh_file(dir.path / "nested.gltf"); });
+  EXPECT_NE(msg.find("nested.gltf: JSON nested more than 256 levels deep"), std::string::npos) << msg;
+  // The same JSON in a GLB's JSON chunk.
+  std::string glb = "glTF" + std::string("\x02\0\0\0", 4) + std::string(4, '\0');
+  const uint32_t n = uint32_t(deep.size());
+  glb += std::string{char(n & 255), char(n >> 8 & 255), char(n >> 16 & 255), char(n >> 24)} + "JSON" + deep;
+  write_file(dir.path / "nested.glb", glb);
+  msg = error_of([&] { import_mesh_file(dir.path / "nested.glb"); });
+  EXPECT_NE(msg.find("nested.glb: JSON nested more than 256 levels deep"), std::string::npos) << msg;
+  // A cycle (0 → 1 → 0) and a node with two parents.
+  std::string cycle = deep_gltf(3);
+  cycle.replace(cycle.find(R"({"mesh": 0})"), 11, R"({"mesh": 0, "children": [0]})");
+  write_file(dir.path / "cycle.gltf", cycle);
+  msg = error_of([&] { import_mesh_file(dir.path / "cycle.gltf"); });
+  EXPECT_NE(msg.find("cycle.gltf: glTF node graph "), std::string::npos) << msg;
+  std::string shared = deep_gltf(3);
+  shared.replace(shared.find(R"({"children": [1])"), 16, R"({"children": [1, 2])");
+  write_file(dir.path / "shared.gltf", shared);
+  msg = error_of([&] { import_mesh_file(dir.path / "shared.gltf"); });
+  EXPECT_NE(msg.find("shared.gltf: glTF node graph is not a tree: node 2 has two parents"), std::string::npos) << msg;
+}
+
+// Review (issue 13): only the tested and fuzzed importers (OBJ, PLY, glTF 2.0) are used; a
+// Collada file is refused by its extension, and by content when it hides behind `.obj`.
+TEST(ImportTest, UntestedFormatsAreRefused) {
+  TempDir dir;
+  const std::string dae = R"(<?xml version="1.0"?><COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1"><asset/></COLLADA>)";
+  write_file(dir.path / "model.dae", dae);
+  std::string msg = error_of([&] { import_mesh_file(dir.path / "model.dae"); });
+  EXPECT_NE(msg.find("model.dae: unsupported mesh format '.dae'"), std::string::npos) << msg;
+  write_file(dir.path / "disguised.obj", dae);
+  msg = error_of([&] { import_mesh_file(dir.path / "disguised.obj"); });
+  EXPECT_NE(msg.find("disguised.obj: "), std::string::npos) << msg;
 }
 
 // Regression (ply_fuzz, issue 13): assimp looped forever on a PLY header whose
