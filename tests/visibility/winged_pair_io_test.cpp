@@ -150,8 +150,8 @@ TEST(WingedPairIo, LinksThatDoNotCloseAndBadNumbersAreRejected) {
 }
 
 // Review (issue 13, winged_pair_fuzz): a structurally valid file whose cells overlap made
-// beam tracing loop forever. Here the faces of the camera cell's neighbors that lead on,
-// away from the camera, are glued back to the camera's cell: a beam goes c → n → c → …
+// beam tracing loop forever. Here the faces through which a neighbor n of the camera's
+// cell is left are glued to n on both sides: a beam goes n → n → n → …
 TEST(WingedPairIo, OverlappingCellsFromAFileAreAnErrorNotAHang) {
   const Scene rooms = make_vis_rooms();
   const CameraPath& p = rooms.camera_paths.front();
@@ -168,9 +168,12 @@ TEST(WingedPairIo, OverlappingCellsFromAFileAreAnErrorNotAHang) {
       for (uint32_t g : std::vector<uint32_t>(wp.faces_of_cell(n).begin(), wp.faces_of_cell(n).end())) {
         Face& face = wp.faces[g];
         if (g == f || face.opaque() || wp.cell_across(g, n) == kNone) continue;
-        const double d = face.plane.distance(eye);
-        if (face.cell[1] == n ? d <= 0.0 : d >= 0.0) continue;  // not seen from inside n
-        face.cell[face.cell[0] == n ? 1 : 0] = c;
+        if (face.cell[0] == n) {  // orient it so that n is in front (the tracer's test then reads cell[1])
+          std::swap(face.cell[0], face.cell[1]);
+          face.plane.normal = -face.plane.normal;
+          face.plane.offset = -face.plane.offset;
+        }
+        if (face.plane.distance(eye) > 0.0) face.cell[0] = n;  // seen from n, and leads back into n
       }
     }
     const fs::path path = temp_file("overlap.wp");
