@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -66,7 +65,6 @@ TEST(DegenerateGeometry, RasterTraceAndRenderAtEveryScale) {
   for (const Case c : {Case{1e-6f, vec3(0)}, Case{1.0f, vec3(0)}, Case{1e6f, vec3(0)}, Case{1.0f, vec3(1e6f, -1e6f, 1e6f)},
                        Case{1e3f, vec3(1e6f)}}) {
     SCOPED_TRACE("scale " + std::to_string(c.scale) + " offset " + std::to_string(c.offset.x));
-    std::fprintf(stderr, "CASE %g %g\n", c.scale, c.offset.x);
     const Scene scene = degenerate_scene(c.scale, c.offset);
     const vec3 eye = c.offset + c.scale * vec3(0.1f, 0.05f, 2.0f);
     const Camera cam = look_at(eye, c.offset, vec3(0, 1, 0), 50.0f, 32, 24, 0.1f * c.scale, 10.0f * c.scale);
