@@ -85,4 +85,10 @@ for f in color depth normal id; do cp "$out/$f.exr" "$dir/exr/$f.exr"; done
 "$proxima" visibility --scene rooms --frames 1 --width 16 --height 12 --no-oracle --no-images --threads 1 \
   --save "$dir/winged_pair/rooms.wp" --out "$out/vis" >/dev/null
 cp "$out/vis/results.json" "$dir/results/visibility.json"
+cat >"$out/box.json" <<'J'
+{"objects": [{"type": "box", "size": [1, 1, 1]}],
+ "camera_paths": [{"frames": 1, "keys": [{"time": 0, "position": [0, 0, 0.8], "target": [0, 0, 0]}]}]}
+J
+"$proxima" visibility --scene "$out/box.json" --frames 1 --width 16 --height 12 --no-oracle --no-images --threads 1 \
+  --save "$dir/winged_pair/box.wp" --out "$out/box" >/dev/null
 cp "$out/results.json" "$dir/results/render.json"

@@ -321,8 +321,16 @@ void check_ply_header(const fs::path& path) {
   head.resize(size_t(in.gcount()));
   std::string magic = head.substr(0, 3);
   for (char& c : magic) c = char(std::tolower(static_cast<unsigned char>(c)));  // assimp ignores case
-  if (magic != "ply") return;
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (magic != "ply" && ext != ".ply") return;
   auto fail = [&](const std::string& why) { fail_input(path.string() + ": PLY header " + why); };
+  // A `.ply` must start with the magic line (assimp looped forever reading a file that
+  // began with an empty line and a garbled format; found by ply_fuzz), and name one of
+  // the three formats.
+  if (magic != "ply" || (head.size() > 3 && head[3] != '\n' && head[3] != '\r'))
+    fail("does not start with the line 'ply'");
+  bool format = false;
   size_t pos = 0;
   for (int number = 1;; ++number) {
     const size_t eol = head.find('\n', pos);
@@ -333,7 +341,19 @@ void check_ply_header(const fs::path& path) {
       if (!(c == '\t' || (c >= ' ' && c <= '~'))) fail("line " + std::to_string(number) + " is not ASCII text");
     std::string keyword = line.substr(0, line.find_first_of(" \t"));
     for (char& c : keyword) c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (keyword == "end_header") return;
+    if (keyword == "end_header") {
+      if (!format) fail("has no valid format line (ascii, binary_little_endian or binary_big_endian 1.0)");
+      return;
+    }
+    if (keyword == "format") {
+      std::istringstream words(line);
+      std::string kw, kind, version, extra;
+      words >> kw >> kind >> version;
+      if (!(kind == "ascii" || kind == "binary_little_endian" || kind == "binary_big_endian") || version != "1.0" ||
+          (words >> extra))
+        fail("has an unknown format line '" + line.substr(0, 40) + "'");
+      format = true;
+    }
     static const std::set<std::string> kKeywords = {"ply", "format", "element", "property", "comment", "obj_info"};
     if (!kKeywords.count(keyword)) fail("has an unknown line '" + line.substr(0, 40) + "'");
     pos = eol + 1;
