@@ -339,8 +339,13 @@ void check_ply_header(const fs::path& path) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     for (char c : line)
       if (!(c == '\t' || (c >= ' ' && c <= '~'))) fail("line " + std::to_string(number) + " is not ASCII text");
-    std::string keyword = line.substr(0, line.find_first_of(" \t"));
-    for (char& c : keyword) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (number == 1) {  // the magic, checked above (assimp accepts it in any case)
+      pos = eol + 1;
+      continue;
+    }
+    // Keywords are matched exactly, as assimp's parser does: it missed `end_headeR`, read
+    // the binary body as header and crashed (SEGV; found by ply_fuzz).
+    const std::string keyword = line.substr(0, line.find_first_of(" \t"));
     if (keyword == "end_header") {
       if (!format) fail("has no valid format line (ascii, binary_little_endian or binary_big_endian 1.0)");
       return;

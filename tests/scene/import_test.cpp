@@ -384,6 +384,19 @@ TEST(ImportTest, PlyWithoutLeadingMagicOrWithUnknownFormatIsAnErrorNotAHang) {
   EXPECT_NE(msg.find("noformat.ply: PLY header has no valid format line"), std::string::npos) << msg;
 }
 
+// Regression (ply_fuzz, issue 13, robust2): `end_headeR` passed proxima's case-blind header
+// check but not assimp's exact match, which then parsed the binary body as header: SEGV.
+TEST(ImportTest, PlyHeaderKeywordInAnotherCaseIsAnErrorNotACrash) {
+  TempDir dir;
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_headeR\n";
+  ply += std::string("\0\0\0\0\0\0\0\0\0pply\n\x01\x0b?\0\0\0\0\0\0\0\0\0\0\0\0\0\0\x80?\0\0\0\xfb\x02\0\0\0\0\x01\0\0\0\x02\0\0\0", 48);
+  write_file(dir.path / "case.ply", ply);
+  const std::string msg = error_of([&] { import_mesh_file(dir.path / "case.ply"); });
+  EXPECT_NE(msg.find("case.ply: PLY header has an unknown line 'end_headeR'"), std::string::npos) << msg;
+}
+
 TEST(ImportTest, WriteObjIntoMissingDirectoryLeavesNothing) {
   TempDir dir;
   Scene scene;
