@@ -359,6 +359,19 @@ void check_ply_header(const fs::path& path) {
         fail("has an unknown format line '" + line.substr(0, 40) + "'");
       format = true;
     }
+    if (keyword == "property") {
+      // `property TYPE NAME` or `property list TYPE TYPE NAME`: assimp took `property float(y`
+      // and crashed in post-processing (BUS; found by ply_fuzz).
+      static const std::set<std::string> kTypes = {"char",  "uchar",  "short",  "ushort",  "int",     "uint",
+                                                   "float", "double", "int8",   "uint8",   "int16",   "uint16",
+                                                   "int32", "uint32", "float32", "float64"};
+      std::istringstream words(line);
+      std::vector<std::string> w;
+      for (std::string x; words >> x;) w.push_back(x);
+      const bool scalar = w.size() == 3 && kTypes.count(w[1]);
+      const bool list = w.size() == 5 && w[1] == "list" && kTypes.count(w[2]) && kTypes.count(w[3]);
+      if (!scalar && !list) fail("has a malformed property line '" + line.substr(0, 40) + "'");
+    }
     static const std::set<std::string> kKeywords = {"ply", "format", "element", "property", "comment", "obj_info"};
     if (!kKeywords.count(keyword)) fail("has an unknown line '" + line.substr(0, 40) + "'");
     pos = eol + 1;

@@ -397,6 +397,17 @@ TEST(ImportTest, PlyHeaderKeywordInAnotherCaseIsAnErrorNotACrash) {
   EXPECT_NE(msg.find("case.ply: PLY header has an unknown line 'end_headeR'"), std::string::npos) << msg;
 }
 
+// Regression (ply_fuzz, issue 13, robust2): a property line `property float(y` reached
+// assimp, which crashed in post-processing (BUS in BaseProcess::ExecuteOnScene).
+TEST(ImportTest, PlyMalformedPropertyLineIsAnErrorNotACrash) {
+  TempDir dir;
+  write_file(dir.path / "prop.ply",
+             "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float(y\nproperty float z\n"
+             "element face 6\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 \n");
+  const std::string msg = error_of([&] { import_mesh_file(dir.path / "prop.ply"); });
+  EXPECT_NE(msg.find("prop.ply: PLY header has a malformed property line 'property float(y'"), std::string::npos) << msg;
+}
+
 TEST(ImportTest, WriteObjIntoMissingDirectoryLeavesNothing) {
   TempDir dir;
   Scene scene;
