@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs one libFuzzer target for a fixed time: scripts/fuzz.sh TARGET SECONDS [libFuzzer flags]
-# TARGET is a fuzz/<TARGET>_fuzz.cpp (scene_file, camera_path, obj, ply, gltf, png, exr), or
+# TARGET is a fuzz/<TARGET>_fuzz.cpp (scene_file, camera_path, obj, ply, gltf, png, exr,
+# winged_pair, results), or
 # `all` to run each in turn. Builds build/fuzz (clang, ASan + UBSan + libFuzzer) and the
 # seeds (scripts/fuzz_seeds.sh) when needed; the corpus grows in build/fuzz/corpus/TARGET,
 # crashes land in build/fuzz/artifacts/TARGET/. Exits non-zero on any finding (crash, leak,
@@ -23,8 +24,10 @@ fi
 [ -f "fuzz/${target}_fuzz.cpp" ] || { echo "fuzz.sh: no fuzz/${target}_fuzz.cpp" >&2; exit 2; }
 
 if [ ! -f "$build/CMakeCache.txt" ]; then
+  launcher=()
+  command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
   CXX=clang++ CC=clang cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPROXIMA_FUZZ=ON \
-    -DPROXIMA_BUILD_TESTS=OFF -DPROXIMA_BUILD_BENCH=OFF >/dev/null
+    -DPROXIMA_BUILD_TESTS=OFF -DPROXIMA_BUILD_BENCH=OFF "${launcher[@]}" >/dev/null
 fi
 cmake --build "$build" -j "$jobs" --target "${target}_fuzz" proxima >/dev/null
 
@@ -34,7 +37,7 @@ corpus=$build/corpus/$target
 artifacts=$build/artifacts/$target/
 mkdir -p "$corpus" "$artifacts"
 dict=()
-case $target in scene_file | camera_path) dict=(-dict=fuzz/scene.dict) ;; gltf) dict=(-dict=fuzz/gltf.dict) ;; esac
+case $target in scene_file | camera_path) dict=(-dict=fuzz/scene.dict) ;; results | winged_pair) dict=(-dict=fuzz/$target.dict) ;; gltf) dict=(-dict=fuzz/gltf.dict) ;; esac
 
 log=$build/$target.log
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/fuzz/lsan.supp}

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Writes small valid seed inputs for every fuzz target into DIR/<target>/ (fuzz/*_fuzz.cpp):
-# hand-written scene files and meshes, and EXR/PNG images rendered by proxima itself.
+# hand-written scene files and meshes; EXR/PNG images, winged-pair files and results.json
+# written by proxima itself.
 # Usage: scripts/fuzz_seeds.sh DIR PROXIMA_BINARY
 set -euo pipefail
 dir=$1
 proxima=$2
-mkdir -p "$dir"/{scene_file,camera_path,obj,ply,gltf,png,exr}
+mkdir -p "$dir"/{scene_file,camera_path,obj,ply,gltf,png,exr,winged_pair,results}
 
 # ---- JSON scene files ---------------------------------------------------------
 cat >"$dir/scene_file/objects.json" <<'J'
@@ -79,3 +80,15 @@ trap 'rm -rf "$out"' EXIT
   --threads 1 --out "$out" >/dev/null
 cp "$out/color.png" "$dir/png/color.png"
 for f in color depth normal id; do cp "$out/$f.exr" "$dir/exr/$f.exr"; done
+
+# ---- winged-pair files and results.json, written by proxima itself ----------------
+"$proxima" visibility --scene rooms --frames 1 --width 16 --height 12 --no-oracle --no-images --threads 1 \
+  --save "$dir/winged_pair/rooms.wp" --out "$out/vis" >/dev/null
+cp "$out/vis/results.json" "$dir/results/visibility.json"
+cat >"$out/box.json" <<'J'
+{"objects": [{"type": "box", "size": [1, 1, 1]}],
+ "camera_paths": [{"frames": 1, "keys": [{"time": 0, "position": [0, 0, 0.8], "target": [0, 0, 0]}]}]}
+J
+"$proxima" visibility --scene "$out/box.json" --frames 1 --width 16 --height 12 --no-oracle --no-images --threads 1 \
+  --save "$dir/winged_pair/box.wp" --out "$out/box" >/dev/null
+cp "$out/results.json" "$dir/results/render.json"

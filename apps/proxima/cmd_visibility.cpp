@@ -116,8 +116,6 @@ Command register_visibility(CLI::App& root) {
             for (const auto& p : scene.camera_paths)
               if (p.name == choice.path || std::to_string(&p - scene.camera_paths.data()) == choice.path) path = &p;
             const int frames = f.frames > 0 ? std::min(f.frames, path->frames) : path->frames;
-            auto out = prepare_out_dir(f.common.out);
-
             Results results;
             results.command = command_line();
             results.threads = active_threads();
@@ -132,6 +130,7 @@ Command register_visibility(CLI::App& root) {
             } else {
               wp = build_winged_pair(model, {}, &bsp);
             }
+            auto out = prepare_out_dir(f.common.out);  // after the --load file is read: nothing half-written
             if (!f.save.empty()) save_winged_pair(f.save, wp);
             auto& m = results.metrics;
             m["polygons"] = double(model.polygons.size());
@@ -156,7 +155,13 @@ Command register_visibility(CLI::App& root) {
                            {}};
             for (int frame = 0; frame < frames; ++frame) {
               Camera cam = camera_at_time(*path, frame_time(*path, frame), f.common.width, f.common.height, 1e-3f, far);
-              VisibilityMap map = trace_visibility_map(wp, cam);
+              VisibilityMap map;
+              try {
+                map = trace_visibility_map(wp, cam);
+              } catch (const InputError& e) {
+                if (f.load.empty()) throw;
+                fail_input(f.load + ": " + e.what());  // a loaded structure that cannot be traced
+              }
               const MapStats& s = map.stats;
               sum_ms += s.ms;
               max_ms = std::max(max_ms, s.ms);

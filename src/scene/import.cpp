@@ -10,11 +10,13 @@
 //   inverted by write_obj as  Ks = (s, s, s), Ns = 1001^(1 − g) − 1 (Ns in [0, 1000]).
 #include "proxima/scene/import.h"
 
+#include <assimp/BaseImporter.h>
+#include <assimp/importerdesc.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-#include <pthread.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <assimp/Importer.hpp>
@@ -22,11 +24,12 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <exception>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <unordered_set>
 #include <system_error>
@@ -294,49 +297,16 @@ std::string obj_token(const std::string& name, const std::string& fallback) {
   return t;
 }
 
-// Runs `fn` on a thread with a `bytes` stack and rethrows what it throws.
-template <typename F>
-void run_with_stack(size_t bytes, F&& fn) {
-  std::exception_ptr error;
-  auto body = [&] {
-    try {
-      fn();
-    } catch (...) {
-      error = std::current_exception();
-    }
-  };
-  using Body = decltype(body);
-  pthread_attr_t attr;
-  pthread_attr_init(&attr);
-  pthread_attr_setstacksize(&attr, bytes);
-  pthread_t thread;
-  const int rc = pthread_create(
-      &thread, &attr, [](void* b) -> void* { (*static_cast<Body*>(b))(); return nullptr; }, &body);
-  pthread_attr_destroy(&attr);
-  if (rc != 0) fail_input("cannot start the import thread");
-  pthread_join(thread, nullptr);
-  if (error) std::rethrow_exception(error);
-}
-
 Scene import_assimp(const fs::path& path);
 
 }  // namespace
 
-// assimp's readers, post-processing and aiNode destructor recurse over the node graph, so a
-// deeply nested file overflows an 8 MB stack inside assimp (a 100000-deep glTF chain did).
-// The import runs on a thread whose stack grows with the file: a nesting level takes at
-// least ~12 bytes of file and at most ~700 bytes of assimp's stack (measured on glTF), so
-// 64 bytes of stack per byte of file, between 16 MiB and 1 GiB (address space; pages are
-// committed only when touched). Small files get small stacks, which keeps sanitizer
-// builds fast.
-Scene import_mesh_file(const fs::path& path) {
-  std::error_code ec;
-  const uintmax_t bytes = fs::file_size(path, ec);
-  const size_t stack = std::clamp<uintmax_t>(ec ? 0 : bytes * 64, size_t(16) << 20, size_t(1) << 30);
-  Scene scene;
-  run_with_stack(stack, [&] { scene = import_assimp(path); });
-  return scene;
-}
+// assimp's glTF reader, post-processing and aiNode destructor recurse once per nesting
+// level; a 100000-deep glTF chain overflowed the stack. Rather than running assimp on a
+// thread whose stack grows with the file, files nested deeper than kMaxNodeDepth /
+// kMaxJsonNesting are refused before assimp reads them (check_json_nesting), so the
+// recursion is bounded and the import runs on the caller's thread.
+Scene import_mesh_file(const fs::path& path) { return import_assimp(path); }
 
 namespace {
 
@@ -351,8 +321,16 @@ void check_ply_header(const fs::path& path) {
   head.resize(size_t(in.gcount()));
   std::string magic = head.substr(0, 3);
   for (char& c : magic) c = char(std::tolower(static_cast<unsigned char>(c)));  // assimp ignores case
-  if (magic != "ply") return;
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (magic != "ply" && ext != ".ply") return;
   auto fail = [&](const std::string& why) { fail_input(path.string() + ": PLY header " + why); };
+  // A `.ply` must start with the magic line (assimp looped forever reading a file that
+  // began with an empty line and a garbled format; found by ply_fuzz), and name one of
+  // the three formats.
+  if (magic != "ply" || (head.size() > 3 && head[3] != '\n' && head[3] != '\r'))
+    fail("does not start with the line 'ply'");
+  bool format = false;
   size_t pos = 0;
   for (int number = 1;; ++number) {
     const size_t eol = head.find('\n', pos);
@@ -361,13 +339,167 @@ void check_ply_header(const fs::path& path) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     for (char c : line)
       if (!(c == '\t' || (c >= ' ' && c <= '~'))) fail("line " + std::to_string(number) + " is not ASCII text");
-    std::string keyword = line.substr(0, line.find_first_of(" \t"));
-    for (char& c : keyword) c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (keyword == "end_header") return;
+    if (number == 1) {  // the magic, checked above (assimp accepts it in any case)
+      pos = eol + 1;
+      continue;
+    }
+    // Keywords are matched exactly, as assimp's parser does: it missed `end_headeR`, read
+    // the binary body as header and crashed (SEGV; found by ply_fuzz).
+    const std::string keyword = line.substr(0, line.find_first_of(" \t"));
+    if (keyword == "end_header") {
+      if (!format) fail("has no valid format line (ascii, binary_little_endian or binary_big_endian 1.0)");
+      return;
+    }
+    if (keyword == "format") {
+      std::istringstream words(line);
+      std::string kw, kind, version, extra;
+      words >> kw >> kind >> version;
+      if (!(kind == "ascii" || kind == "binary_little_endian" || kind == "binary_big_endian") || version != "1.0" ||
+          (words >> extra))
+        fail("has an unknown format line '" + line.substr(0, 40) + "'");
+      format = true;
+    }
+    if (keyword == "property") {
+      // `property TYPE NAME` or `property list TYPE TYPE NAME`: assimp took `property float(y`
+      // and crashed in post-processing (BUS; found by ply_fuzz).
+      static const std::set<std::string> kTypes = {"char",  "uchar",  "short",  "ushort",  "int",     "uint",
+                                                   "float", "double", "int8",   "uint8",   "int16",   "uint16",
+                                                   "int32", "uint32", "float32", "float64"};
+      std::istringstream words(line);
+      std::vector<std::string> w;
+      for (std::string x; words >> x;) w.push_back(x);
+      const bool scalar = w.size() == 3 && kTypes.count(w[1]);
+      const bool list = w.size() == 5 && w[1] == "list" && kTypes.count(w[2]) && kTypes.count(w[3]);
+      if (!scalar && !list) fail("has a malformed property line '" + line.substr(0, 40) + "'");
+    }
     static const std::set<std::string> kKeywords = {"ply", "format", "element", "property", "comment", "obj_info"};
     if (!kKeywords.count(keyword)) fail("has an unknown line '" + line.substr(0, 40) + "'");
     pos = eol + 1;
   }
+}
+
+// The importers proxima is tested and fuzzed with (OBJ, PLY, glTF 2.0); assimp's other ~45
+// (FBX, Collada, 3DS, …) would be reached by content sniffing even for a `.obj` file that
+// OBJ's reader declines, and are neither tested nor fuzzed here.
+constexpr const char* kImporters[] = {"Wavefront Object Importer", "Stanford Polygon Library (PLY) Importer",
+                                      "glTF2 Importer"};
+constexpr const char* kExtensions[] = {".obj", ".ply", ".gltf", ".glb"};
+
+void keep_tested_importers(Assimp::Importer& importer) {
+  std::vector<Assimp::BaseImporter*> others;
+  for (size_t i = 0; i < importer.GetImporterCount(); ++i) {
+    const char* name = importer.GetImporterInfo(i)->mName;
+    if (std::none_of(std::begin(kImporters), std::end(kImporters), [&](const char* k) { return std::strcmp(k, name) == 0; }))
+      others.push_back(importer.GetImporter(i));
+  }
+  for (Assimp::BaseImporter* other : others) {
+    importer.UnregisterLoader(other);
+    delete other;  // the Importer deletes only the loaders still registered
+  }
+}
+
+std::string file_head(const fs::path& path, size_t bytes) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(bytes, '\0');
+  in.read(head.data(), std::streamsize(head.size()));
+  head.resize(size_t(in.gcount()));
+  return head;
+}
+
+// The glTF node graph: a forest (each node has at most one parent, no cycles), at most
+// kMaxNodeDepth deep. assimp recurses along it, and on a cycle forever.
+void check_node_graph(const std::string& file, const nlohmann::json& gltf) {
+  if (!gltf.is_object() || !gltf.contains("nodes") || !gltf["nodes"].is_array()) return;
+  const nlohmann::json& nodes = gltf["nodes"];
+  const size_t n = nodes.size();
+  auto fail = [&](const std::string& why) { fail_input(file + ": glTF node graph " + why); };
+  std::vector<std::vector<size_t>> children(n);
+  std::vector<int> parents(n, 0);
+  for (size_t i = 0; i < n; ++i) {
+    if (!nodes[i].is_object() || !nodes[i].contains("children") || !nodes[i]["children"].is_array()) continue;
+    for (const nlohmann::json& c : nodes[i]["children"]) {
+      if (!c.is_number_unsigned() || c.get<uint64_t>() >= n) fail("has a child index out of range in node " + std::to_string(i));
+      const size_t child = c.get<size_t>();
+      if (++parents[child] > 1) fail("is not a tree: node " + std::to_string(child) + " has two parents");
+      children[i].push_back(child);
+    }
+  }
+  std::vector<std::pair<size_t, int>> stack;  // (node, depth)
+  size_t reached = 0;
+  for (size_t i = 0; i < n; ++i)
+    if (parents[i] == 0) stack.push_back({i, 1});
+  while (!stack.empty()) {
+    const auto [node, depth] = stack.back();
+    stack.pop_back();
+    ++reached;
+    if (depth > kMaxNodeDepth)
+      fail("is more than " + std::to_string(kMaxNodeDepth) + " levels deep");
+    for (size_t c : children[node]) stack.push_back({c, depth + 1});
+  }
+  if (reached != n) fail("has a cycle");
+}
+
+// A file assimp may read as glTF JSON (a `.gltf`, the JSON chunk of a `.glb`, or any file
+// starting with `{` that the glTF reader would accept by content) must nest at most
+// kMaxJsonNesting deep (rapidjson recurses per level) and have a sane node graph. nlohmann's
+// parser does not recurse, so it can check what rapidjson would overflow on.
+void check_json_nesting(const fs::path& path) {
+  const std::string file = path.string();
+  std::string head = file_head(path, 20);
+  std::string json_text;
+  if (head.size() >= 4 && head.compare(0, 4, "glTF") == 0) {
+    // GLB: 12-byte header, then chunk 0 = (length, "JSON", bytes).
+    std::ifstream in(path, std::ios::binary);
+    unsigned char h[20] = {};
+    in.read(reinterpret_cast<char*>(h), 20);
+    if (in.gcount() < 20) return;  // assimp reports the truncated header
+    const uint32_t length = uint32_t(h[12]) | uint32_t(h[13]) << 8 | uint32_t(h[14]) << 16 | uint32_t(h[15]) << 24;
+    if (std::memcmp(h + 16, "JSON", 4) != 0) return;  // not glTF 2.0 GLB: assimp refuses it
+    std::error_code ec;
+    const uintmax_t bytes = fs::file_size(path, ec);
+    if (ec || length > bytes - 20) fail_input(file + ": GLB JSON chunk is longer than the file");
+    json_text.resize(length);
+    in.read(json_text.data(), std::streamsize(length));
+  } else {
+    const size_t first = head.find_first_not_of(" \t\r\n");
+    if (first == std::string::npos || (head[first] != '{' && head[first] != '[')) return;
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    json_text = text.str();
+  }
+  // Nesting first, by a scan (nlohmann's callback parser is quadratic on long arrays).
+  int depth = 0;
+  bool in_string = false, escaped = false;
+  for (const char c : json_text) {
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '{' || c == '[') {
+      if (++depth > kMaxJsonNesting)
+        fail_input(file + ": JSON nested more than " + std::to_string(kMaxJsonNesting) + " levels deep");
+    } else if (c == '}' || c == ']') {
+      --depth;
+    }
+  }
+  nlohmann::json gltf;
+  try {
+    gltf = nlohmann::json::parse(json_text);
+  } catch (const nlohmann::json::exception&) {
+    return;  // not JSON after all (an OBJ starting with `{`?): assimp decides
+  }
+  check_node_graph(file, gltf);
+}
+
+void check_extension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (std::none_of(std::begin(kExtensions), std::end(kExtensions), [&](const char* k) { return ext == k; }))
+    fail_input(path.string() + ": unsupported mesh format '" + ext +
+               "' (mesh files are .obj, .ply, .gltf or .glb; convert others to glTF)");
 }
 
 Scene import_assimp(const fs::path& path) {
@@ -376,8 +508,11 @@ Scene import_assimp(const fs::path& path) {
   if (!fs::exists(path, ec)) fail_input(file + ": no such file");
   if (!fs::is_regular_file(path, ec)) fail_input(file + ": not a regular file");
 
+  check_extension(path);
   check_ply_header(path);
+  check_json_nesting(path);
   Assimp::Importer importer;
+  keep_tested_importers(importer);
   // SortByPType puts lines and points into meshes of their own, which add_node skips.
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                          aiProcess_GenSmoothNormals | aiProcess_SortByPType |

@@ -36,16 +36,21 @@ uint32_t add_object(Scene& scene, const Mesh& mesh, const std::string& name, uin
   return id;
 }
 
+// Non-finite vertices (possible in scenes built through the API; load refuses them) are
+// left out: one NaN would make every bound, and the epsilons derived from the scene size,
+// NaN (found by DegenerateGeometry.RasterTraceAndRenderAtEveryScale: NaN shadow rays).
 Bounds3 scene_bounds(const Scene& scene) {
   Bounds3 b;
-  for (const vec3& p : scene.positions) b.extend(p);
+  for (const vec3& p : scene.positions)
+    if (is_finite(p)) b.extend(p);
   return b;
 }
 
 Bounds3 object_bounds(const Scene& scene, uint32_t object) {
   const Object& o = scene.objects[object];
   Bounds3 b;
-  for (uint32_t i = 0; i < o.vertex_count; ++i) b.extend(scene.positions[o.first_vertex + i]);
+  for (uint32_t i = 0; i < o.vertex_count; ++i)
+    if (is_finite(scene.positions[o.first_vertex + i])) b.extend(scene.positions[o.first_vertex + i]);
   return b;
 }
 

@@ -127,14 +127,20 @@ class Tracer {
     struct Item {
       uint32_t cell;
       LPoly region;
+      size_t depth;  // cells the beam has passed through
     };
     std::vector<Item> stack;
-    for (uint32_t c : start) stack.push_back({c, frame});
+    for (uint32_t c : start) stack.push_back({c, frame, 1});
     LPoly q, r, tmp;
     while (!stack.empty()) {
       Item item = std::move(stack.back());
       stack.pop_back();
       ++map.stats.cells_visited;
+      // Every sightline of a beam passes through all the cells of its chain, and a
+      // sightline crosses a convex cell once: a longer chain means cells that overlap (a
+      // corrupt --load file; found by winged_pair_fuzz), and tracing would never end.
+      if (item.depth > wp_.cells.size())
+        fail_input("inconsistent winged pair: a beam passes through more cells than there are (overlapping cells)");
       // Faces whose projection's bounding box misses the region's by more than the clip
       // tolerance would clip to nothing: skip them before clipping (same result, cheaper).
       Box2 rb = box_of(item.region);
@@ -157,7 +163,7 @@ class Tracer {
         ++map.stats.beams;
         const uint32_t next = wp_.cell_across(f, item.cell);
         if (!face.opaque() && next != kNone) {
-          stack.push_back({next, r});
+          stack.push_back({next, r, item.depth + 1});
           continue;
         }
         MapRegion region;

@@ -10,12 +10,15 @@ bool finalize(WingedPair& wp) {
   wp.loop_offset.assign(1, 0);
   wp.loop_vertex.clear();
   wp.loop_edge.clear();
+  // A pair is on one face's loop: a walk meeting a pair seen before does not close (and
+  // without the check a hostile file could make the walks quadratic in the pair count).
+  std::vector<bool> seen(wp.pairs.size(), false);
   for (uint32_t f = 0; f < wp.faces.size(); ++f) {
     uint32_t p = wp.faces[f].pair;
-    for (size_t steps = 0;; ++steps) {
-      if (p >= wp.pairs.size() || steps > wp.pairs.size() || wp.pairs[p].face != f ||
-          wp.pairs[p].edge >= wp.edges.size())
+    for (;;) {
+      if (p >= wp.pairs.size() || seen[p] || wp.pairs[p].face != f || wp.pairs[p].edge >= wp.edges.size())
         return false;
+      seen[p] = true;
       const Pair& pr = wp.pairs[p];
       const Edge& e = wp.edges[pr.edge];
       wp.loop_vertex.push_back(pr.direction ? e.vertex[0] : e.vertex[1]);

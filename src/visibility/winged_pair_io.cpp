@@ -2,6 +2,7 @@
 // representation and written to a file for use by later phases").
 #include "proxima/visibility/winged_pair_io.h"
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -23,20 +24,28 @@ std::string num(double x) {
 
 class Reader {
  public:
-  Reader(std::istream& in, const std::filesystem::path& path) : in_(in), path_(path) {}
+  Reader(std::istream& in, const std::filesystem::path& path, uintmax_t bytes)
+      : in_(in), path_(path), bytes_(bytes) {}
 
   void expect(const std::string& word) {
     std::string w;
     if (!(in_ >> w) || w != word) fail("expected '" + word + "'");
   }
+  // Finite, and small enough that coordinates, squared, stay finite in the tracer.
   double real() {
     double x;
     if (!(in_ >> x)) fail("truncated or non-numeric field");
+    if (!(std::abs(x) <= 1e100)) fail("number out of range");
     return x;
   }
-  size_t count() {
+  // A record count; each record takes at least `record_bytes` of the file (fields of at
+  // least one digit and a separator), so a count the file cannot hold is refused before
+  // anything is allocated for it (found by winged_pair_fuzz).
+  size_t count(size_t record_bytes = 1) {
     long long x;
     if (!(in_ >> x) || x < 0 || x > (1ll << 31)) fail("bad count");
+    if (uintmax_t(x) > bytes_ / record_bytes)
+      fail("count " + std::to_string(x) + " is more than the file can hold");
     return size_t(x);
   }
   // Index below `limit`, or kNone written as −1 when `optional`.
@@ -54,7 +63,29 @@ class Reader {
  private:
   std::istream& in_;
   const std::filesystem::path& path_;
+  uintmax_t bytes_;
 };
+
+// Every pair link, and the spin cycle of every edge, closes: the traversals in
+// finalize() and visibility_map.cpp (silhouette test) walk them until they return.
+// Empty string when they do.
+std::string link_error(const WingedPair& wp) {
+  const size_t np = wp.pairs.size();
+  for (size_t p = 0; p < np; ++p) {
+    const Pair& pr = wp.pairs[p];
+    if (wp.pairs[pr.clock[0]].clock[1] != p || wp.pairs[pr.spin[0]].spin[1] != p)
+      return "pair " + std::to_string(p) + ": clock or spin links are not mutual";
+    if (wp.pairs[pr.clock[0]].face != pr.face) return "pair " + std::to_string(p) + ": clock link leaves its face";
+    if (wp.pairs[pr.spin[0]].edge != pr.edge) return "pair " + std::to_string(p) + ": spin link leaves its edge";
+  }
+  // With mutual links every pair lies on one spin cycle, all of one edge; each edge's
+  // cycle must be reached from its own pair.
+  for (size_t e = 0; e < wp.edges.size(); ++e)
+    if (wp.pairs[wp.edges[e].pair].edge != e) return "edge " + std::to_string(e) + ": its pair is on another edge";
+  for (size_t f = 0; f < wp.faces.size(); ++f)
+    if (wp.pairs[wp.faces[f].pair].face != f) return "face " + std::to_string(f) + ": its pair is on another face";
+  return {};
+}
 
 }  // namespace
 
@@ -83,7 +114,9 @@ void save_winged_pair(const std::filesystem::path& path, const WingedPair& wp) {
 WingedPair load_winged_pair(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) fail_input(path.string() + ": cannot open winged-pair file");
-  Reader r(in, path);
+  std::error_code ec;
+  const uintmax_t bytes = std::filesystem::file_size(path, ec);
+  Reader r(in, path, ec ? 0 : bytes);
   WingedPair wp;
   r.expect("proxima-winged-pair");
   r.expect("1");
@@ -94,20 +127,20 @@ WingedPair load_winged_pair(const std::filesystem::path& path) {
   wp.polygon_count = uint32_t(r.count());
   // Counts come first in each section; references into later sections are checked after.
   r.expect("vertices");
-  wp.vertices.resize(r.count());
+  wp.vertices.resize(r.count(8));
   for (Vertex& v : wp.vertices) {
     v.position = {r.real(), r.real(), r.real()};
     v.edge = r.index(1ull << 31, true);
   }
   r.expect("edges");
-  wp.edges.resize(r.count());
+  wp.edges.resize(r.count(6));
   for (Edge& e : wp.edges) {
     e.vertex[0] = r.index(wp.vertices.size());
     e.vertex[1] = r.index(wp.vertices.size());
     e.pair = r.index(1ull << 31);
   }
   r.expect("faces");
-  wp.faces.resize(r.count());
+  wp.faces.resize(r.count(16));
   for (Face& f : wp.faces) {
     f.cell[0] = r.index(1ull << 31, true);
     f.cell[1] = r.index(1ull << 31, true);
@@ -115,12 +148,13 @@ WingedPair load_winged_pair(const std::filesystem::path& path) {
     f.polygon = r.index(wp.polygon_count, true);
     f.plane.normal = {r.real(), r.real(), r.real()};
     f.plane.offset = r.real();
+    if (std::abs(glm::length(f.plane.normal) - 1.0) > 1e-6) r.fail("face normal is not unit length");
   }
   r.expect("cells");
-  wp.cells.resize(r.count());
+  wp.cells.resize(r.count(2));
   for (Cell& c : wp.cells) c.face = r.index(wp.faces.size(), true);
   r.expect("pairs");
-  wp.pairs.resize(r.count());
+  wp.pairs.resize(r.count(14));
   for (Pair& p : wp.pairs) {
     p.face = r.index(wp.faces.size());
     p.edge = r.index(wp.edges.size());
@@ -136,6 +170,7 @@ WingedPair load_winged_pair(const std::filesystem::path& path) {
     if (f.pair >= wp.pairs.size() || (f.cell[0] != kNone && f.cell[0] >= wp.cells.size()) ||
         (f.cell[1] != kNone && f.cell[1] >= wp.cells.size()))
       r.fail("face reference out of range");
+  if (const std::string why = link_error(wp); !why.empty()) r.fail(why);
   if (!finalize(wp)) r.fail("clock links do not close around a face");
   return wp;
 }

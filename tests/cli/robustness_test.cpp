@@ -116,6 +116,28 @@ TEST(Robustness, MalformedFileOfEachKindExitsTwoNamingIt) {
     EXPECT_TRUE(contains(r.output, named)) << scene << ": " << r.output;
     EXPECT_TRUE(contains(r.output, scene)) << scene << ": " << r.output;
   }
+  // The scene file itself, and a camera path in one (same reader, its own checks).
+  write_file(d / "broken.json", R"({"objects": [{"type": "box", "size": [1, 1, 1]}],)");
+  write_file(d / "path.json", R"({"objects": [{"type": "box", "size": [1, 1, 1]}],
+      "camera_paths": [{"frames": 3, "keys": [{"time": 1, "position": [0, 0, 5], "target": [0, 0, 0]},
+                                              {"time": 0, "position": [0, 0, 4], "target": [0, 0, 0]}]}]})");
+  for (const char* scene : {"broken.json", "path.json"}) {
+    const RunResult r = run_cli("render --scene " + (d / scene).string() + " --width 8 --height 8 --out " + (d / "o").string());
+    EXPECT_EQ(r.exit_code, 2) << scene << ": " << r.output;
+    EXPECT_TRUE(contains(r.output, scene)) << scene << ": " << r.output;
+    EXPECT_FALSE(fs::exists(d / "o")) << scene;
+  }
+  // A winged-pair file (visibility --load) and an unsupported mesh format.
+  write_file(d / "broken.wp", "proxima-winged-pair 1\nscale 1 polygons 20\nvertices 3\n0 0 0 -1\n");
+  RunResult r = run_cli("visibility --scene rooms --frames 1 --width 16 --height 16 --no-oracle --load " +
+                        (d / "broken.wp").string() + " --out " + (d / "v").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_TRUE(contains(r.output, (d / "broken.wp").string())) << r.output;
+  EXPECT_FALSE(fs::exists(d / "v"));
+  write_file(d / "model.fbx", "Kaydara FBX Binary  ");
+  r = run_cli("info " + (d / "model.fbx").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_TRUE(contains(r.output, "model.fbx: unsupported mesh format")) << r.output;
 }
 
 // A FIFO as a texture would block a reader forever; only regular files are read.

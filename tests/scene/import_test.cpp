@@ -6,6 +6,7 @@
 #include <string>
 
 #include "proxima/core/error.h"
+#include "proxima/core/limits.h"
 #include "proxima/core/image_io.h"
 #include "test_util.h"
 
@@ -268,15 +269,61 @@ std::string deep_gltf(int depth) {
 }
 
 // Regression (issue 13): a glTF node chain 100000 deep overflowed the stack (a crash inside
-// assimp's recursive node building). The graph is now flattened without recursion and
-// assimp runs on a thread with a large stack; every level's transform still applies.
+// assimp's recursive node building). Graphs up to kMaxNodeDepth levels load, every level's
+// transform applied; deeper ones are refused before assimp recurses into them.
 TEST(ImportTest, DeepNodeGraphLoadsWithoutStackOverflow) {
   TempDir dir;
-  const int depth = 100000;
-  write_file(dir.path / "deep.gltf", deep_gltf(depth));
+  write_file(dir.path / "deep.gltf", deep_gltf(kMaxNodeDepth));
   const Scene s = import_mesh_file(dir.path / "deep.gltf");
   ASSERT_EQ(s.triangles.size(), 1u);
-  EXPECT_FLOAT_EQ(s.positions[0].x, float(depth - 1));  // depth − 1 translations of +1 in x
+  EXPECT_FLOAT_EQ(s.positions[0].x, float(kMaxNodeDepth - 1));  // depth − 1 translations of +1 in x
+  for (int depth : {kMaxNodeDepth + 1, 100000}) {
+    write_file(dir.path / "deeper.gltf", deep_gltf(depth));
+    const std::string msg = error_of([&] { import_mesh_file(dir.path / "deeper.gltf"); });
+    EXPECT_NE(msg.find("deeper.gltf: glTF node graph is more than 1000 levels deep"), std::string::npos) << msg;
+  }
+}
+
+// Review (issue 13): assimp's glTF reader (rapidjson) recurses per JSON nesting level, and its
+// node builder follows cycles forever; both are refused before assimp reads the file.
+TEST(ImportTest, DeepJsonNestingAndNodeCyclesAreRefusedBeforeAssimp) {
+  TempDir dir;
+  const std::string deep = R"({"asset": {"version": "2.0"}, "extras": )" + std::string(200000, '[') +
+                           std::string(200000, ']') + "}";
+  write_file(dir.path / "nested.gltf", deep);
+  std::string msg = error_of([&] { import_mesh_file(dir.path / "nested.gltf"); });
+  EXPECT_NE(msg.find("nested.gltf: JSON nested more than 256 levels deep"), std::string::npos) << msg;
+  // The same JSON in a GLB's JSON chunk.
+  std::string glb = "glTF" + std::string("\x02\0\0\0", 4) + std::string(4, '\0');
+  const uint32_t n = uint32_t(deep.size());
+  glb += std::string{char(n & 255), char(n >> 8 & 255), char(n >> 16 & 255), char(n >> 24)} + "JSON" + deep;
+  write_file(dir.path / "nested.glb", glb);
+  msg = error_of([&] { import_mesh_file(dir.path / "nested.glb"); });
+  EXPECT_NE(msg.find("nested.glb: JSON nested more than 256 levels deep"), std::string::npos) << msg;
+  // A cycle (0 → 1 → 0) and a node with two parents.
+  std::string cycle = deep_gltf(3);
+  cycle.replace(cycle.find(R"({"mesh": 0})"), 11, R"({"mesh": 0, "children": [0]})");
+  write_file(dir.path / "cycle.gltf", cycle);
+  msg = error_of([&] { import_mesh_file(dir.path / "cycle.gltf"); });
+  EXPECT_NE(msg.find("cycle.gltf: glTF node graph "), std::string::npos) << msg;
+  std::string shared = deep_gltf(3);
+  shared.replace(shared.find(R"({"children": [1])"), 16, R"({"children": [1, 2])");
+  write_file(dir.path / "shared.gltf", shared);
+  msg = error_of([&] { import_mesh_file(dir.path / "shared.gltf"); });
+  EXPECT_NE(msg.find("shared.gltf: glTF node graph is not a tree: node 2 has two parents"), std::string::npos) << msg;
+}
+
+// Review (issue 13): only the tested and fuzzed importers (OBJ, PLY, glTF 2.0) are used; a
+// Collada file is refused by its extension, and by content when it hides behind `.obj`.
+TEST(ImportTest, UntestedFormatsAreRefused) {
+  TempDir dir;
+  const std::string dae = R"(<?xml version="1.0"?><COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1"><asset/></COLLADA>)";
+  write_file(dir.path / "model.dae", dae);
+  std::string msg = error_of([&] { import_mesh_file(dir.path / "model.dae"); });
+  EXPECT_NE(msg.find("model.dae: unsupported mesh format '.dae'"), std::string::npos) << msg;
+  write_file(dir.path / "disguised.obj", dae);
+  msg = error_of([&] { import_mesh_file(dir.path / "disguised.obj"); });
+  EXPECT_NE(msg.find("disguised.obj: "), std::string::npos) << msg;
 }
 
 // Regression (ply_fuzz, issue 13): assimp looped forever on a PLY header whose
@@ -295,7 +342,8 @@ TEST(ImportTest, MalformedPlyHeaderIsAnErrorNotAHang) {
   // …and when the magic is in another case (assimp matches "plY" too).
   write_file(dir.path / "upper.ply", "plY\nformat ascii 1. vertex 4\nproperty float x\nproperty ");
   const std::string upper = error_of([&] { import_mesh_file(dir.path / "upper.ply"); });
-  EXPECT_NE(upper.find("upper.ply: PLY header has no end_header"), std::string::npos) << upper;
+  EXPECT_NE(upper.find("upper.ply: PLY header has an unknown format line 'format ascii 1. vertex 4'"), std::string::npos)
+      << upper;
   // A well-formed header with comments and CRLF line ends still loads.
   write_file(dir.path / "crlf.ply",
              "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nelement vertex 3\r\nproperty float x\r\n"
@@ -314,6 +362,51 @@ TEST(ImportTest, PlyTrippingAnAssimpAssertionIsAnError) {
              "3 0 1 2\nat x\nproperty float y\np3 0 2 3\n");
   const std::string msg = error_of([&] { import_mesh_file(dir.path / "garbled.ply"); });
   EXPECT_NE(msg.find("garbled.ply: assimp internal check failed"), std::string::npos) << msg;
+}
+
+// Regression (ply_fuzz, issue 13, robust2): assimp's PLY reader looped forever (fread in a
+// loop) on a `.ply` starting with an empty line and naming a garbled format.
+TEST(ImportTest, PlyWithoutLeadingMagicOrWithUnknownFormatIsAnErrorNotAHang) {
+  TempDir dir;
+  write_file(dir.path / "lead.ply",
+             "\nply\nformat binary_lend_heaneran 1.0\nelement vertran 1.0\nelement vertex 3\nproperty float x @p\n"
+             "property float y\nproperty flo");
+  std::string msg = error_of([&] { import_mesh_file(dir.path / "lead.ply"); });
+  EXPECT_NE(msg.find("lead.ply: PLY header does not start with the line 'ply'"), std::string::npos) << msg;
+  write_file(dir.path / "format.ply",
+             "ply\nformat binary_lend_heaneran 1.0\nelement vertex 3\nproperty float x\nend_header\n");
+  msg = error_of([&] { import_mesh_file(dir.path / "format.ply"); });
+  EXPECT_NE(msg.find("format.ply: PLY header has an unknown format line 'format binary_lend_heaneran 1.0'"),
+            std::string::npos)
+      << msg;
+  write_file(dir.path / "noformat.ply", "ply\nelement vertex 3\nproperty float x\nend_header\n");
+  msg = error_of([&] { import_mesh_file(dir.path / "noformat.ply"); });
+  EXPECT_NE(msg.find("noformat.ply: PLY header has no valid format line"), std::string::npos) << msg;
+}
+
+// Regression (ply_fuzz, issue 13, robust2): `end_headeR` passed proxima's case-blind header
+// check but not assimp's exact match, which then parsed the binary body as header: SEGV.
+TEST(ImportTest, PlyHeaderKeywordInAnotherCaseIsAnErrorNotACrash) {
+  TempDir dir;
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_headeR\n";
+  ply += std::string("\0\0\0\0\0\0\0\0\0pply\n\x01\x0b?\0\0\0\0\0\0\0\0\0\0\0\0\0\0\x80?\0\0\0\xfb\x02\0\0\0\0\x01\0\0\0\x02\0\0\0", 48);
+  write_file(dir.path / "case.ply", ply);
+  const std::string msg = error_of([&] { import_mesh_file(dir.path / "case.ply"); });
+  EXPECT_NE(msg.find("case.ply: PLY header has an unknown line 'end_headeR'"), std::string::npos) << msg;
+}
+
+// Review (ply_fuzz, issue 13, robust2): a malformed property line `property float(y` is
+// refused before assimp reads the file. (The input ply_fuzz found it in also crashes
+// assimp's post-processing through its garbled face list, which stays open.)
+TEST(ImportTest, PlyMalformedPropertyLineIsAnError) {
+  TempDir dir;
+  write_file(dir.path / "prop.ply",
+             "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float(y\nproperty float z\n"
+             "element face 6\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 \n");
+  const std::string msg = error_of([&] { import_mesh_file(dir.path / "prop.ply"); });
+  EXPECT_NE(msg.find("prop.ply: PLY header has a malformed property line 'property float(y'"), std::string::npos) << msg;
 }
 
 TEST(ImportTest, WriteObjIntoMissingDirectoryLeavesNothing) {

@@ -9,6 +9,13 @@
 
 namespace proxima {
 
+// Mesh files: the deepest node graph and JSON nesting accepted (glTF). assimp's glTF
+// reader (rapidjson), node builder, post-processing and node destructor recurse once per
+// level, so deeper files are refused before assimp sees them rather than overflowing
+// the stack (docs/formats.md).
+inline constexpr int kMaxNodeDepth = 1000;
+inline constexpr int kMaxJsonNesting = 256;
+
 struct Limits {
   uint64_t max_triangles = 50'000'000;  // per scene, after import, instancing and generation
   uint64_t max_memory_mb = 0;           // estimated peak for one scene or image; 0 = ¾ of RAM
