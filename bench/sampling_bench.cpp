@@ -2,13 +2,18 @@
 // 1024×1024 (triangle view set, as `proxima sample`) on nest, grass, city and tree, by
 // conventional rendering, 3-layer depth peeling and NRR with pixel redundancy, shaded.
 // The bound: NRR (pixel) ≤ 2.5× conventional and ≤ 1.3× peeling. Compare the
-// three benchmarks of one scene in one run (the machine is shared).
+// three benchmarks of one scene in one run (the machine is shared), e.g.
+//   proxima_bench --benchmark_filter='nest' --benchmark_repetitions=5 \
+//       --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true
+// The argument is the thread count; the CPU column is the whole process's CPU time, which
+// a loaded machine inflates much less than the wall time.
 #include <benchmark/benchmark.h>
 
 #include <map>
 #include <memory>
 #include <string>
 
+#include "proxima/core/parallel.h"
 #include "proxima/depthimage/sampling.h"
 #include "proxima/depthimage/view_set.h"
 #include "proxima/scene/builtin_scenes.h"
@@ -43,23 +48,28 @@ const Setup& setup(const std::string& name) {
 
 void conventional(benchmark::State& state, const char* scene) {
   const Setup& s = setup(scene);
+  const ThreadLimit limit(int(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(sample_conventional(s.scene, s.cameras, true));
 }
 
 void peeling(benchmark::State& state, const char* scene) {
   const Setup& s = setup(scene);
+  const ThreadLimit limit(int(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(sample_peeling(s.scene, s.centroid, 3, true));
 }
 
 void nrr_pixel(benchmark::State& state, const char* scene) {
   const Setup& s = setup(scene);
+  const ThreadLimit limit(int(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(sample_nrr(s.scene, s.cameras, Redundancy::Pixel, nullptr, true));
 }
 
-#define SAMPLING_BENCH(scene)                                                                  \
-  BENCHMARK_CAPTURE(conventional, scene, #scene)->Unit(benchmark::kMillisecond)->UseRealTime(); \
-  BENCHMARK_CAPTURE(peeling, scene, #scene)->Unit(benchmark::kMillisecond)->UseRealTime();      \
-  BENCHMARK_CAPTURE(nrr_pixel, scene, #scene)->Unit(benchmark::kMillisecond)->UseRealTime();
+#define SAMPLING_BENCH_OF(method, scene) \
+  BENCHMARK_CAPTURE(method, scene, #scene)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
+#define SAMPLING_BENCH(scene)               \
+  SAMPLING_BENCH_OF(conventional, scene)    \
+  SAMPLING_BENCH_OF(peeling, scene)         \
+  SAMPLING_BENCH_OF(nrr_pixel, scene)
 
 SAMPLING_BENCH(nest)
 SAMPLING_BENCH(grass)

@@ -102,6 +102,32 @@ FrameLease prepare_frame(const Scene& scene, const Camera& camera, const RasterO
 void resolve_tile(const Frame& frame, const Tile& tile, const TileBuffer& buffer, RasterImages& out);
 RasterStats finish_frame(const Frame& frame);
 
+// The pixels [begin, end) of a row that a setup covers: one run, since each edge function
+// is linear in x; the scan stops after it. e: edge values at x0; step: per pixel.
+// Out of line on purpose: inlined into a tile loop whose fragment test calls a function
+// (NRR), the compiler kept the edge values and steps on the stack and this scan ran
+// several times slower than in the conventional instantiation.
+[[gnu::noinline]] inline void row_run(const int64_t* e, const int64_t* step, int x0, int x1, int& begin,
+                                      int& end) {
+  int64_t e0 = e[0], e1 = e[1], e2 = e[2];
+  const int64_t s0 = step[0], s1 = step[1], s2 = step[2];
+  int x = x0;
+  while (x <= x1 && (e0 | e1 | e2) < 0) {
+    ++x;
+    e0 += s0;
+    e1 += s1;
+    e2 += s2;
+  }
+  begin = x;
+  while (x <= x1 && (e0 | e1 | e2) >= 0) {
+    ++x;
+    e0 += s0;
+    e1 += s1;
+    e2 += s2;
+  }
+  end = x;
+}
+
 // Coverage of one setup inside one tile.
 template <bool kDepthTest, bool kUV, typename Test>
 inline void raster_setup(const Setup& s, const Tile& tile, TileBuffer& buf, Test& test, TileCounts& counts) {
@@ -126,14 +152,14 @@ inline void raster_setup(const Setup& s, const Tile& tile, TileBuffer& buf, Test
   }
 
   for (int y = y0; y <= y1; ++y) {
-    int64_t e0 = e[0], e1 = e[1], e2 = e[2];
+    int begin, end;
+    row_run(e, step_x, x0, x1, begin, end);
     const float fy = float(y - s.y0);
     const float z_row = s.z[0] + s.z[2] * fy;
     const size_t row = size_t(y - tile.y0) * kTileSize;
     float* depth_row = buf.depth.data() + row;
     uint32_t* id_row = buf.id.data() + row;
-    for (int x = x0; x <= x1; ++x, e0 += step_x[0], e1 += step_x[1], e2 += step_x[2]) {
-      if ((e0 | e1 | e2) < 0) continue;
+    for (int x = begin; x < end; ++x) {
       const int tx = x - tile.x0;
       const float fx = float(x - s.x0);
       const float depth = 1.0f / (z_row + s.z[1] * fx);
