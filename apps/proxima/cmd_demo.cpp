@@ -23,8 +23,10 @@ std::vector<SectionDef> demo_sections() {
       {"reference", "reference renders", [](const Context&) { return 2; }, reference_section},
       {"raster", "rasterizer vs Embree", one, raster_section},
       {"sampling", "depth-image sampling", sampling_steps, sampling_section},
+      {"shadows", "soft shadows", shadows_steps, shadows_section},
       {"envmap", "environment maps", envmap_steps, envmap_section},
       {"cluster", "cluster reflections", cluster_steps, cluster_section},
+      {"temporal", "temporal reuse", temporal_steps, temporal_section},
       {"visibility", "visibility maps", visibility_steps, visibility_section},
   };
 }

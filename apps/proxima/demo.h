@@ -45,10 +45,14 @@ void sampling_section(Context& c);
 void envmap_section(Context& c);
 void cluster_section(Context& c);
 void visibility_section(Context& c);
+void shadows_section(Context& c);
+void temporal_section(Context& c);
 int sampling_steps(const Context& c);
 int envmap_steps(const Context& c);
 int cluster_steps(const Context& c);
 int visibility_steps(const Context& c);
+int shadows_steps(const Context& c);
+int temporal_steps(const Context& c);
 
 // A finished child run: its results and where they are, relative to the report.
 struct ChildRun {
