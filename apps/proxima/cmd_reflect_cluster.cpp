@@ -2,6 +2,7 @@
 // (issue 7, thesis ch. 4) on one camera or along a camera path, optionally compared with
 // Embree tracing the same rays and with rectified environment mapping on the same rays.
 #include "cmd_reflect_cluster.h"
+#include "frame_series.h"
 
 #include <algorithm>
 #include <cmath>
@@ -26,20 +27,6 @@ namespace proxima::cli {
 
 namespace {
 
-// Per-frame figures, reduced to max / min / avg for the tables.
-struct Series {
-  std::vector<double> values;
-  void add(double v) { values.push_back(v); }
-  double avg() const {
-    double s = 0.0;
-    for (double v : values) s += v;
-    return values.empty() ? 0.0 : s / double(values.size());
-  }
-  double max() const { return values.empty() ? 0.0 : *std::max_element(values.begin(), values.end()); }
-  double min() const { return values.empty() ? 0.0 : *std::min_element(values.begin(), values.end()); }
-};
-
-double fps(double ms) { return ms > 0.0 ? 1000.0 / ms : 0.0; }
 
 int find_path(const Scene& scene, const std::string& key) {
   if (!key.empty() && key.find_first_not_of("0123456789") == std::string::npos) {

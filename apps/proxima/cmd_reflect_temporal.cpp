@@ -2,6 +2,7 @@
 // along a camera path. With --compare every frame is also fully ray traced (the reference,
 // timed side by side) and rendered by direct depth reprojection of the same key frame.
 #include "cmd_reflect_temporal.h"
+#include "frame_series.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,20 +23,6 @@ namespace proxima::cli {
 
 namespace {
 
-// Per-frame figures, reduced to max / min / avg.
-struct Series {
-  std::vector<double> values;
-  void add(double v) { values.push_back(v); }
-  double avg() const {
-    double s = 0.0;
-    for (double v : values) s += v;
-    return values.empty() ? 0.0 : s / double(values.size());
-  }
-  double max() const { return values.empty() ? 0.0 : *std::max_element(values.begin(), values.end()); }
-  double min() const { return values.empty() ? 0.0 : *std::min_element(values.begin(), values.end()); }
-};
-
-double fps(double ms) { return ms > 0.0 ? 1000.0 / ms : 0.0; }
 
 // Error heat maps saturate here (0–255 units).
 constexpr float kHeatmapMax = 20.0f;

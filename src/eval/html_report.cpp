@@ -4,25 +4,13 @@
 #include <sstream>
 
 #include "proxima/core/atomic_file.h"
+#include "proxima/eval/html_escape.h"
 #include "proxima/eval/plot.h"
 
 namespace proxima {
 namespace {
 
-std::string escape(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
+std::string escape(const std::string& text) { return html_escape(text); }
 
 void write_table(std::ostringstream& out, const Table& t) {
   out << "<table>\n<caption>" << escape(t.title) << "</caption>\n<thead><tr>";

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "proxima/core/error.h"
+#include "proxima/eval/html_escape.h"
 
 namespace proxima {
 namespace {
@@ -14,19 +15,7 @@ namespace {
 constexpr const char* kColors[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000",
                                    "#F0E442"};
 
-std::string esc(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
+std::string esc(const std::string& text) { return html_escape(text); }
 
 std::string num(double v) {
   char buf[32];
