@@ -6,6 +6,7 @@
 #include "proxima/eval/image_error.h"
 #include "proxima/reflect/cluster_reflection.h"
 #include "trace/test_geometry.h"
+#include "reflect/wave_texture.h"
 
 namespace proxima {
 
@@ -16,20 +17,7 @@ namespace {
 Scene mirror_and_wall() {
   Scene s;
   s.name = "mirror-and-wall";
-  Texture tex;
-  tex.name = "waves";
-  tex.image = ImageF(32, 32, 3);
-  for (int y = 0; y < 32; ++y)
-    for (int x = 0; x < 32; ++x) {
-      tex.image.at(x, y, 0) = 0.5f + 0.4f * std::sin(0.39f * float(x));
-      tex.image.at(x, y, 1) = 0.5f + 0.4f * std::cos(0.29f * float(y));
-      tex.image.at(x, y, 2) = 0.5f + 0.3f * std::sin(0.2f * float(x + y));
-    }
-  s.textures.push_back(tex);
-  Material wall;
-  wall.diffuse = vec3(1.0f);
-  wall.diffuse_texture = 0;
-  const uint32_t wall_mat = add_material(s, wall);
+  const uint32_t wall_mat = add_waves_wall_material(s);
   const uint32_t mirror_mat = test::add_diffuse(s, vec3(0.9f), 1.0f, 0.0f);
   add_object(s, test::quad_mesh(vec3(-1, -1, 0), vec3(2, 0, 0), vec3(0, 2, 0)), "mirror", mirror_mat);
   add_object(s, test::quad_mesh(vec3(-4, -4, 4), vec3(0, 8, 0), vec3(8, 0, 0)), "wall", wall_mat);

@@ -11,6 +11,7 @@
 #include "proxima/reflect/temporal_reuse.h"
 #include "proxima/scene/procedural.h"
 #include "reflect_test_scenes.h"
+#include "reflect/wave_texture.h"
 
 namespace proxima {
 
@@ -25,20 +26,7 @@ using reflect_test::add_quad;
 Scene floor_mirror(bool occluder) {
   Scene s;
   s.name = "floor-mirror";
-  Texture tex;
-  tex.name = "waves";
-  tex.image = ImageF(32, 32, 3);
-  for (int y = 0; y < 32; ++y)
-    for (int x = 0; x < 32; ++x) {
-      tex.image.at(x, y, 0) = 0.5f + 0.4f * std::sin(0.39f * float(x));
-      tex.image.at(x, y, 1) = 0.5f + 0.4f * std::cos(0.29f * float(y));
-      tex.image.at(x, y, 2) = 0.5f + 0.3f * std::sin(0.2f * float(x + y));
-    }
-  s.textures.push_back(tex);
-  Material wall;
-  wall.diffuse = vec3(1.0f);
-  wall.diffuse_texture = 0;
-  const uint32_t wall_mat = add_material(s, wall);
+  const uint32_t wall_mat = add_waves_wall_material(s);
   const uint32_t mirror_mat = add_diffuse(s, vec3(0.5f), 1.0f);
   add_quad(s, vec3(-2, 0, -2), vec3(0, 0, 4), vec3(4, 0, 0), mirror_mat, "mirror");
   add_quad(s, vec3(-4, -1, -2), vec3(8, 0, 0), vec3(0, 6, 0), wall_mat, "wall");
