@@ -34,15 +34,21 @@ ClusterCameraInput input(const Patch& patch, vec3 eye) {
 
 }  // namespace
 
-TEST(ClusterCamera, ConvexReflectorMovesCenterTowardsThePlane) {
-  // A cap of a unit sphere at the origin, seen from +Z.
-  const vec3 eye(0.3f, 0.4f, 4.0f);
+// A cap of the unit sphere at the origin facing +Z, 11 × 11 points, seen from `eye`.
+Patch unit_sphere_cap(vec3 eye) {
   Patch patch;
   for (int i = -5; i <= 5; ++i)
     for (int j = -5; j <= 5; ++j) {
       vec3 n = glm::normalize(vec3(0.06f * float(i), 0.06f * float(j), 1.0f));
       add_point(patch, eye, n, n, 20.0f);
     }
+  return patch;
+}
+
+TEST(ClusterCamera, ConvexReflectorMovesCenterTowardsThePlane) {
+  // A cap of a unit sphere at the origin, seen from +Z.
+  const vec3 eye(0.3f, 0.4f, 4.0f);
+  const Patch patch = unit_sphere_cap(eye);
   auto k = build_cluster_camera(input(patch, eye));
   ASSERT_TRUE(k.has_value());
   EXPECT_FALSE(k->planar);
@@ -61,12 +67,7 @@ TEST(ClusterCamera, CurvedClusterNearPlaneKeepsEveryPoint) {
   // The same cap: its rim lies behind the fitting plane (through the mean point), the near
   // plane must not: every ray starts in front of it.
   const vec3 eye(0.3f, 0.4f, 4.0f);
-  Patch patch;
-  for (int i = -5; i <= 5; ++i)
-    for (int j = -5; j <= 5; ++j) {
-      vec3 n = glm::normalize(vec3(0.06f * float(i), 0.06f * float(j), 1.0f));
-      add_point(patch, eye, n, n, 20.0f);
-    }
+  const Patch patch = unit_sphere_cap(eye);
   auto k = build_cluster_camera(input(patch, eye));
   ASSERT_TRUE(k.has_value());
   float lowest = kInf;
