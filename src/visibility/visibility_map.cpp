@@ -301,10 +301,39 @@ class Tracer {
   std::unordered_map<uint32_t, bool> silhouette_cache_;
 };
 
+// Hash buckets of dense ids (0, 1, 2, … in insertion order): each bucket a linked list in
+// insertion order (first/last id in the map, `next_` per id) — no allocation per bucket.
+class BucketLists {
+ public:
+  // The first id in bucket `key` for which match(id) holds, or kNone.
+  template <class Match>
+  uint32_t find(uint64_t key, Match&& match) const {
+    auto it = heads_.find(key);
+    if (it == heads_.end()) return kNone;
+    for (uint32_t v = it->second.first; v != kNone; v = next_[v])
+      if (match(v)) return v;
+    return kNone;
+  }
+  // Appends the next id (= number of ids added so far) to bucket `key`.
+  void add(uint64_t key) {
+    const uint32_t v = uint32_t(next_.size());
+    next_.push_back(kNone);
+    auto [it, fresh] = heads_.try_emplace(key, v, v);
+    if (!fresh) {
+      next_[it->second.second] = v;
+      it->second.second = v;
+    }
+  }
+  static uint64_t key(int64_t x, int64_t y) { return (uint64_t(x) << 32) ^ uint64_t(uint32_t(y)); }
+
+ private:
+  std::vector<uint32_t> next_;
+  std::unordered_map<uint64_t, std::pair<uint32_t, uint32_t>> heads_;  // first, last id
+};
+
 // Vertex welding on the image plane (tolerance 1e-4 px) with a hash grid of 1/1024-px cells:
 // a match lies in the point's cell or, only when the point is within 1e-4 px of a cell side,
 // in the neighbor across it (other neighbors are skipped: same answer, ~1 lookup a point).
-// Buckets are linked lists in insertion order (head/tail in the map, `next_` per vertex).
 class Welder {
  public:
   explicit Welder(std::vector<dvec2>& out) : out_(out) {}
@@ -316,28 +345,19 @@ class Welder {
       if ((dx < 0 && fx - reach > -0.5) || (dx > 0 && fx + reach < 0.5)) continue;
       for (int64_t dy = -1; dy <= 1; ++dy) {
         if ((dy < 0 && fy - reach > -0.5) || (dy > 0 && fy + reach < 0.5)) continue;
-        auto it = grid_.find(key(kx + dx, ky + dy));
-        if (it == grid_.end()) continue;
-        for (uint32_t v = it->second.first; v != kNone; v = next_[v])
-          if (glm::length(out_[v] - p) < 1e-4) return v;
+        const uint32_t v = grid_.find(BucketLists::key(kx + dx, ky + dy),
+                                      [&](uint32_t w) { return glm::length(out_[w] - p) < 1e-4; });
+        if (v != kNone) return v;
       }
     }
-    const uint32_t v = uint32_t(out_.size());
     out_.push_back(p);
-    next_.push_back(kNone);
-    auto [it, fresh] = grid_.try_emplace(key(kx, ky), v, v);
-    if (!fresh) {
-      next_[it->second.second] = v;
-      it->second.second = v;
-    }
-    return v;
+    grid_.add(BucketLists::key(kx, ky));
+    return uint32_t(out_.size() - 1);
   }
 
  private:
-  static uint64_t key(int64_t x, int64_t y) { return (uint64_t(x) << 32) ^ uint64_t(uint32_t(y)); }
   std::vector<dvec2>& out_;
-  std::vector<uint32_t> next_;
-  std::unordered_map<uint64_t, std::pair<uint32_t, uint32_t>> grid_;  // first, last vertex
+  BucketLists grid_;
 };
 
 uint32_t find_root(std::vector<uint32_t>& parent, uint32_t x) {
@@ -359,15 +379,14 @@ class LineIndex {
     const int64_t kt = std::llround(theta * 1e5), kr = std::llround(rho * 1e3);
     for (int64_t dt = -1; dt <= 1; ++dt)
       for (int64_t dr = -1; dr <= 1; ++dr) {
-        auto it = buckets_.find(key(kt + dt, kr + dr));
-        if (it == buckets_.end()) continue;
-        for (uint32_t l : it->second) {
-          const Line& line = lines_[l];
-          if (std::abs(cross2(line.d, a - line.p)) < 1e-5 && std::abs(cross2(line.d, b - line.p)) < 1e-5) return l;
-        }
+        const uint32_t l = buckets_.find(BucketLists::key(kt + dt, kr + dr), [&](uint32_t k) {
+          const Line& line = lines_[k];
+          return std::abs(cross2(line.d, a - line.p)) < 1e-5 && std::abs(cross2(line.d, b - line.p)) < 1e-5;
+        });
+        if (l != kNone) return l;
       }
     lines_.push_back({a, d});
-    buckets_[key(kt, kr)].push_back(uint32_t(lines_.size() - 1));
+    buckets_.add(BucketLists::key(kt, kr));
     return uint32_t(lines_.size() - 1);
   }
 
@@ -375,9 +394,8 @@ class LineIndex {
   struct Line {
     dvec2 p, d;
   };
-  static uint64_t key(int64_t t, int64_t r) { return (uint64_t(t) << 32) ^ uint64_t(uint32_t(r)); }
   std::vector<Line> lines_;
-  std::unordered_map<uint64_t, std::vector<uint32_t>> buckets_;
+  BucketLists buckets_;
 };
 
 // Planar map from the regions: segments grouped by supporting line, cut at every vertex on
