@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <span>
 #include <unordered_map>
 
 #include "proxima/core/error.h"
@@ -68,12 +69,16 @@ void drop_tiny_edges(LPoly& poly, double tol = 1e-6) {
 }
 
 // Keeps the part of `poly` left of the directed line a → b in `out`; new edges along the
-// line get `label`.
-void clip_left(const LPoly& poly, const dvec2& a, const dvec2& b, uint32_t label, LPoly& out) {
-  out.clear();
+// line get `label`. Returns false, leaving `out` untouched, when no vertex of `poly` lies
+// right of the line: the polygon is kept whole (it is already free of tiny edges).
+bool clip_left(const LPoly& poly, const dvec2& a, const dvec2& b, uint32_t label, LPoly& out) {
   const size_t n = poly.size();
   const dvec2 d = b - a;
   const double tol = 1e-12 * std::max(1.0, glm::dot(d, d));
+  bool any_out = false;
+  for (size_t i = 0; i < n && !any_out; ++i) any_out = cross2(d, poly[i].p - a) < -tol;
+  if (!any_out) return false;
+  out.clear();
   for (size_t i = 0; i < n; ++i) {
     const LVert& cur = poly[i];
     const LVert& nxt = poly[(i + 1) % n];
@@ -86,6 +91,7 @@ void clip_left(const LPoly& poly, const dvec2& a, const dvec2& b, uint32_t label
     }
   }
   drop_tiny_edges(out);
+  return true;
 }
 
 struct Box2 {
@@ -108,7 +114,7 @@ struct Camera64 {
 
 class Tracer {
  public:
-  Tracer(const WingedPair& wp, const Camera& cam) : wp_(wp) {
+  Tracer(const WingedPair& wp, const Camera& cam, bool culling) : wp_(wp), culling_(culling) {
     c_.eye = dvec3(cam.position);
     c_.right = dvec3(camera_right(cam));
     c_.up = dvec3(camera_up(cam));
@@ -146,19 +152,23 @@ class Tracer {
       Box2 rb = box_of(item.region);
       rb.lo -= dvec2(1e-6);
       rb.hi += dvec2(1e-6);
+      if (culling_) beam_planes(item.region);
       for (uint32_t f : wp_.faces_of_cell(item.cell)) {
         const Face& face = wp_.faces[f];
         const double d = face.plane.distance(c_.eye);
         if (face.cell[1] == item.cell ? d <= eye_tol_ : d >= -eye_tol_) continue;  // not seen from inside
+        if (culling_ && outside_beam(f)) {
+          ++map.stats.faces_culled;
+          continue;
+        }
         project_face(f, q);
         if (q.size() < 3) continue;
         const Box2 qb = box_of(q);
         if (qb.lo.x > rb.hi.x || qb.lo.y > rb.hi.y || qb.hi.x < rb.lo.x || qb.hi.y < rb.lo.y) continue;
         r = q;
-        for (size_t k = 0; k < item.region.size() && r.size() >= 3; ++k) {
-          clip_left(r, item.region[k].p, item.region[(k + 1) % item.region.size()].p, item.region[k].label, tmp);
-          r.swap(tmp);
-        }
+        for (size_t k = 0; k < item.region.size() && r.size() >= 3; ++k)
+          if (clip_left(r, item.region[k].p, item.region[(k + 1) % item.region.size()].p, item.region[k].label, tmp))
+            r.swap(tmp);
         if (r.size() < 3 || shoelace(r) <= 1e-9) continue;
         ++map.stats.beams;
         const uint32_t next = wp_.cell_across(f, item.cell);
@@ -176,6 +186,37 @@ class Tracer {
         map.regions.push_back(std::move(region));
       }
     }
+  }
+
+  // The planes through the eye and the region's edges, world space, unit normals pointing
+  // into the beam. Pixel p(x, y, z) = (cx + f·x/z, cy − f·y/z) lies left of a → b (d = b − a)
+  // iff z · cross2(d, p − a) ≥ 0, a linear form in camera space (x, y, z).
+  void beam_planes(const LPoly& region) {
+    planes_.clear();
+    for (size_t k = 0; k < region.size(); ++k) {
+      const dvec2 a = region[k].p, d = region[(k + 1) % region.size()].p - a;
+      const dvec3 n = -d.y * c_.f * c_.right - d.x * c_.f * c_.up +
+                      (d.x * (c_.cy - a.y) - d.y * (c_.cx - a.x)) * c_.forward;
+      const double len = glm::length(n);
+      if (len > 0.0) planes_.push_back(n / len);
+    }
+  }
+
+  // True when every vertex of face f lies outside one beam plane by more than 1e-7 · scale:
+  // the face (convex) misses the beam and would clip to nothing.
+  bool outside_beam(uint32_t f) const {
+    const double margin = 1e-7 * wp_.scale;
+    auto verts = wp_.face_vertices(f);
+    for (const dvec3& n : planes_) {
+      bool all_out = true;
+      for (uint32_t v : verts)
+        if (glm::dot(n, wp_.vertices[v].position - c_.eye) >= -margin) {
+          all_out = false;
+          break;
+        }
+      if (all_out) return true;
+    }
+    return false;
   }
 
   // The face clipped to depth ≥ zmin, projected to pixels, counter-clockwise (positive
@@ -252,34 +293,71 @@ class Tracer {
 
  private:
   const WingedPair& wp_;
+  bool culling_;
+  std::vector<dvec3> planes_;  // beam planes of the current region (beam_planes)
   Camera64 c_;
   double zmin_, eye_tol_;
   std::vector<std::pair<dvec3, uint32_t>> cam_, clipped_;  // project_face scratch
   std::unordered_map<uint32_t, bool> silhouette_cache_;
 };
 
-// Vertex welding on the image plane (tolerance 1e-4 px).
+// Hash buckets of dense ids (0, 1, 2, … in insertion order): each bucket a linked list in
+// insertion order (first/last id in the map, `next_` per id) — no allocation per bucket.
+class BucketLists {
+ public:
+  // The first id in bucket `key` for which match(id) holds, or kNone.
+  template <class Match>
+  uint32_t find(uint64_t key, Match&& match) const {
+    auto it = heads_.find(key);
+    if (it == heads_.end()) return kNone;
+    for (uint32_t v = it->second.first; v != kNone; v = next_[v])
+      if (match(v)) return v;
+    return kNone;
+  }
+  // Appends the next id (= number of ids added so far) to bucket `key`.
+  void add(uint64_t key) {
+    const uint32_t v = uint32_t(next_.size());
+    next_.push_back(kNone);
+    auto [it, fresh] = heads_.try_emplace(key, v, v);
+    if (!fresh) {
+      next_[it->second.second] = v;
+      it->second.second = v;
+    }
+  }
+  static uint64_t key(int64_t x, int64_t y) { return (uint64_t(x) << 32) ^ uint64_t(uint32_t(y)); }
+
+ private:
+  std::vector<uint32_t> next_;
+  std::unordered_map<uint64_t, std::pair<uint32_t, uint32_t>> heads_;  // first, last id
+};
+
+// Vertex welding on the image plane (tolerance 1e-4 px) with a hash grid of 1/1024-px cells:
+// a match lies in the point's cell or, only when the point is within 1e-4 px of a cell side,
+// in the neighbor across it (other neighbors are skipped: same answer, ~1 lookup a point).
 class Welder {
  public:
   explicit Welder(std::vector<dvec2>& out) : out_(out) {}
   uint32_t id(const dvec2& p) {
-    const int64_t kx = std::llround(p.x * 1024.0), ky = std::llround(p.y * 1024.0);
-    for (int64_t dx = -1; dx <= 1; ++dx)
+    const double gx = p.x * 1024.0, gy = p.y * 1024.0;
+    const int64_t kx = std::llround(gx), ky = std::llround(gy);
+    const double reach = 1e-4 * 1024.0, fx = gx - double(kx), fy = gy - double(ky);
+    for (int64_t dx = -1; dx <= 1; ++dx) {
+      if ((dx < 0 && fx - reach > -0.5) || (dx > 0 && fx + reach < 0.5)) continue;
       for (int64_t dy = -1; dy <= 1; ++dy) {
-        auto it = grid_.find(key(kx + dx, ky + dy));
-        if (it == grid_.end()) continue;
-        for (uint32_t v : it->second)
-          if (glm::length(out_[v] - p) < 1e-4) return v;
+        if ((dy < 0 && fy - reach > -0.5) || (dy > 0 && fy + reach < 0.5)) continue;
+        const uint32_t v = grid_.find(BucketLists::key(kx + dx, ky + dy),
+                                      [&](uint32_t w) { return glm::length(out_[w] - p) < 1e-4; });
+        if (v != kNone) return v;
       }
+    }
     out_.push_back(p);
-    grid_[key(kx, ky)].push_back(uint32_t(out_.size() - 1));
+    grid_.add(BucketLists::key(kx, ky));
     return uint32_t(out_.size() - 1);
   }
 
  private:
-  static uint64_t key(int64_t x, int64_t y) { return (uint64_t(x) << 32) ^ uint64_t(uint32_t(y)); }
   std::vector<dvec2>& out_;
-  std::unordered_map<uint64_t, std::vector<uint32_t>> grid_;
+  BucketLists grid_;
 };
 
 uint32_t find_root(std::vector<uint32_t>& parent, uint32_t x) {
@@ -301,15 +379,14 @@ class LineIndex {
     const int64_t kt = std::llround(theta * 1e5), kr = std::llround(rho * 1e3);
     for (int64_t dt = -1; dt <= 1; ++dt)
       for (int64_t dr = -1; dr <= 1; ++dr) {
-        auto it = buckets_.find(key(kt + dt, kr + dr));
-        if (it == buckets_.end()) continue;
-        for (uint32_t l : it->second) {
-          const Line& line = lines_[l];
-          if (std::abs(cross2(line.d, a - line.p)) < 1e-5 && std::abs(cross2(line.d, b - line.p)) < 1e-5) return l;
-        }
+        const uint32_t l = buckets_.find(BucketLists::key(kt + dt, kr + dr), [&](uint32_t k) {
+          const Line& line = lines_[k];
+          return std::abs(cross2(line.d, a - line.p)) < 1e-5 && std::abs(cross2(line.d, b - line.p)) < 1e-5;
+        });
+        if (l != kNone) return l;
       }
     lines_.push_back({a, d});
-    buckets_[key(kt, kr)].push_back(uint32_t(lines_.size() - 1));
+    buckets_.add(BucketLists::key(kt, kr));
     return uint32_t(lines_.size() - 1);
   }
 
@@ -317,9 +394,8 @@ class LineIndex {
   struct Line {
     dvec2 p, d;
   };
-  static uint64_t key(int64_t t, int64_t r) { return (uint64_t(t) << 32) ^ uint64_t(uint32_t(r)); }
   std::vector<Line> lines_;
-  std::unordered_map<uint64_t, std::vector<uint32_t>> buckets_;
+  BucketLists buckets_;
 };
 
 // Planar map from the regions: segments grouped by supporting line, cut at every vertex on
@@ -328,14 +404,18 @@ void build_planar_map(VisibilityMap& map, Tracer& tracer) {
   Welder welder(map.vertices);
   LineIndex lines;
   struct Seg {
+    uint64_t group;
     uint32_t a, b, region, source;
   };
-  std::unordered_map<uint64_t, std::vector<Seg>> groups;
+  std::vector<Seg> all;  // sorted by group below (one flat array: no allocation per line)
+  std::vector<uint32_t> ids;
   for (uint32_t r = 0; r < map.regions.size(); ++r) {
     const MapRegion& reg = map.regions[r];
     const size_t n = reg.vertices.size();
+    ids.clear();
+    for (const dvec2& v : reg.vertices) ids.push_back(welder.id(v));
     for (size_t i = 0; i < n; ++i) {
-      uint32_t a = welder.id(reg.vertices[i]), b = welder.id(reg.vertices[(i + 1) % n]);
+      const uint32_t a = ids[i], b = ids[(i + 1) % n];
       if (a == b) continue;
       uint64_t group;
       if (reg.edge_source[i] == kImageBorder) {
@@ -345,14 +425,20 @@ void build_planar_map(VisibilityMap& map, Tracer& tracer) {
       } else {
         group = lines.id(reg.vertices[i], reg.vertices[(i + 1) % n]);
       }
-      groups[group].push_back({a, b, r, reg.edge_source[i]});
+      all.push_back({group, a, b, r, reg.edge_source[i]});
     }
   }
-  for (auto& [group, segs] : groups) {
+  std::stable_sort(all.begin(), all.end(), [](const Seg& x, const Seg& y) { return x.group < y.group; });
+  std::vector<std::pair<double, uint32_t>> stops;
+  std::vector<uint32_t> left, right, lsrc, rsrc;
+  for (size_t g0 = 0, g1 = 0; g0 < all.size(); g0 = g1) {
+    while (g1 < all.size() && all[g1].group == all[g0].group) ++g1;
+    const std::span<const Seg> segs(all.data() + g0, g1 - g0);
+    const uint64_t group = all[g0].group;
     const dvec2 o = map.vertices[segs.front().a];
     const dvec2 dir = glm::normalize(map.vertices[segs.front().b] - o);
     auto t_of = [&](uint32_t v) { return glm::dot(map.vertices[v] - o, dir); };
-    std::vector<std::pair<double, uint32_t>> stops;
+    stops.clear();
     for (const Seg& s : segs) {
       stops.push_back({t_of(s.a), s.a});
       stops.push_back({t_of(s.b), s.b});
@@ -361,8 +447,10 @@ void build_planar_map(VisibilityMap& map, Tracer& tracer) {
     stops.erase(std::unique(stops.begin(), stops.end(),
                             [](const auto& x, const auto& y) { return x.second == y.second; }),
                 stops.end());
-    std::vector<uint32_t> left(stops.size(), kNone), right(stops.size(), kNone);
-    std::vector<uint32_t> lsrc(stops.size(), kNone), rsrc(stops.size(), kNone);
+    left.assign(stops.size(), kNone);
+    right.assign(stops.size(), kNone);
+    lsrc.assign(stops.size(), kNone);
+    rsrc.assign(stops.size(), kNone);
     for (const Seg& s : segs) {
       double ta = t_of(s.a), tb = t_of(s.b);
       bool forward = tb > ta;
@@ -419,7 +507,7 @@ void build_planar_map(VisibilityMap& map, Tracer& tracer) {
 
 }  // namespace
 
-VisibilityMap trace_visibility_map(const WingedPair& wp, const Camera& camera) {
+VisibilityMap trace_visibility_map(const WingedPair& wp, const Camera& camera, const TraceOptions& options) {
   Stopwatch watch;
   validate_camera(camera, "camera");
   VisibilityMap map;
@@ -433,7 +521,7 @@ VisibilityMap trace_visibility_map(const WingedPair& wp, const Camera& camera) {
   // The frame, counter-clockwise in pixel coordinates (x right, y down): positive shoelace.
   LPoly frame = {{{0, 0}, kImageBorder}, {{w, 0}, kImageBorder}, {{w, h}, kImageBorder}, {{0, h}, kImageBorder}};
   if (shoelace(frame) < 0) std::reverse(frame.begin(), frame.end());
-  Tracer tracer(wp, camera);
+  Tracer tracer(wp, camera, options.beam_culling);
   tracer.trace(start, frame, map);
   build_planar_map(map, tracer);
   map.stats.ms = watch.elapsed_ms();

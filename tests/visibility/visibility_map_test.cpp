@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 
 #include "proxima/core/error.h"
@@ -127,6 +128,38 @@ TEST(BeamTrace, NoHolesOnVcityViewpointsThatHadThem) {
     const OracleCounts c = compare_with_ray_casts(map, model, scene, rays, cam);
     EXPECT_GE(c.agreement_pct(), 99.9);
     EXPECT_EQ(c.occluded_label, 0u);
+  }
+}
+
+// Beam-plane culling skips faces before clipping; it must never change the map: regions
+// (vertices, edge sources, faces), map edges and beam counts equal the unculled trace's,
+// bit for bit, on viewpoints spread over the rooms, maze and vcity walks.
+TEST(BeamTrace, BeamCullingNeverChangesTheMap) {
+  for (const Scene& scene : {make_vis_rooms(), make_vis_maze(), make_vis_vcity()}) {
+    SCOPED_TRACE(scene.name);
+    const WingedPair wp = build_winged_pair(extract_polygons(scene));
+    const CameraPath& path = scene.camera_paths.front();
+    size_t culled_runs = 0;
+    for (int frame = 0; frame < path.frames; frame += std::max(1, path.frames / 12)) {
+      SCOPED_TRACE(frame);
+      const Camera cam = camera_at_time(path, frame_time(path, frame), 96, 96, 1e-3f, 1e4f);
+      const VisibilityMap on = trace_visibility_map(wp, cam, {.beam_culling = true});
+      const VisibilityMap off = trace_visibility_map(wp, cam, {.beam_culling = false});
+      ASSERT_EQ(on.regions.size(), off.regions.size());
+      for (size_t r = 0; r < on.regions.size(); ++r) {
+        EXPECT_EQ(on.regions[r].vertices, off.regions[r].vertices);
+        EXPECT_EQ(on.regions[r].edge_source, off.regions[r].edge_source);
+        EXPECT_EQ(on.regions[r].face, off.regions[r].face);
+      }
+      EXPECT_EQ(on.edges.size(), off.edges.size());
+      EXPECT_EQ(on.stats.beams, off.stats.beams);
+      EXPECT_EQ(on.stats.silhouette_edges, off.stats.silhouette_edges);
+      culled_runs += on.stats.faces_culled > 0;
+      EXPECT_EQ(off.stats.faces_culled, 0u);
+    }
+    if (scene.name != "rooms") {
+      EXPECT_GT(culled_runs, 0u);  // the test exercises the culling
+    }
   }
 }
 

@@ -6,11 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
 #include <string>
 
+#include "proxima/core/rng.h"
 #include "proxima/scene/visibility_models.h"
 #include "proxima/visibility/bsp_build.h"
 
@@ -104,6 +106,43 @@ TEST(WingedPair, InvariantsOnRoomsAndMaze) {
     EXPECT_EQ(stats.unplaced_fragments, 0u);
     EXPECT_GT(wp.cells.size(), model.polygons.size() / 4);
     expect_invariants(wp, model, scene.name);
+  }
+}
+
+// Point location descends the cell tree; it must return exactly the cells a scan of every
+// cell finds (in index order), for random points in the outer box, for points on faces
+// and edges (every winged-pair vertex, shared by several cells) and for the walk's eyes.
+TEST(WingedPair, TreeLocateEqualsLinearScan) {
+  for (const Scene& scene : {make_vis_rooms(), make_vis_maze(), make_vis_vcity(), make_vis_building(2)}) {
+    SCOPED_TRACE(scene.name);
+    const WingedPair wp = build_winged_pair(extract_polygons(scene));
+    ASSERT_FALSE(wp.tree.empty());
+    dvec3 lo(INFINITY), hi(-INFINITY);
+    for (const Vertex& v : wp.vertices) {
+      lo = glm::min(lo, v.position);
+      hi = glm::max(hi, v.position);
+    }
+    std::vector<dvec3> points;
+    Pcg32 rng(7);
+    for (int i = 0; i < 300; ++i)
+      points.push_back(lo + (hi - lo) * dvec3(rng.next_float(), rng.next_float(), rng.next_float()));
+    for (size_t v = 0; v < wp.vertices.size(); v += std::max<size_t>(1, wp.vertices.size() / 300))
+      points.push_back(wp.vertices[v].position);
+    const CameraPath& path = scene.camera_paths.front();
+    for (int f = 0; f < path.frames; f += std::max(1, path.frames / 50))
+      points.push_back(dvec3(camera_at_time(path, frame_time(path, f), 16, 16, 1e-3f, 1e4f).position));
+    points.push_back(hi + dvec3(1.0));  // outside the box: no cell
+    size_t on_shared = 0;
+    for (const dvec3& p : points) {
+      std::vector<uint32_t> scan;
+      for (uint32_t c = 0; c < wp.cells.size(); ++c)
+        if (cell_contains(wp, c, p)) scan.push_back(c);
+      ASSERT_EQ(locate_cells(wp, p), scan) << p.x << " " << p.y << " " << p.z;
+      ASSERT_EQ(locate_cell(wp, p), scan.empty() ? kNone : scan.front());
+      on_shared += scan.size() >= 2;
+    }
+    EXPECT_GT(on_shared, 0u);  // some points lie on shared faces/edges
+    EXPECT_TRUE(locate_cells(wp, hi + dvec3(1.0)).empty());
   }
 }
 

@@ -39,6 +39,7 @@ struct MapEdge {
 struct MapStats {
   size_t beams = 0;             // beams traced (face intersections, opaque or transparent)
   size_t cells_visited = 0;
+  size_t faces_culled = 0;      // faces skipped as wholly outside a beam plane
   size_t regions = 0;           // final convex regions
   size_t merged_regions = 0;    // after merging contiguous regions of one polygon
   size_t visible_polygons = 0;  // distinct polygons with a region
@@ -54,10 +55,16 @@ struct VisibilityMap {
   MapStats stats;
 };
 
+struct TraceOptions {
+  // Skip a boundary face lying wholly outside one plane of the current beam (eye + a region
+  // edge) before projecting and clipping it. Same map either way (tested); off = reference.
+  bool beam_culling = true;
+};
+
 // Traces the beams of `camera` through `wp` (built with finalize()); the camera must lie
 // inside the outer box (InputError otherwise). The near/far clip distances are ignored:
 // the map is exact for every depth > 1e-6 · scale.
-VisibilityMap trace_visibility_map(const WingedPair& wp, const Camera& camera);
+VisibilityMap trace_visibility_map(const WingedPair& wp, const Camera& camera, const TraceOptions& options = {});
 
 // Polygon id at every pixel center (1 channel, kNone = background): the region containing
 // the center, with the fill rule left edge inclusive, right edge exclusive per row.

@@ -68,6 +68,16 @@ struct WingedPair {
   std::vector<uint32_t> loop_offset, loop_vertex, loop_edge;  // face f: [loop_offset[f], [f+1])
   std::vector<uint32_t> cell_face_offset, cell_face;          // cell c: [offset[c], [c+1])
   std::vector<dvec3> cell_lo, cell_hi;  // each cell's bounding box (fast point location)
+  // A bounding-volume tree over the cell boxes: O(log n) point location instead of a scan
+  // of every cell (the scan grew with `building --floors`). Leaves hold ≤ 4 cells of
+  // `tree_cell`; cells without faces are left out (they contain no point).
+  struct TreeNode {
+    dvec3 lo{0.0}, hi{0.0};
+    uint32_t first = 0, count = 0;  // leaf: tree_cell[first, first + count)
+    uint32_t child[2] = {kNone, kNone};
+  };
+  std::vector<TreeNode> tree;  // tree[0] = root (empty when there are no cells)
+  std::vector<uint32_t> tree_cell;
 
   std::span<const uint32_t> face_vertices(uint32_t f) const {
     return {loop_vertex.data() + loop_offset[f], loop_offset[f + 1] - loop_offset[f]};
@@ -88,8 +98,12 @@ struct WingedPair {
 // not close within the pair count or a face names a cell out of range.
 bool finalize(WingedPair& wp);
 
+// Whether cell c's closed interior contains p within the model tolerance (1e-9 · scale).
+bool cell_contains(const WingedPair& wp, uint32_t c, const dvec3& p);
+
 // The cell whose closed interior contains p within the model tolerance (first in index
-// order when p lies on a shared face); kNone outside the outer box.
+// order when p lies on a shared face); kNone outside the outer box. Both lookups descend
+// the cell tree (the same cells as testing every cell, in index order).
 uint32_t locate_cell(const WingedPair& wp, const dvec3& p);
 
 // Every cell whose closed interior contains p within the model tolerance: one for a point
