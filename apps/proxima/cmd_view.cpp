@@ -8,6 +8,7 @@
 #include "proxima/core/parallel.h"
 #include "proxima/scene/builtin_scenes.h"
 #include "proxima/scene/load.h"
+#include "proxima/viewer/camera_recording.h"
 #include "view_window.h"
 
 namespace proxima::cli {
@@ -72,7 +73,12 @@ int run_view(const ViewFlags& f) {
   wo.screenshot = f.screenshot;
   wo.record = f.record;
   wo.record_scene = f.common.scene;
-  if (!f.play.empty()) wo.play = &played.camera_paths.front();
+  if (!f.play.empty()) {
+    // The recorded path of a --record file (its built-in scene may bring paths of its own).
+    wo.play = &played.camera_paths.front();
+    for (const CameraPath& p : played.camera_paths)
+      if (p.name == kRecordedPathName) wo.play = &p;
+  }
   const int code = run_view_window(session, wo);
   const ViewerStatus& st = session.status();
   std::cerr << "view: last frame " << st.render_width << "x" << st.render_height << " with "
@@ -106,7 +112,7 @@ Command register_view(CLI::App& root) {
       ->capture_default_str();
   app->add_option("--screenshot", f.screenshot, "PNG of the window's last frame");
   app->add_option("--record", f.record, "write the flown camera path as a scene file (use with --path recorded)");
-  app->add_option("--play", f.play, "replay the first camera path of this scene file (e.g. a --record file)");
+  app->add_option("--play", f.play, "replay the camera path \"recorded\" of this scene file (a --record file), else its first");
   app->add_flag("--no-overlay", f.no_overlay, "start with the overlay hidden (H toggles it)");
   return {app, [] { return run_view(f); }};
 }

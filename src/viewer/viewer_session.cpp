@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "proxima/core/image_io.h"
 #include "proxima/core/timer.h"
@@ -198,16 +199,23 @@ const ImageU8& ViewerSession::frame(float dt_s) {
 }
 
 void ViewerSession::present(const ImageF& color) {
-  // Nearest-neighbour upscale of the rendered frame to the window.
+  // sRGB-encode the rendered frame once (it is up to scale² times smaller than the
+  // window), then a nearest-neighbour upscale of whole 4-byte pixels.
   const int w = color.width(), h = color.height();
-  for (int y = 0; y < height_; ++y) {
-    const int sy = std::min(h - 1, int(int64_t(y) * h / height_));
-    for (int x = 0; x < width_; ++x) {
-      const int sx = std::min(w - 1, int(int64_t(x) * w / width_));
-      auto p = window_.pixel(x, y);
-      for (int c = 0; c < 3; ++c) p[c] = to_srgb8(color.at(sx, sy, c));
-      p[3] = 255;
+  std::vector<uint32_t> small(size_t(w) * size_t(h));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const uint8_t rgba[4] = {to_srgb8(color.at(x, y, 0)), to_srgb8(color.at(x, y, 1)), to_srgb8(color.at(x, y, 2)),
+                               255};
+      std::memcpy(&small[size_t(y) * size_t(w) + size_t(x)], rgba, 4);
     }
+  std::vector<int> column(static_cast<size_t>(width_));
+  for (int x = 0; x < width_; ++x) column[size_t(x)] = std::min(w - 1, int(int64_t(x) * w / width_));
+  uint8_t* out = window_.data().data();
+  for (int y = 0; y < height_; ++y) {
+    const uint32_t* row = &small[size_t(std::min(h - 1, int(int64_t(y) * h / height_))) * size_t(w)];
+    uint8_t* dst = out + size_t(y) * size_t(width_) * 4;
+    for (int x = 0; x < width_; ++x) std::memcpy(dst + 4 * size_t(x), &row[column[size_t(x)]], 4);
   }
 }
 
@@ -218,7 +226,8 @@ void ViewerSession::draw_overlay() {
     panel += std::string(int(i) == status_.technique ? "> " : "  ") + t.key + " " + t.label +
              (t.unavailable.empty() ? "" : " (n/a)") + "\n";
   }
-  std::string info = format("frame %.1f ms, ", status_.frame_ms) +
+  // The whole-frame time is the previous frame's (this one is still being drawn).
+  std::string info = format("last frame %.1f ms, ", status_.frame_ms) +
                      std::to_string(status_.render_width) + "x" + std::to_string(status_.render_height) +
                      (status_.moving ? " moving (1/" + std::to_string(status_.scale) + ")" : " still") + "\n";
   for (const StepTime& s : status_.steps) info += "  " + s.name + format(" %.1f ms", s.ms) + "\n";

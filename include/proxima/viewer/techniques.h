@@ -50,7 +50,7 @@ struct TechniqueSettings {
   int reflection_glossy_rays = 4;
   // Soft shadows (`proxima shadows`): light diagonal / scene diagonal, n×n samples.
   float shadow_light_size = 0.25f;
-  int shadow_light_samples = 4;
+  int shadow_light_samples = 2;
   int occluder_resolution = 512;
   int shadow_map_resolution = 512;
   uint64_t seed = 1;
