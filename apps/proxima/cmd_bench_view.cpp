@@ -6,6 +6,7 @@
 
 #include "command.h"
 #include "frame_series.h"
+#include "view_flags.h"
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
 #include "proxima/core/timer.h"
@@ -17,9 +18,8 @@ namespace proxima::cli {
 namespace {
 
 struct BenchViewFlags {
-  CommonOptions common;
-  CameraChoice camera;
-  int move_scale = 2;
+  ViewSetup setup;
+  std::string out = "out/bench-view";
   int frames = 10;  // moving frames per block
   int rounds = 3;   // blocks per technique, round-robin over the techniques
   bool error = false;
@@ -40,22 +40,14 @@ void release(ViewerSession& s) {
 }
 
 int run_bench_view(const BenchViewFlags& f) {
-  if (f.common.threads < 0) fail_input("--threads: must be ≥ 0");
-  if (f.move_scale < 0 || f.move_scale > 16) fail_input("--move-scale: must be in 0..16 (0 = adaptive)");
+  validate_view_flags(f.setup);
   if (f.frames < 1 || f.frames > 10000) fail_input("--frames: must be in 1..10000");
   if (f.rounds < 1 || f.rounds > 100) fail_input("--rounds: must be in 1..100");
-  if (f.common.width < 16 || f.common.height < 16 || f.common.width > 8192 || f.common.height > 8192)
-    fail_input("--width/--height: must be in 16..8192");
-  ThreadLimit limit(f.common.threads);
-  Scene scene = load_scene(f.common.scene);
-  const Camera start = pick_camera(scene, f.camera, f.common.width, f.common.height);
-  const auto out = prepare_out_dir(f.common.out);
-  ViewerOptions vo;
-  vo.move_scale = f.move_scale;
-  vo.techniques.seed = f.common.seed;
-  vo.speed = std::max(0.1f, 0.1f * scene_bounds(scene).diagonal());
-  const std::string name = scene.name;
-  ViewerSession session(std::move(scene), start, f.common.width, f.common.height, vo);
+  ThreadLimit limit(f.setup.common.threads);
+  const std::unique_ptr<ViewerSession> owned = make_view_session(f.setup, {});
+  ViewerSession& session = *owned;
+  const auto out = prepare_out_dir(f.out);
+  const std::string name = session.scene().name;
 
   std::vector<int> chosen;
   for (size_t i = 0; i < session.techniques().size(); ++i) {
@@ -106,8 +98,8 @@ int run_bench_view(const BenchViewFlags& f) {
   Results results;
   results.command = command_line();
   results.threads = active_threads();
-  Table table{"Viewer frame rate while moving, " + name + ", window " + std::to_string(f.common.width) + "x" +
-                  std::to_string(f.common.height) + ", " + std::to_string(active_threads()) + " threads",
+  Table table{"Viewer frame rate while moving, " + name + ", window " + std::to_string(f.setup.common.width) + "x" +
+                  std::to_string(f.setup.common.height) + ", " + std::to_string(active_threads()) + " threads",
               {"technique", "rendered_while_moving", "moving_ms_median", "moving_fps", "refine_ms_median",
                "refine_fps", "first_frame_ms", "error_mae_still", "steps_last_moving_frame"},
               {}};
@@ -141,17 +133,9 @@ Command register_bench_view(CLI::App& bench) {
   static BenchViewFlags f;
   auto* app = bench.add_subcommand("view", "viewer techniques: frames/s while moving (headless), refine frame, "
                                            "error vs the reference");
-  add_scene_flag(app, f.common, "living-room");
-  add_camera_flags(app, f.camera);
-  f.common.width = 640;
-  f.common.height = 360;
-  add_size_flags(app, f.common);
-  add_threads_flag(app, f.common);
-  add_seed_flag(app, f.common);
-  add_out_flag(app, f.common, false);
-  f.common.out = "out/bench-view";
-  app->add_option("--move-scale", f.move_scale, "render at 1/N of the window per side while moving (0 = adaptive)")
-      ->capture_default_str();
+  f.setup.move_scale = 2;
+  add_view_flags(app, f.setup, "render at 1/N of the window per side while moving (0 = adaptive)");
+  app->add_option("--out", f.out, "output directory (created if missing)")->capture_default_str();
   app->add_option("--frames", f.frames, "moving frames per block")->capture_default_str();
   app->add_option("--rounds", f.rounds, "blocks per technique, round-robin")->capture_default_str();
   app->add_option("--techniques", f.techniques, "comma-separated subset (default: every available one)")

@@ -9,6 +9,7 @@
 #include "proxima/scene/builtin_scenes.h"
 #include "proxima/scene/load.h"
 #include "proxima/viewer/camera_recording.h"
+#include "view_flags.h"
 #include "view_window.h"
 
 namespace proxima::cli {
@@ -16,10 +17,8 @@ namespace proxima::cli {
 namespace {
 
 struct ViewFlags {
-  CommonOptions common;
-  CameraChoice camera;
+  ViewSetup setup;
   std::string technique = "reference";
-  int move_scale = 0;
   std::string script;
   int frames = 0;
   std::string screenshot;
@@ -30,33 +29,26 @@ struct ViewFlags {
 
 int run_view(const ViewFlags& f) {
   // Every flag checked, then the window availability, then the scene: nothing opens for bad input.
-  if (f.common.width < 16 || f.common.width > 8192) fail_input("--width: must be in 16..8192");
-  if (f.common.height < 16 || f.common.height > 8192) fail_input("--height: must be in 16..8192");
-  if (f.common.threads < 0) fail_input("--threads: must be ≥ 0");
-  if (f.move_scale < 0 || f.move_scale > 16) fail_input("--move-scale: must be in 0..16 (0 = adaptive)");
+  const CommonOptions& common = f.setup.common;
+  validate_view_flags(f.setup);
   if (f.frames < 0) fail_input("--frames: must be ≥ 0");
-  if (!f.record.empty() && !is_builtin_scene(f.common.scene))
+  if (!f.record.empty() && !is_builtin_scene(common.scene))
     fail_input("--record: needs a built-in --scene (the file names it as \"builtin\")");
   ViewWindowOptions wo;
   wo.script = parse_view_script(f.script);
   if (!view_window_available())
     fail_input("view: this proxima was built without SDL2 (install libsdl2-dev and rebuild)");
 
-  ThreadLimit limit(f.common.threads);
-  Scene scene = load_scene(f.common.scene);
+  ThreadLimit limit(common.threads);
+  ViewerOptions vo;
+  vo.overlay = !f.no_overlay;
+  const std::unique_ptr<ViewerSession> owned = make_view_session(f.setup, vo);
+  ViewerSession& session = *owned;
   Scene played;
   if (!f.play.empty()) {
     played = load_scene(f.play);
     if (played.camera_paths.empty()) fail_input("--play: " + f.play + " has no camera path");
   }
-  const Camera start = pick_camera(scene, f.camera, f.common.width, f.common.height);
-  ViewerOptions vo;
-  vo.move_scale = f.move_scale;
-  vo.overlay = !f.no_overlay;
-  vo.techniques.seed = f.common.seed;
-  vo.speed = std::max(0.1f, 0.1f * scene_bounds(scene).diagonal());
-  const std::string name = scene.name;
-  ViewerSession session(std::move(scene), start, f.common.width, f.common.height, vo);
   int index = -1;
   for (size_t i = 0; i < session.techniques().size(); ++i)
     if (session.techniques()[i].name == f.technique) index = int(i);
@@ -67,12 +59,12 @@ int run_view(const ViewFlags& f) {
   }
   if (!session.select_technique(index)) fail_input("--technique: " + session.status().message);
 
-  wo.title = "proxima view - " + name;
+  wo.title = "proxima view - " + session.scene().name;
   wo.scripted = !f.script.empty() || f.frames > 0 || !f.play.empty();
   wo.frames = f.frames;
   wo.screenshot = f.screenshot;
   wo.record = f.record;
-  wo.record_scene = f.common.scene;
+  wo.record_scene = common.scene;
   if (!f.play.empty()) {
     // The recorded path of a --record file (its built-in scene may bring paths of its own).
     wo.play = &played.camera_paths.front();
@@ -92,18 +84,9 @@ Command register_view(CLI::App& root) {
   static ViewFlags f;
   auto* app = root.add_subcommand("view", "interactive viewer: fly through a scene and switch techniques live "
                                           "(SDL2 window; scripted with --script for tests)");
-  add_scene_flag(app, f.common, "living-room");
-  add_camera_flags(app, f.camera);
-  f.common.width = 640;
-  f.common.height = 360;
-  add_size_flags(app, f.common);
-  add_threads_flag(app, f.common);
-  add_seed_flag(app, f.common);
+  add_view_flags(app, f.setup, "while moving render at 1/N of the window per side (0 = adapt N to 15 frames/s)");
   app->add_option("--technique", f.technique,
                   "initial technique: reference, envmap, rectified, cluster, temporal, shadows (keys 1-6)")
-      ->capture_default_str();
-  app->add_option("--move-scale", f.move_scale,
-                  "while moving render at 1/N of the window per side (0 = adapt N to 15 frames/s)")
       ->capture_default_str();
   app->add_option("--script", f.script,
                   "scripted input, comma-separated: hold:KEY:N press:KEY mouse:DX:DY scroll:N resize:W:H idle:N "
