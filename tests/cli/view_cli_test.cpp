@@ -17,8 +17,15 @@ bool has_xvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1 && com
 
 bool built_without_window(const RunResult& r) { return r.output.find("built without SDL2") != std::string::npos; }
 
+// xvfb-run -a picks a free display, but two runs starting at once (ctest -j, other test
+// binaries on the machine) can pick the same one and one Xvfb fails to start: retry that.
 RunResult run_under_xvfb(const std::string& args) {
-  return run_cli("view " + args, "xvfb-run -a -s '-screen 0 640x480x24' ");
+  RunResult r;
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    r = run_cli("view " + args, "xvfb-run -a -s '-screen 0 640x480x24' ");
+    if (r.output.find("Xvfb failed to start") == std::string::npos) break;
+  }
+  return r;
 }
 
 // Mean absolute difference (0–255 sRGB) of two same-sized screenshots.
