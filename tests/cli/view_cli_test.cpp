@@ -119,6 +119,19 @@ TEST(ViewCli, ScriptedMoveAndSwitchUnderXvfb) {
   expect_not_blank(read_image_linear(p("played.png")), "played");
 }
 
+TEST(ViewCli, ClosingTheWindowEndsTheRunCleanly) {
+  if (!has_xvfb()) GTEST_SKIP() << "xvfb-run / Xvfb not installed";
+  TempDir dir;
+  const std::string shot = (dir.path / "closed.png").string();
+  // The close event arrives in frame 2; the 50 idle frames after it never run.
+  RunResult r = run_under_xvfb("--scene cornell --width 64 --height 36 --threads 2 --script idle:1,quit,idle:50 "
+                               "--screenshot " + shot);
+  if (built_without_window(r)) GTEST_SKIP() << "proxima built without SDL2";
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("view: 2 frames"), std::string::npos) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(shot));
+}
+
 TEST(ViewCli, OverlayIsDrawnUnderXvfb) {
   if (!has_xvfb()) GTEST_SKIP() << "xvfb-run / Xvfb not installed";
   TempDir dir;

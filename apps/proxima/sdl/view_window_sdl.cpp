@@ -2,6 +2,7 @@
 // needed, runs under Xvfb). Everything but events and pixels is in ViewerSession.
 #include <SDL.h>
 
+#include <cstdio>
 #include <memory>
 
 #include "../view_window.h"
@@ -81,9 +82,8 @@ int run_view_window(ViewerSession& session, const ViewWindowOptions& o) {
   const bool ends = !o.script.empty() || o.play != nullptr || o.frames > 0;
   size_t script_frames = o.script.size();
   if (o.play) script_frames = std::max(script_frames, size_t(o.play->frames));
-  for (size_t frame = 0;; ++frame) {
-    if (o.frames > 0 && frame >= size_t(o.frames)) break;
-    if (ends && o.frames == 0 && frame >= script_frames) break;
+  size_t frame = 0;
+  for (;; ++frame) {
     SDL_Event e;
     while (SDL_PollEvent(&e)) {
       switch (e.type) {
@@ -104,10 +104,20 @@ int run_view_window(ViewerSession& session, const ViewWindowOptions& o) {
         default: break;
       }
     }
+    if (session.quit_requested()) break;
+    if (o.frames > 0 && frame >= size_t(o.frames)) break;
+    if (ends && o.frames == 0 && frame >= script_frames) break;
     const ScriptFrame* step = frame < o.script.size() ? &o.script[frame] : nullptr;
     if (step)
       for (const ViewEvent& ev : step->before) {
         if (ev.type == ViewEvent::Type::Resize) SDL_SetWindowSize(window.get(), int(ev.value.x), int(ev.value.y));
+        if (ev.type == ViewEvent::Type::Quit) {
+          // The window manager's close button: an SDL_QUIT the event loop handles next.
+          SDL_Event q{};
+          q.type = SDL_QUIT;
+          SDL_PushEvent(&q);
+          continue;
+        }
         apply_event(session, ev);
       }
     if (o.play && frame < size_t(o.play->frames)) {
@@ -129,6 +139,7 @@ int run_view_window(ViewerSession& session, const ViewWindowOptions& o) {
     const ViewerStatus& st = session.status();
     if (!ends && !st.moving && st.refined && st.error_mae >= 0.0) SDL_WaitEventTimeout(nullptr, 50);
   }
+  std::fprintf(stderr, "view: %zu frames\n", frame);
   if (!o.screenshot.empty()) screenshot(window.get(), o.screenshot);
   if (!o.record.empty()) write_recorded_path(o.record, o.record_scene, recorder);
   return 0;

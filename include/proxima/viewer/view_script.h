@@ -8,7 +8,7 @@
 //   resize:W:H     the window resized
 //   idle:N         N frames without input (the view refines, the reference progresses)
 //   shot:FILE      screenshot (PNG) after the previous token's frame; no frame of its own
-//   quit           ends the run
+//   quit           closes the window (the SDL front end: an SDL_QUIT event, as the close button)
 #pragma once
 
 #include <string>
