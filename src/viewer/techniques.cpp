@@ -20,6 +20,7 @@ namespace {
 // What the reflection techniques share: the reflectors, object bounds for culling, and
 // the distance cube map (built on first use, as `proxima reflect` builds it once).
 struct ReflectionShared {
+  TechniqueSettings settings;  // the live knobs; the parameter keys change them
   std::vector<uint32_t> reflectors;
   std::vector<Bounds3> bounds;
   std::optional<DistanceCubeMap> map;
@@ -89,11 +90,12 @@ const DistanceCubeMap& cube_map(const ViewerScene& vs, ReflectionShared& shared,
 }
 
 Technique envmap_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<ReflectionShared> shared,
-                           const TechniqueSettings& s, EnvmapMethod method) {
+                           EnvmapMethod method) {
   Technique t;
   t.name = method_name(method);
   t.label = method == EnvmapMethod::Plain ? "env map" : "rectified env map";
-  t.render = [vs, shared, s, method](const Camera& camera) {
+  t.render = [vs, shared, method](const Camera& camera) {
+    const TechniqueSettings& s = shared->settings;
     TechniqueFrame out;
     const DistanceCubeMap& map = cube_map(*vs, *shared, s, out.steps);
     const ReflectionFrame frame = gbuffer(*vs, *shared, s, camera, out.steps);
@@ -106,12 +108,12 @@ Technique envmap_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<Refl
   return t;
 }
 
-Technique cluster_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<ReflectionShared> shared,
-                            const TechniqueSettings& s) {
+Technique cluster_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<ReflectionShared> shared) {
   Technique t;
   t.name = "cluster";
   t.label = "cluster reflections";
-  t.render = [vs, shared, s](const Camera& camera) {
+  t.render = [vs, shared](const Camera& camera) {
+    const TechniqueSettings& s = shared->settings;
     TechniqueFrame out;
     const ReflectionFrame frame = gbuffer(*vs, *shared, s, camera, out.steps);
     const ClusterReflections cr = render_cluster_reflections(vs->scene, frame, {}, shared->bounds);
@@ -125,8 +127,7 @@ Technique cluster_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<Ref
   return t;
 }
 
-Technique temporal_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<ReflectionShared> shared,
-                             const TechniqueSettings& s) {
+Technique temporal_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<ReflectionShared> shared) {
   struct State {
     TemporalState temporal;
     int width = 0, height = 0;
@@ -135,7 +136,8 @@ Technique temporal_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<Re
   Technique t;
   t.name = "temporal";
   t.label = "temporal reuse";
-  t.render = [vs, shared, s, state](const Camera& camera) {
+  t.render = [vs, shared, state](const Camera& camera) {
+    const TechniqueSettings& s = shared->settings;
     // The key frame's reflection depth image is per resolution: a new size starts over.
     if (camera.width != state->width || camera.height != state->height) *state = {{}, camera.width, camera.height};
     TechniqueFrame out;
@@ -158,26 +160,40 @@ Technique temporal_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<Re
 
 std::vector<Technique> make_techniques(std::shared_ptr<ViewerScene> vs, const TechniqueSettings& s) {
   auto shared = std::make_shared<ReflectionShared>();
+  shared->settings = s;
   shared->reflectors = reflective_objects(vs->scene);
   shared->bounds = raster_object_bounds(vs->scene);
   shared->rectify.D = scene_bounds(vs->scene).diagonal();
 
+  // Parameter keys: doubling / halving one knob per technique, within bounds.
+  auto knob = [shared](const char* what, int TechniqueSettings::*field, int lo, int hi, bool drop_map) {
+    return [shared, what, field, lo, hi, drop_map](int step) {
+      int& v = shared->settings.*field;
+      v = std::clamp(step > 0 ? v * 2 : v / 2, lo, hi);
+      if (drop_map) shared->map.reset();
+      return std::string(what) + " " + std::to_string(v);
+    };
+  };
   std::vector<Technique> list;
   Technique reference;
+  reference.adjust = knob("area-light samples n (n x n)", &TechniqueSettings::live_light_samples, 1, 16, false);
   reference.name = "reference";
   reference.label = "reference ray tracing";
-  reference.render = [vs, s](const Camera& camera) {
+  reference.render = [vs, shared](const Camera& camera) {
     TechniqueFrame out;
     Stopwatch w;
-    out.color = render_reference(vs->scene, vs->rays, camera, live_reference(s));
+    out.color = render_reference(vs->scene, vs->rays, camera, live_reference(shared->settings));
     out.steps.push_back({"trace", w.elapsed_ms()});
     return out;
   };
   list.push_back(reference);
-  list.push_back(envmap_technique(vs, shared, s, EnvmapMethod::Plain));
-  list.push_back(envmap_technique(vs, shared, s, EnvmapMethod::Rectified));
-  list.push_back(cluster_technique(vs, shared, s));
-  list.push_back(temporal_technique(vs, shared, s));
+  list.push_back(envmap_technique(vs, shared, EnvmapMethod::Plain));
+  list.push_back(envmap_technique(vs, shared, EnvmapMethod::Rectified));
+  list.push_back(cluster_technique(vs, shared));
+  list.push_back(temporal_technique(vs, shared));
+  for (size_t i = 1; i < list.size(); ++i)
+    list[i].adjust = i <= 2 ? knob("cube map faces", &TechniqueSettings::cube_size, 16, 2048, true)
+                            : knob("glossy lobe rays", &TechniqueSettings::reflection_glossy_rays, 1, 64, false);
   if (shared->reflectors.empty())
     for (Technique& t : list)
       if (t.name != "reference") t.unavailable = "the scene has no reflective object";

@@ -67,6 +67,16 @@ void ViewerSession::key_down(std::string_view key) {
   else if (key == "e" || key == "space") held_.up = true;
   else if (key == "q" || key == "c") held_.down = true;
   else if (key == "h") options_.overlay = !options_.overlay;
+  else if (key == "-" || key == "=") {
+    Technique& t = techniques_[size_t(status_.technique)];
+    if (!t.adjust) {
+      status_.message = t.label + ": no parameter";
+    } else {
+      status_.message = t.adjust(key == "=" ? 1 : -1);
+      t.reset();
+      invalidate();
+    }
+  }
   else if (key == "escape") quit_ = true;
   else if (key == "tab") {
     for (size_t k = 1; k <= techniques_.size(); ++k) {
@@ -239,7 +249,7 @@ void ViewerSession::draw_overlay() {
     info += format("reference %.0f%%\n", 100.0 * status_.reference_progress);
   info += format("speed %.2f m/s", fly_.speed);
   if (!status_.message.empty()) info += "\n" + status_.message;
-  const std::string help = "WASD/QE move  mouse look  wheel speed  1-9/Tab technique  H overlay  Esc quit";
+  const std::string help = "WASD/QE move  mouse look  wheel speed  1-9/Tab technique  -/= parameter  H overlay  Esc";
 
   const int pad = 4;
   const int panel_h = text_height(panel) , info_h = text_height(info);

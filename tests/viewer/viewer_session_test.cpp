@@ -108,6 +108,31 @@ TEST(ViewerSession, BadKeysUnavailableSlotsAndResizesDoNotBreakIt) {
   EXPECT_TRUE(s.quit_requested());
 }
 
+TEST(ViewerSession, ParameterKeysChangeTheTechniquesKnob) {
+  ViewerOptions o;
+  o.overlay = false;
+  ViewerSession s = small_session(o);
+  s.select_technique(index_of(s, "rectified"));
+  const ImageU8 before = s.frame(0.03f);  // cube map 32²
+  s.key_down("=");
+  EXPECT_EQ(s.status().message, "cube map faces 64");
+  EXPECT_FALSE(s.status().refined);
+  const ImageU8 after = s.frame(0.03f);
+  EXPECT_FALSE(before == after);  // a finer map shows finer reflections
+  s.key_down("-");
+  s.key_down("-");
+  EXPECT_EQ(s.status().message, "cube map faces 16");
+  s.key_down("-");  // bounded
+  EXPECT_EQ(s.status().message, "cube map faces 16");
+  s.select_technique(index_of(s, "shadows"));
+  s.key_down("=");
+  EXPECT_NE(s.status().message.find("no parameter"), std::string::npos);
+  s.select_technique(index_of(s, "reference"));
+  s.key_down("=");
+  EXPECT_EQ(s.status().message, "area-light samples n (n x n) 2");
+  EXPECT_EQ(s.frame(0.03f).width(), 48);
+}
+
 TEST(ViewerSession, AdaptiveScaleCoarsensUnderATightBudget) {
   ViewerOptions o;
   o.move_scale = 0;

@@ -20,6 +20,11 @@ std::string key_name(SDL_Keycode k) {
   if (k >= SDLK_1 && k <= SDLK_9) return std::string(1, char('1' + (k - SDLK_1)));
   switch (k) {
     case SDLK_SPACE: return "space";
+    case SDLK_MINUS:
+    case SDLK_KP_MINUS: return "-";
+    case SDLK_EQUALS:
+    case SDLK_PLUS:
+    case SDLK_KP_PLUS: return "=";
     case SDLK_TAB: return "tab";
     case SDLK_ESCAPE: return "escape";
     default: return "";

@@ -68,6 +68,9 @@ struct Technique {
   // every row at once (whole_reference).
   std::function<ImageF(const Camera&, int row_begin, int row_end)> reference;
   bool whole_reference = false;
+  // Its parameter key ('-' halves, '=' doubles a knob; empty = none): returns e.g.
+  // "cube map faces 512". The next frame uses the new value.
+  std::function<std::string(int step)> adjust;
   // Drops state carried between frames (temporal reuse); called on a switch or resize.
   std::function<void()> reset = [] {};
 };

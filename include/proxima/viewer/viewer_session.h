@@ -53,7 +53,7 @@ class ViewerSession {
   ~ViewerSession();
 
   // Keys by name: "w" "a" "s" "d" "q" "e" (fly), "space" "c" (up/down), "1".."9" (technique),
-  // "tab" (next technique), "h" (overlay on/off), "escape" (quit). Unknown names are ignored.
+  // "tab" (next technique), "-" / "=" (the technique's parameter), "h" (overlay on/off), "escape" (quit). Unknown names are ignored.
   void key_down(std::string_view key);
   void key_up(std::string_view key);
   void mouse_motion(vec2 delta_px);
