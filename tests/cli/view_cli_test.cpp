@@ -132,6 +132,24 @@ TEST(ViewCli, ClosingTheWindowEndsTheRunCleanly) {
   EXPECT_TRUE(std::filesystem::exists(shot));
 }
 
+TEST(ViewCli, SameScreenshotsOnOneAndTwoThreads) {
+  if (!has_xvfb()) GTEST_SKIP() << "xvfb-run / Xvfb not installed";
+  TempDir dir;
+  std::vector<ImageF> shots;
+  for (int threads : {1, 2}) {
+    const std::string shot = (dir.path / (threads == 1 ? "t1.png" : "t2.png")).string();
+    std::string args = "--scene room-reflector --width 64 --height 36 --no-overlay --move-scale 2 --threads ";
+    args += threads == 1 ? "1" : "2";
+    args += " --script idle:1,hold:w:2,press:4,hold:d:2,idle:1 --screenshot ";
+    args += shot;
+    RunResult r = run_under_xvfb(args);
+    if (built_without_window(r)) GTEST_SKIP() << "proxima built without SDL2";
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    shots.push_back(read_image_linear(shot));
+  }
+  EXPECT_TRUE(shots[0] == shots[1]);
+}
+
 TEST(ViewCli, OverlayIsDrawnUnderXvfb) {
   if (!has_xvfb()) GTEST_SKIP() << "xvfb-run / Xvfb not installed";
   TempDir dir;
