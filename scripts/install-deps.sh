@@ -14,6 +14,9 @@ packages=(
   # Optional llvmpipe harness of `proxima bench raster` (bench/llvmpipe): Mesa's
   # software OpenGL through EGL, measured side by side with proxima's rasterizer.
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+  # `proxima view` (issue 12): the SDL2 window (optional at build time: without it the
+  # viewer exits 2), and Xvfb + xauth so its screenshot tests run without a display.
+  libsdl2-dev xvfb xauth
 )
 for arg in "$@"; do
   case "$arg" in

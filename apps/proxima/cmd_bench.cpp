@@ -238,9 +238,11 @@ Command register_bench(CLI::App& root) {
   r.reps = 9;
   raster->add_option("--reps", r.reps, "repetitions per measurement")->capture_default_str();
   raster->add_flag("--skip-agreement", r.skip_agreement, "time only; skip the Embree agreement pass");
-  return {app, [trace, raster] {
+  const Command view = register_bench_view(*app);
+  return {app, [trace, raster, view] {
             if (trace->parsed()) return run_trace(f);
             if (raster->parsed()) return run_raster(r);
+            if (view.app->parsed()) return view.run();
             return 2;
           }};
 }

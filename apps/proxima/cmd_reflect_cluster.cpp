@@ -16,6 +16,7 @@
 #include "proxima/core/timer.h"
 #include "proxima/eval/image_error.h"
 #include "proxima/raster/rasterizer.h"
+#include "proxima/reflect/envmap_frame_reflections.h"
 #include "proxima/reflect/envmap_lookup.h"
 #include "proxima/reflect/envmap_reflection.h"
 #include "proxima/scene/load.h"
@@ -84,22 +85,6 @@ void validate(const ClusterReflectFlags& f) {
 
 const char* const kCauseNames[kOcclusionCauses] = {"none", "behind_near_plane", "outside_image",
                                                    "own_curved_reflector", "hidden_in_image"};
-
-// Per sample the mean over its rays of the rectified env-map lookup from the ray origin
-// (issue 6's §2.2 bisection on one distance cube map).
-std::vector<vec3> envmap_reflections(const Scene& scene, const ReflectionFrame& frame, const DistanceCubeMap& map,
-                                     const RectifyOptions& rectify) {
-  std::vector<vec3> out(frame.sample_count(), vec3(0.0f));
-  parallel_for(frame.sample_count(), 256, [&](size_t b, size_t e) {
-    for (size_t i = b; i < e; ++i) {
-      vec3 sum(0.0f);
-      for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r)
-        sum += rectified_lookup(map, scene.environment, frame.origin[i], frame.direction[r], rectify).color;
-      out[i] = sum / float(frame.first_ray[i + 1] - frame.first_ray[i]);
-    }
-  });
-  return out;
-}
 
 }  // namespace
 
@@ -228,7 +213,7 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
           envmap_build_ms.add(w.elapsed_ms());
         }
         Stopwatch w;
-        env_radiance = envmap_reflections(scene, frame, map, rectify);
+        env_radiance = envmap_frame_reflections(scene, frame, map, EnvmapMethod::Rectified, rectify);
         e_ms.push_back(step1 + w.elapsed_ms());
       }
       cluster = render_cluster_reflections(scene, frame, f.cluster, bounds, f.compare ? &traced : nullptr);

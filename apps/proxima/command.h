@@ -70,5 +70,7 @@ Command register_visibility(CLI::App& root);
 Command register_sample(CLI::App& root);
 Command register_reflect(CLI::App& root);
 Command register_shadows(CLI::App& root);
+Command register_view(CLI::App& root);
+Command register_bench_view(CLI::App& bench);  // `bench view`, cmd_bench_view.cpp
 
 }  // namespace proxima::cli

@@ -83,6 +83,7 @@ void validate_options(const ReferenceOptions& o) {
   require(o.area_light_samples >= 1 && o.area_light_samples <= 256, "area light samples must be in [1, 256]");
   require(o.glossy_rays >= 1 && o.glossy_rays <= 4096, "glossy rays must be in [1, 4096]");
   require(o.max_bounces >= 0 && o.max_bounces <= 64, "max bounces must be in [0, 64]");
+  require(o.row_begin >= 0 && (o.row_end == -1 || o.row_end >= o.row_begin), "rows must satisfy 0 ≤ begin ≤ end");
 }
 
 }  // namespace
@@ -124,9 +125,10 @@ ImageF render_reference(const Scene& scene, const RayScene& rays, const Camera& 
   ImageF out(w, h, 3, 0.0f);
   vec3 forward = camera_forward(camera);
   Tracer tracer(scene, rays, options);
+  const int row_end = options.row_end < 0 ? h : std::min(options.row_end, h);
   parallel_for_tiles(w, h, kTileSize, [&](const Tile& tile) {
     std::vector<vec2> lobe(size_t(options.glossy_rays));
-    for (int y = tile.y0; y < tile.y1; ++y)
+    for (int y = std::max(tile.y0, options.row_begin); y < std::min(tile.y1, row_end); ++y)
       for (int x = tile.x0; x < tile.x1; ++x) {
         uint64_t pixel_index = uint64_t(y) * uint64_t(w) + uint64_t(x);
         vec3 sum(0.0f);

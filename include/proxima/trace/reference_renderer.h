@@ -35,6 +35,10 @@ struct ReferenceOptions {
                                // bounce; deeper bounces follow the mirror direction only
   int max_bounces = 2;         // reflection depth in [0, 64]; 0 = no reflections
   uint64_t seed = 1;           // sub-sample streams: derive_seed(seed, pixel index, sub-sample)
+  // Rows rendered, [row_begin, row_end) (−1 = to the last row); the others stay 0. Pixels
+  // are the same bits as in a full render, so a viewer can build the image band by band.
+  int row_begin = 0;
+  int row_end = -1;
 };
 
 // The reference image: linear RGB, 3 channels, camera.width × camera.height.

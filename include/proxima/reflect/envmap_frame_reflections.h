@@ -1,0 +1,20 @@
+// Environment-map lookups for the reflection rays of a ReflectionFrame (cluster_reflection.h):
+// per reflective sample the mean over its rays of a plain or rectified lookup (Wang et al.
+// 2012) from the ray origin, so env mapping composes like the cluster and temporal methods
+// (compose_reflections). Used by `reflect --method cluster --compare` and the viewer.
+#pragma once
+
+#include <vector>
+
+#include "proxima/reflect/cluster_reflection.h"
+#include "proxima/reflect/envmap_lookup.h"
+#include "proxima/reflect/envmap_reflection.h"
+
+namespace proxima {
+
+// `method` is Plain or Rectified (others throw std::logic_error). Deterministic, parallel.
+std::vector<vec3> envmap_frame_reflections(const Scene& scene, const ReflectionFrame& frame,
+                                           const DistanceCubeMap& map, EnvmapMethod method,
+                                           const RectifyOptions& rectify);
+
+}  // namespace proxima

@@ -1,0 +1,220 @@
+#include "proxima/viewer/techniques.h"
+
+#include <algorithm>
+#include <optional>
+
+#include "proxima/core/timer.h"
+#include "proxima/raster/rasterizer.h"
+#include "proxima/reflect/cluster_reflection.h"
+#include "proxima/reflect/distance_cube_map.h"
+#include "proxima/reflect/envmap_frame_reflections.h"
+#include "proxima/reflect/envmap_reflection.h"
+#include "proxima/reflect/temporal_reuse.h"
+#include "proxima/trace/reference_renderer.h"
+#include "shadow_technique.h"
+
+namespace proxima {
+
+namespace {
+
+// What the reflection techniques share: the reflectors, object bounds for culling, and
+// the distance cube map (built on first use, as `proxima reflect` builds it once).
+struct ReflectionShared {
+  TechniqueSettings settings;  // the live knobs; the parameter keys change them
+  std::vector<uint32_t> reflectors;
+  std::vector<Bounds3> bounds;
+  std::optional<DistanceCubeMap> map;
+  RectifyOptions rectify;
+};
+
+ReferenceOptions live_reference(const TechniqueSettings& s) {
+  ReferenceOptions o;
+  o.area_light_samples = s.live_light_samples;
+  o.glossy_rays = s.live_glossy_rays;
+  o.max_bounces = s.live_bounces;
+  o.seed = s.seed;
+  return o;
+}
+
+ImageF shaded_reference(const ViewerScene& vs, const TechniqueSettings& s, const Camera& camera, int row_begin,
+                        int row_end) {
+  ReferenceOptions o;
+  o.area_light_samples = s.reference_light_samples;
+  o.glossy_rays = s.reference_glossy_rays;
+  o.max_bounces = s.reference_bounces;
+  o.seed = s.seed;
+  o.row_begin = row_begin;
+  o.row_end = row_end;
+  return render_reference(vs.scene, vs.rays, camera, o);
+}
+
+ReflectionOptions reflection_options(const TechniqueSettings& s) {
+  ReflectionOptions o;
+  o.supersample = 1;
+  o.glossy_rays = s.reflection_glossy_rays;
+  o.area_light_samples = s.live_light_samples;
+  o.seed = s.seed;
+  return o;
+}
+
+// The G-buffer pass every reflection technique starts from (its diffuse shading is the
+// "base" the reflections blend into).
+ReflectionFrame gbuffer(const ViewerScene& vs, const ReflectionShared& shared, const TechniqueSettings& s,
+                        const Camera& camera, std::vector<StepTime>& steps) {
+  Stopwatch w;
+  ReflectionFrame frame = prepare_reflection_frame(vs.scene, camera, reflection_options(s), shared.bounds);
+  steps.push_back({"g-buffer + diffuse", w.elapsed_ms()});
+  return frame;
+}
+
+ImageF compose(const ReflectionFrame& frame, const std::vector<vec3>& reflected, std::vector<StepTime>& steps) {
+  Stopwatch w;
+  ImageF color = compose_reflections(frame, reflected);
+  steps.push_back({"compose", w.elapsed_ms()});
+  return color;
+}
+
+const DistanceCubeMap& cube_map(const ViewerScene& vs, ReflectionShared& shared, const TechniqueSettings& s,
+                                std::vector<StepTime>& steps) {
+  if (!shared.map) {
+    DistanceCubeMapOptions mo;
+    mo.resolution = s.cube_size;
+    mo.area_light_samples = s.live_light_samples;
+    mo.seed = s.seed;
+    mo.exclude = shared.reflectors;
+    Stopwatch w;
+    shared.map = render_distance_cube_map(vs.scene, vs.rays, projection_center(vs.scene, shared.reflectors), mo);
+    steps.push_back({"cube map build (once)", w.elapsed_ms()});
+  }
+  return *shared.map;
+}
+
+Technique envmap_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<ReflectionShared> shared,
+                           EnvmapMethod method) {
+  Technique t;
+  t.name = method_name(method);
+  t.label = method == EnvmapMethod::Plain ? "env map" : "rectified env map";
+  t.render = [vs, shared, method](const Camera& camera) {
+    const TechniqueSettings& s = shared->settings;
+    TechniqueFrame out;
+    const DistanceCubeMap& map = cube_map(*vs, *shared, s, out.steps);
+    const ReflectionFrame frame = gbuffer(*vs, *shared, s, camera, out.steps);
+    Stopwatch w;
+    const std::vector<vec3> reflected = envmap_frame_reflections(vs->scene, frame, map, method, shared->rectify);
+    out.steps.push_back({"env map lookups", w.elapsed_ms()});
+    out.color = compose(frame, reflected, out.steps);
+    return out;
+  };
+  return t;
+}
+
+Technique cluster_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<ReflectionShared> shared) {
+  Technique t;
+  t.name = "cluster";
+  t.label = "cluster reflections";
+  t.render = [vs, shared](const Camera& camera) {
+    const TechniqueSettings& s = shared->settings;
+    TechniqueFrame out;
+    const ReflectionFrame frame = gbuffer(*vs, *shared, s, camera, out.steps);
+    const ClusterReflections cr = render_cluster_reflections(vs->scene, frame, {}, shared->bounds);
+    out.steps.push_back({"clustering", cr.stats.clustering_ms});
+    out.steps.push_back({"cluster cameras", cr.stats.cameras_ms});
+    out.steps.push_back({"depth images", cr.stats.depth_images_ms});
+    out.steps.push_back({"intersection", cr.stats.intersection_ms});
+    out.color = compose(frame, cr.radiance, out.steps);
+    return out;
+  };
+  return t;
+}
+
+Technique temporal_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<ReflectionShared> shared) {
+  struct State {
+    TemporalState temporal;
+    int width = 0, height = 0;
+  };
+  auto state = std::make_shared<State>();
+  Technique t;
+  t.name = "temporal";
+  t.label = "temporal reuse";
+  t.render = [vs, shared, state](const Camera& camera) {
+    const TechniqueSettings& s = shared->settings;
+    // The key frame's reflection depth image is per resolution: a new size starts over.
+    if (camera.width != state->width || camera.height != state->height) *state = {{}, camera.width, camera.height};
+    TechniqueFrame out;
+    const ReflectionFrame frame = gbuffer(*vs, *shared, s, camera, out.steps);
+    TemporalFrameStats st;
+    const std::vector<vec3> reflected = temporal_reflections(vs->scene, vs->rays, frame, state->temporal, {}, &st);
+    if (st.key) out.steps.push_back({"key frame trace", st.key_ms});
+    out.steps.push_back({"best match", st.match_ms});
+    out.steps.push_back({"offset warp", st.warp_ms});
+    out.steps.push_back({"reprojection", st.reproject_ms});
+    out.steps.push_back({"recompute", st.recompute_ms});
+    out.color = compose(frame, reflected, out.steps);
+    return out;
+  };
+  t.reset = [state] { *state = {}; };
+  return t;
+}
+
+}  // namespace
+
+std::vector<Technique> make_techniques(std::shared_ptr<ViewerScene> vs, const TechniqueSettings& s) {
+  auto shared = std::make_shared<ReflectionShared>();
+  shared->settings = s;
+  shared->reflectors = reflective_objects(vs->scene);
+  shared->bounds = raster_object_bounds(vs->scene);
+  shared->rectify.D = scene_bounds(vs->scene).diagonal();
+
+  // Parameter keys: doubling / halving one knob per technique, within bounds.
+  auto knob = [shared](const char* what, int TechniqueSettings::*field, int lo, int hi, bool drop_map) {
+    return [shared, what, field, lo, hi, drop_map](int step) {
+      int& v = shared->settings.*field;
+      v = std::clamp(step > 0 ? v * 2 : v / 2, lo, hi);
+      if (drop_map) shared->map.reset();
+      return std::string(what) + " " + std::to_string(v);
+    };
+  };
+  std::vector<Technique> list;
+  Technique reference;
+  reference.adjust = knob("area-light samples n (n x n)", &TechniqueSettings::live_light_samples, 1, 16, false);
+  reference.name = "reference";
+  reference.label = "reference ray tracing";
+  reference.render = [vs, shared](const Camera& camera) {
+    TechniqueFrame out;
+    Stopwatch w;
+    out.color = render_reference(vs->scene, vs->rays, camera, live_reference(shared->settings));
+    out.steps.push_back({"trace", w.elapsed_ms()});
+    return out;
+  };
+  list.push_back(reference);
+  list.push_back(envmap_technique(vs, shared, EnvmapMethod::Plain));
+  list.push_back(envmap_technique(vs, shared, EnvmapMethod::Rectified));
+  list.push_back(cluster_technique(vs, shared));
+  list.push_back(temporal_technique(vs, shared));
+  for (size_t i = 1; i < list.size(); ++i)
+    list[i].adjust = i <= 2 ? knob("cube map faces", &TechniqueSettings::cube_size, 16, 2048, true)
+                            : knob("glossy lobe rays", &TechniqueSettings::reflection_glossy_rays, 1, 64, false);
+  if (shared->reflectors.empty())
+    for (Technique& t : list)
+      if (t.name != "reference") t.unavailable = "the scene has no reflective object";
+  list.push_back(shadow_technique(vs, s));
+
+  // SLOT: GIBR novel view (being built in another branch). Fill in `render` with the GIBR
+  // pipeline's frame for `camera` and clear `unavailable`; the reference is the shaded one.
+  Technique gibr;
+  gibr.name = "gibr";
+  gibr.label = "GIBR novel view";
+  gibr.unavailable = "not built yet (GIBR is a separate issue)";
+  list.push_back(gibr);
+
+  for (size_t i = 0; i < list.size(); ++i) {
+    list[i].key = char('1' + i);
+    if (!list[i].reference)
+      list[i].reference = [vs, s](const Camera& camera, int row_begin, int row_end) {
+        return shaded_reference(*vs, s, camera, row_begin, row_end);
+      };
+  }
+  return list;
+}
+
+}  // namespace proxima
