@@ -91,9 +91,10 @@ struct ClusterReflectionOptions {
   float glossy_far_falloff = 0.5f;  // glossy far distance D = diagonal·(1 − falloff·g_max)
   float fade_fraction = 0.1f;       // glossy hits in the last fraction of D fade to the environment
   // Not in the thesis: clusters whose rays do not all pass through the camera centre (glossy
-  // or curved) also get a second layer, the nearest surface facing the camera at least
-  // second_layer_separation (relative depth) behind the first. A ray that went behind a
-  // nearer surface for good is marched again in it before falling back to fill_behind.
+  // or curved) get a second layer, the nearest surface facing the camera at least
+  // second_layer_separation (relative depth) behind the first, when one of their rays went
+  // behind a nearer surface for good or found nothing; those rays are marched again in it
+  // before falling back to fill_behind or the environment.
   bool second_layer = true;
   float second_layer_separation = 0.05f;
   int march_block = 0;  // > 0: block size of depth minima the march skips with (same result); 0 = none
