@@ -81,6 +81,7 @@ void validate(const ClusterReflectFlags& f) {
   if (!(f.cluster.resolution_scale > 0.0f && f.cluster.resolution_scale <= 8.0f))
     fail_input("--resolution-scale: must be in (0, 8]");
   if (f.cube_size < 1 || f.cube_size > 4096) fail_input("--cube-size: must be in 1..4096");
+  if (f.cluster.march_block < 0 || f.cluster.march_block > 256) fail_input("--march-block: must be in 0..256");
 }
 
 const char* const kCauseNames[kOcclusionCauses] = {"none", "behind_near_plane", "outside_image",
@@ -111,6 +112,15 @@ void add_cluster_reflect_flags(CLI::App* app, ClusterReflectFlags& f) {
       ->capture_default_str()
       ->group(group);
   app->add_option("--resolution-scale", f.cluster.resolution_scale, "cluster: image texels per pixel footprint")
+      ->capture_default_str()
+      ->group(group);
+  app->add_option("--second-layer", f.cluster.second_layer,
+                  "cluster: glossy and curved clusters get a second depth layer that rays hidden behind a nearer "
+                  "surface are marched in (true/false)")
+      ->capture_default_str()
+      ->group(group);
+  app->add_option("--march-block", f.cluster.march_block,
+                  "cluster: block size of the depth minima the march skips with (0 = texel by texel; same result)")
       ->capture_default_str()
       ->group(group);
   app->add_option("--image-frame", f.image_frame, "cluster, temporal: frame whose images are written (-1 = cluster: the first rendered; temporal: the first that reuses a key frame)")
@@ -161,7 +171,7 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
   Series reflective_pct, cluster_ms, reference_ms, reference_dynamic_ms, envmap_ms, envmap_build_ms, step1_ms,
       cameras_ms, images_ms, intersection_ms, clusters, samples_per_cluster, occlusion_pct, fallback_pct, planar_pct,
       mae_r, mae_g, mae_b, env_r, env_g, env_b, texels, fill_pct, occlusion_ray_pct, occlusion_mirror_pct,
-      occlusion_glossy_pct, full_r, full_g, full_b, traced_full;
+      occlusion_glossy_pct, full_r, full_g, full_b, traced_full, second_texels, second_ray_pct;
   Series cause_pct[kOcclusionCauses], cause_mirror_pct[kOcclusionCauses];
   Results results;
   results.command = command_line();
@@ -238,6 +248,8 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
     if (reflective > 0) {  // cluster figures over the frames that show reflective pixels
       clusters.add(double(st.clusters));
       texels.add(double(st.texels));
+      second_texels.add(double(st.second_layer_texels));
+      second_ray_pct.add(100.0 * double(st.second_layer_rays) / std::max<double>(1.0, double(st.rays)));
       samples_per_cluster.add(double(st.reflective_samples) / double(st.clusters));
       planar_pct.add(100.0 * double(st.planar_samples) / samples);
     }
@@ -336,6 +348,8 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
   m["intersection_ms_avg"] = intersection_ms.avg();
   m["env_fallback_pct_avg"] = fallback_pct.avg();
   m["texels_avg"] = texels.avg();
+  m["second_layer_texels_avg"] = second_texels.avg();
+  m["second_layer_rays_pct_avg"] = second_ray_pct.avg();
   m["behind_fill_pct_avg"] = fill_pct.avg();
   m["planar_samples_pct_avg"] = planar_pct.avg();
   m["planar_samples_pct_max"] = planar_pct.max();

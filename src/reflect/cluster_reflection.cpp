@@ -20,6 +20,7 @@
 #include "proxima/core/parallel.h"
 #include "proxima/core/rng.h"
 #include "proxima/core/timer.h"
+#include "proxima/raster/depth_peeling.h"
 #include "proxima/raster/rasterizer.h"
 #include "proxima/reflect/cluster_camera.h"
 #include "proxima/reflect/depth_image_march.h"
@@ -338,7 +339,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
   out.cluster = clusters.cluster_of;
   out.flags.assign(n, 0);
   out.occlusion_cause.assign(n, uint8_t(OcclusionCause::None));
-  RasterImages images;
+  RasterImages images, back;
   ImageF color;
   for (size_t c = 0; c < nc; ++c) {
     const std::span<const uint32_t> members = clusters.cluster(c);
@@ -395,34 +396,117 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     const bool glossy = cluster_gloss[c] > 0.0f;
     MarchOptions march;
     march.fill_behind = true;
-    std::vector<uint8_t> ray_occluded(frame.first_ray[members.back() + 1] - frame.first_ray[members.front()], 0);
+    // Block minima let the march skip runs of texels the ray stays in front of.
+    const int block = options.march_block;
+    march.block = block;
+    const ImageF block_min = block > 0 ? depth_block_min(images.depth, block) : ImageF();
+    if (block > 0) march.block_min = &block_min;
     const uint32_t ray_base = frame.first_ray[members.front()];
+    const size_t ray_count = frame.first_ray[members.back() + 1] - ray_base;
+    std::vector<uint8_t> ray_occluded(ray_count, 0);
+    std::vector<vec3> ray_color(ray_count, vec3(0.0f));
+    enum Answer : uint8_t { kHit, kFill, kEnv, kSecond };
+    std::vector<uint8_t> answer(ray_count, kHit);
+    // Glossy hits in the last fade_fraction of the far distance fade to the environment.
+    auto fade = [&](const DepthImageHit& h, vec3 o, vec3 dir, vec3 c_hit) {
+      float t = glm::length(unproject(cam, h.pixel, h.depth) - o);
+      float w = std::clamp((far - t) / (options.fade_fraction * far), 0.0f, 1.0f);
+      return w < 1.0f ? w * c_hit + (1.0f - w) * environment_radiance(scene.environment, dir) : c_hit;
+    };
+    // The second layer (rays off the centre only) is needed by rays that went behind a
+    // first-layer surface for good or found nothing.
+    const bool layered = options.second_layer && (!k.planar || glossy);
+    std::vector<uint8_t> needs_second(layered ? ray_count : 0, 0);
     parallel_for(members.size(), 64, [&](size_t b, size_t e) {
       for (size_t m = b; m < e; ++m) {
         const uint32_t i = members[m];
-        vec3 sum(0.0f);
         for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
           const vec3 o = frame.origin[i], dir = frame.direction[r];
-          const vec3 env = environment_radiance(scene.environment, dir);
-          float t0, t1;
+          float t0 = 0.0f, t1 = 0.0f;
           std::optional<DepthImageHit> hit;
-          if (clip_ray(k, o, dir, far, t0, t1))
-            hit = march_depth_image(cam, images.depth, o + t0 * dir, o + t1 * dir, march);
+          const bool inside = clip_ray(k, o, dir, far, t0, t1);
+          if (inside) hit = march_depth_image(cam, images.depth, o + t0 * dir, o + t1 * dir, march);
+          if (layered && inside && (!hit || hit->filled)) needs_second[r - ray_base] = 1;
           if (hit) {
-            if (hit->filled) out.flags[i] |= kBehindFill;
             vec3 c_hit = lookup_color(color, images.depth, hit->pixel, hit->depth);
-            if (glossy) {
-              float t = glm::length(unproject(cam, hit->pixel, hit->depth) - o);
-              float w = std::clamp((far - t) / (options.fade_fraction * far), 0.0f, 1.0f);
-              c_hit = w * c_hit + (1.0f - w) * env;
-            }
-            sum += c_hit;
+            ray_color[r - ray_base] = glossy ? fade(*hit, o, dir, c_hit) : c_hit;
+            answer[r - ray_base] = hit->filled ? kFill : kHit;
           } else {
-            sum += env;
-            out.flags[i] |= kEnvFallback;
+            ray_color[r - ray_base] = environment_radiance(scene.environment, dir);
+            answer[r - ray_base] = kEnv;
           }
-          // Occlusion error: the surface Embree hits is not what the image holds there.
-          if (reference && reference->hit_triangle[r] != kNoTriangle) {
+        }
+      }
+    });
+    st.intersection_ms += watch.elapsed_ms();
+    const bool two_layers = layered && std::find(needs_second.begin(), needs_second.end(), 1) != needs_second.end();
+    if (two_layers) {
+      // Step 3b for the second layer: the nearest front face behind the first layer, e.g.
+      // the wall behind a fixture standing on a glossy floor. Back faces are culled so a
+      // closed occluder's far side does not take the place of what it hides.
+      watch.restart();
+      RasterOptions ro2 = ro;
+      ro2.cull = CullMode::Back;
+      const BehindLayerTest behind{images.depth, images.triangle, options.second_layer_separation};
+      rs = rasterize(scene, cam, ro2, back, [&](const Fragment& fr) {
+        if (!behind(fr)) return false;
+        vec3 x = unproject(cam, vec2(float(fr.x) + 0.5f, float(fr.y) + 0.5f), fr.depth);
+        return glm::dot(x - k.plane_point, k.plane_normal) > k.clip_offset;
+      });
+      st.second_layer_texels += uint64_t(cam.width) * uint64_t(cam.height);
+      st.depth_images_ms += watch.elapsed_ms();
+      // Those rays marched again in it (without fill); its texels are shaded on demand.
+      watch.restart();
+      const ImageF back_block_min = block > 0 ? depth_block_min(back.depth, block) : ImageF();
+      MarchOptions plain;
+      plain.block = block;
+      if (block > 0) plain.block_min = &back_block_min;
+      parallel_for(members.size(), 64, [&](size_t b, size_t e) {
+        for (size_t m = b; m < e; ++m) {
+          const uint32_t i = members[m];
+          for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
+            if (!needs_second[r - ray_base]) continue;
+            const vec3 o = frame.origin[i], dir = frame.direction[r];
+            float t0 = 0.0f, t1 = 0.0f;
+            clip_ray(k, o, dir, far, t0, t1);
+            auto second = march_depth_image(cam, back.depth, o + t0 * dir, o + t1 * dir, plain);
+            if (!second) continue;
+            const int x = std::clamp(int(second->pixel.x), 0, cam.width - 1);
+            const int y = std::clamp(int(second->pixel.y), 0, cam.height - 1);
+            const uint32_t t = back.triangle.at(x, y);
+            if (t == kNoTriangle) continue;
+            const float u = back.barycentric.at(x, y, 0), v = back.barycentric.at(x, y, 1);
+            vec3 c_hit = shade_reflected_point(scene, t, u, v, cam.position - triangle_point(scene, t, u, v),
+                                               frame.area_light_samples);
+            ray_color[r - ray_base] = glossy ? fade(*second, o, dir, c_hit) : c_hit;
+            answer[r - ray_base] = kSecond;
+          }
+        }
+      });
+      st.intersection_ms += watch.elapsed_ms();
+    }
+    // Step 3d: G = the mean over each sample's rays.
+    watch.restart();
+    for (uint32_t i : members) {
+      vec3 sum(0.0f);
+      for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
+        sum += ray_color[r - ray_base];
+        const uint8_t a = answer[r - ray_base];
+        out.flags[i] |= a == kFill ? kBehindFill : a == kEnv ? kEnvFallback : a == kSecond ? kSecondLayer : 0;
+        st.second_layer_rays += a == kSecond;
+      }
+      out.radiance[i] = sum / float(frame.first_ray[i + 1] - frame.first_ray[i]);
+    }
+    st.intersection_ms += watch.elapsed_ms();
+    // Occlusion errors, a diagnostic outside the timed steps: the surface Embree hits is
+    // not what the image holds there.
+    if (reference) {
+      parallel_for(members.size(), 64, [&](size_t b, size_t e) {
+        for (size_t m = b; m < e; ++m) {
+          const uint32_t i = members[m];
+          for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
+            if (reference->hit_triangle[r] == kNoTriangle) continue;
+            const vec3 o = frame.origin[i], dir = frame.direction[r];
             const vec3 x = o + reference->hit_t[r] * dir;
             const uint32_t tri = reference->hit_triangle[r];
             auto pr = project(cam, x);
@@ -436,9 +520,10 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
               cause = OcclusionCause::OutsideImage;
             else if (!k.planar && scene.triangle_object[tri] == clusters.reflector[c])
               cause = OcclusionCause::OwnReflector;
-            else if (!visible_near(images, pr->pixel, pr->depth, tri))
+            else if (!visible_near(images, pr->pixel, pr->depth, tri) &&
+                     !(two_layers && visible_near(back, pr->pixel, pr->depth, tri)))
               // Hidden only if no texel within one of its projection holds the surface or
-              // something at its depth or beyond (resolution is not occlusion).
+              // something at its depth or beyond (resolution is not occlusion), in either layer.
               cause = OcclusionCause::Hidden;
             if (cause != OcclusionCause::None) {
               out.flags[i] |= kOcclusionError;
@@ -447,13 +532,13 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
             }
           }
         }
-        out.radiance[i] = sum / float(frame.first_ray[i + 1] - frame.first_ray[i]);
-      }
-    });
-    st.intersection_ms += watch.elapsed_ms();
+      });
+    }
     for (uint32_t i : members) {
       st.rays += frame.first_ray[i + 1] - frame.first_ray[i];
-      for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) st.occlusion_error_rays += ray_occluded[r - ray_base];
+      for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
+        st.occlusion_error_rays += ray_occluded[r - ray_base];
+      }
     }
   }
   for (size_t i = 0; i < n; ++i) {

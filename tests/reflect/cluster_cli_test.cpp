@@ -71,6 +71,8 @@ TEST(ClusterCli, BadInputIsExitCodeTwoAndWritesNothing) {
   EXPECT_EQ(run_cli("reflect --method cluster --scene room-reflector --path 0 --frame 100000 --out " + out.string()), 2);
   EXPECT_EQ(run_cli("reflect --method cluster --scene room-reflector --gloss-rays 5000 --out " + out.string()), 2);
   EXPECT_EQ(run_cli("reflect --method clusters --scene room-reflector --out " + out.string()), 2);
+  EXPECT_EQ(run_cli("reflect --method cluster --scene room-reflector --march-block -1 --out " + out.string()), 2);
+  EXPECT_EQ(run_cli("reflect --method cluster --scene room-reflector --second-layer maybe --out " + out.string()), 2);
   // The old subcommand is gone.
   EXPECT_EQ(run_cli("reflect-cluster --scene room-reflector --out " + out.string()), 2);
   EXPECT_FALSE(std::filesystem::exists(out));

@@ -43,6 +43,7 @@ TEST(ClusterReflection, PlanarMirrorReproducesTheTracedReflection) {
   EXPECT_EQ(cluster.stats.planar_clusters, 1u);
   EXPECT_EQ(cluster.stats.env_fallback_samples, 0u);
   EXPECT_EQ(cluster.stats.occlusion_error_samples, 0u);
+  EXPECT_EQ(cluster.stats.second_layer_texels, 0u);  // every ray passes through e0: one layer
   const ImageU8 mask = reflective_pixel_mask(frame);
   const ImageError err =
       compare_images(compose_reflections(frame, cluster.radiance), compose_reflections(frame, traced.radiance), &mask);
@@ -74,6 +75,36 @@ TEST(ClusterReflection, GlossyLobeIsIdenticalForAnyThreadCount) {
   }
   ASSERT_EQ(one.size(), two.size());
   EXPECT_TRUE(one == two);
+}
+
+// A glossy mirror with a ball standing on it: lobe rays off the mirror direction pass
+// behind the ball as seen from e0 and hit the wall there, absent from a single-layer image.
+TEST(ClusterReflection, SecondLayerAnswersGlossyRaysHiddenBehindAnOccluder) {
+  Scene scene = mirror_and_wall();
+  scene.materials[1].gloss = 0.5f;
+  scene.materials[1].specular = 0.8f;
+  add_object(scene, test::sphere_mesh(vec3(0.0f, 0.0f, 0.45f), 0.4f, 16, 8), "ball",
+             test::add_diffuse(scene, vec3(0.8f, 0.2f, 0.2f)));
+  ReflectionOptions opts;
+  opts.supersample = 1;
+  opts.glossy_rays = 8;
+  const ReflectionFrame frame = prepare_reflection_frame(scene, kEye, opts);
+  RayScene rays(scene);
+  const TracedReflections traced = trace_reflections(scene, rays, frame);
+  ClusterReflectionOptions one, two;
+  one.second_layer = false;
+  const ClusterReflections single = render_cluster_reflections(scene, frame, one, {}, &traced);
+  const ClusterReflections layered = render_cluster_reflections(scene, frame, two, {}, &traced);
+  EXPECT_EQ(single.stats.second_layer_texels, 0u);
+  EXPECT_GT(layered.stats.second_layer_texels, 0u);
+  EXPECT_GT(layered.stats.second_layer_rays, 0u);
+  ASSERT_GT(single.stats.occlusion_error_rays, 20u);
+  EXPECT_LT(layered.stats.occlusion_error_rays * 4, single.stats.occlusion_error_rays);
+  const ImageU8 mask = reflective_pixel_mask(frame);
+  const ImageF truth = compose_reflections(frame, traced.radiance);
+  const double err_single = compare_images(compose_reflections(frame, single.radiance), truth, &mask).mae_avg;
+  const double err_layered = compare_images(compose_reflections(frame, layered.radiance), truth, &mask).mae_avg;
+  EXPECT_LT(err_layered, err_single);
 }
 
 }  // namespace proxima

@@ -90,6 +90,14 @@ struct ClusterReflectionOptions {
   int max_image_side = 2048;        // cap per cluster image side
   float glossy_far_falloff = 0.5f;  // glossy far distance D = diagonal·(1 − falloff·g_max)
   float fade_fraction = 0.1f;       // glossy hits in the last fraction of D fade to the environment
+  // Not in the thesis: clusters whose rays do not all pass through the camera centre (glossy
+  // or curved) get a second layer, the nearest surface facing the camera at least
+  // second_layer_separation (relative depth) behind the first, when one of their rays went
+  // behind a nearer surface for good or found nothing; those rays are marched again in it
+  // before falling back to fill_behind or the environment.
+  bool second_layer = true;
+  float second_layer_separation = 0.05f;
+  int march_block = 0;  // > 0: block size of depth minima the march skips with (same result); 0 = none
 };
 
 // Why a ray's Embree hit is absent from its cluster image (the first cause that applies).
@@ -98,7 +106,7 @@ enum class OcclusionCause : uint8_t {
   BehindNear = 1,    // behind the near (fitting) plane, clipped out of the image
   OutsideImage = 2,  // projects outside the cluster image (outside the frustum)
   OwnReflector = 3,  // on the cluster's own curved reflector, which its image leaves out
-  Hidden = 4,        // inside the frustum, hidden behind a nearer surface of the single-layer image
+  Hidden = 4,        // inside the frustum, hidden behind nearer surfaces of the image (in every layer)
 };
 inline constexpr int kOcclusionCauses = 5;
 
@@ -119,11 +127,13 @@ struct ClusterFrameStats {
   uint64_t mirror_occlusion_error_samples = 0;  // of those, occlusion errors
   uint64_t occlusion_cause_samples[kOcclusionCauses] = {};  // occlusion-error samples by the
                                                            // cause of their first such ray
+  uint64_t second_layer_texels = 0;     // Σ second-layer image pixels
+  uint64_t second_layer_rays = 0;       // rays answered by a hit in the second layer
   uint64_t planar_clusters = 0;
   uint64_t planar_samples = 0;          // samples in planar clusters
   double clustering_ms = 0.0;           // step 2
   double cameras_ms = 0.0;              // pixel footprints + cluster cameras (step 3a)
-  double depth_images_ms = 0.0;         // rasterization + texel shading (step 3b)
+  double depth_images_ms = 0.0;         // rasterization + texel shading (step 3b), both layers
   double intersection_ms = 0.0;         // marching + blending over the lobe (step 3c)
 };
 
@@ -132,6 +142,7 @@ enum ClusterSampleFlag : uint8_t {
   kEnvFallback = 1u << 0,     // a ray found no hit in its cluster image (environment used)
   kOcclusionError = 1u << 1,  // a ray's Embree hit is absent from its cluster image
   kBehindFill = 1u << 2,      // a ray went behind a surface for good (MarchOptions::fill_behind)
+  kSecondLayer = 1u << 3,     // a ray was answered by the second layer
 };
 
 struct ClusterReflections {

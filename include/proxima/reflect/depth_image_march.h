@@ -27,7 +27,14 @@ struct MarchOptions {
   // image does not hold. With fill_behind it returns the surface it was last in front of
   // (the background at the silhouette, flagged `filled`) instead of nothing.
   bool fill_behind = false;
+  // Optional depth_block_min(depth, block) of the same depth image: runs of steps inside one
+  // block that stay in front of its nearest texel are skipped. The result is identical.
+  const ImageF* block_min = nullptr;
+  int block = 8;
 };
+
+// Per block × block tile of `depth` (1 channel) the minimum depth; ceil(w / block) × ceil(h / block).
+ImageF depth_block_min(const ImageF& depth, int block);
 
 // First hit of the segment begin → end with the surface stored in `depth` (1 channel,
 // camera.width × camera.height, −z_cam, +inf where empty), seen from `camera`.
