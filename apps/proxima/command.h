@@ -70,5 +70,6 @@ Command register_visibility(CLI::App& root);
 Command register_sample(CLI::App& root);
 Command register_reflect(CLI::App& root);
 Command register_shadows(CLI::App& root);
+Command register_gibr(CLI::App& root);
 
 }  // namespace proxima::cli
