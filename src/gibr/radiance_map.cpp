@@ -156,8 +156,21 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
     L.height = j1 - j0;
     L.rgba.assign(size_t(L.width) * size_t(L.height), 0u);
     int fi0 = i1, fj0 = j1, fi1 = i0 - 1, fj1 = j0 - 1;
+    // The polygon in texel coordinates (counter-clockwise: u × v is its normal). Only texel
+    // centers on the polygon get samples: one off it (in the grid's margin) can project
+    // into a mapped pixel yet lie behind a neighbor polygon.
+    std::vector<dvec2> outline;
+    for (const dvec3& q : model.polygons[p].vertices) outline.push_back(texel_coords(g, q));
+    auto on_polygon = [&](double a, double b) {
+      for (size_t k = 0; k < outline.size(); ++k) {
+        const dvec2 e = outline[(k + 1) % outline.size()] - outline[k], r = dvec2(a, b) - outline[k];
+        if (e.x * r.y - e.y * r.x < 0.0) return false;
+      }
+      return true;
+    };
     for (int j = j0; j < j1; ++j)
       for (int i = i0; i < i1; ++i) {
+        if (!on_polygon(i + 0.5, j + 0.5)) continue;
         const dvec3 d = texel_center(g, i, j) - eye;
         const double z = glm::dot(d, F);
         if (z <= 0.0) continue;

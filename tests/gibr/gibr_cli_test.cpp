@@ -34,7 +34,9 @@ TEST(GibrCli, BadFlagsExitTwoNamingTheFlagAndWriteNothing) {
     RunResult r = run_cli(std::string("gibr ") + args + " --out " + out.string());
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
     const std::string flag = std::string(args).substr(0, std::string(args).find(' '));
-    if (flag != "--scene") EXPECT_NE(r.output.find(flag), std::string::npos) << args << ": " << r.output;
+    if (flag != "--scene") {
+      EXPECT_NE(r.output.find(flag), std::string::npos) << args << ": " << r.output;
+    }
     EXPECT_FALSE(std::filesystem::exists(out)) << args;
   }
 }

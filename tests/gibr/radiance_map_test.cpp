@@ -69,27 +69,33 @@ TEST(GibrMapping, DoorFrameSilhouettePixelIsNotMappedOntoTheWallBehind) {
   EXPECT_EQ(vis_mapped, 0);
   EXPECT_GT(item_mapped_behind, 0);
 
-  // And on the radiance maps: every sample of this photograph comes from a pixel wholly on
-  // the sample's polygon (all 64 sub-samples).
+  // And on the radiance maps: no sample of this photograph comes from a pixel straddling a
+  // silhouette; with --exclude-boundaries, every sample comes from a pixel wholly on the
+  // sample's polygon (all 64 sub-samples).
   const ImageF photo = render_photo(make_photo_scene(scene), rays, cam, 2, 1);
   const std::vector<Camera> cams{cam};
   const std::vector<ImageF> photos{photo};
-  const std::vector<ImageU32> labels{vis};
-  const RadianceMaps maps = build_radiance_maps(model, 0.02, cams, photos, labels);
-  size_t samples = 0, from_mixed = 0;
-  for (uint32_t p = 0; p < maps.layers.size(); ++p)
-    for (const SampleLayer& L : maps.layers[p])
-      for (int j = L.y0; j < L.y0 + L.height; ++j)
-        for (int i = L.x0; i < L.x0 + L.width; ++i) {
-          if (!L.has(i, j)) continue;
-          ++samples;
-          const auto q = project(cam, vec3(texel_center(maps.grids[p], i, j)));
-          ASSERT_TRUE(q.has_value());
-          const int px = std::clamp(int(q->pixel.x), 0, cam.width - 1), py = std::clamp(int(q->pixel.y), 0, cam.height - 1);
-          from_mixed += sub.at(px, py).polygons != std::set<uint32_t>{p};
-        }
-  EXPECT_GT(samples, 1000u);
-  EXPECT_EQ(from_mixed, 0u);
+  for (bool all_boundaries : {false, true}) {
+    const std::vector<ImageU32> labels{vismap_pixel_polygons(trace_visibility_map(wp, cam), all_boundaries)};
+    const RadianceMaps maps = build_radiance_maps(model, 0.02, cams, photos, labels);
+    size_t samples = 0, from_silhouette = 0, from_mixed = 0;
+    for (uint32_t p = 0; p < maps.layers.size(); ++p)
+      for (const SampleLayer& L : maps.layers[p])
+        for (int j = L.y0; j < L.y0 + L.height; ++j)
+          for (int i = L.x0; i < L.x0 + L.width; ++i) {
+            if (!L.has(i, j)) continue;
+            ++samples;
+            const auto q = project(cam, vec3(texel_center(maps.grids[p], i, j)));
+            ASSERT_TRUE(q.has_value());
+            const SubSamples& s = sub.at(std::clamp(int(q->pixel.x), 0, cam.width - 1),
+                                         std::clamp(int(q->pixel.y), 0, cam.height - 1));
+            from_mixed += s.polygons != std::set<uint32_t>{p};
+            from_silhouette += s.polygons.size() > 1 && s.t_max - s.t_min >= 0.5f;
+          }
+    EXPECT_GT(samples, 1000u);
+    EXPECT_EQ(from_silhouette, 0u);
+    if (all_boundaries) EXPECT_EQ(from_mixed, 0u);
+  }
 }
 
 TEST(GibrMapping, OccludedTexelNeverReceivesThatPhotographsColor) {
