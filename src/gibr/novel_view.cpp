@@ -149,8 +149,12 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
             const float dd = glm::length(maps.cameras[L.photo].position - w);
             if (dd < best_d) best_d = dd, best = &L;
           }
-          if (best && nearest_sample(*best, int(std::floor(tc.x)), int(std::floor(tc.y)), options.hole_radius, color))
-            ++filled;
+          const int ci = int(std::floor(tc.x)), cj = int(std::floor(tc.y));
+          bool got = best && nearest_sample(*best, ci, cj, options.hole_radius, color);
+          // Then the other photographs that saw P, closest direction first.
+          for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
+            got = nearest_sample(layers[order[o]], ci, cj, options.hole_radius, color);
+          filled += got;
         }
         for (int c = 0; c < 3; ++c) nv.color.at(x, y, c) = color[c];
       }

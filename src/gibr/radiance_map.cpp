@@ -69,23 +69,22 @@ std::vector<TexelGrid> make_texel_grids(const ModelPolygons& model, double texel
   return grids;
 }
 
+ImageU8 silhouette_pixel_mask(const VisibilityMap& map, double radius) {
+  VisibilityMap sil;
+  sil.width = map.width;
+  sil.height = map.height;
+  sil.vertices = map.vertices;
+  sil.regions = map.regions;
+  for (const MapEdge& e : map.edges)
+    if (e.silhouette) sil.edges.push_back(e);
+  return map_edge_mask(sil, radius);
+}
+
 ImageU32 vismap_pixel_polygons(const VisibilityMap& map, bool exclude_all_boundaries) {
   ImageU32 labels = rasterize_map(map);
   // A pixel square touches a segment only if the segment passes within √2/2 of its center.
   const double radius = std::sqrt(0.5) + 1e-9;
-  ImageU8 touched;
-  if (exclude_all_boundaries) {
-    touched = map_edge_mask(map, radius);
-  } else {
-    VisibilityMap sil;
-    sil.width = map.width;
-    sil.height = map.height;
-    sil.vertices = map.vertices;
-    sil.regions = map.regions;
-    for (const MapEdge& e : map.edges)
-      if (e.silhouette) sil.edges.push_back(e);
-    touched = map_edge_mask(sil, radius);
-  }
+  const ImageU8 touched = exclude_all_boundaries ? map_edge_mask(map, radius) : silhouette_pixel_mask(map, radius);
   for (int y = 0; y < map.height; ++y)
     for (int x = 0; x < map.width; ++x)
       if (touched.at(x, y)) labels.at(x, y) = kNone;
@@ -161,9 +160,9 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
     // into a mapped pixel yet lie behind a neighbor polygon.
     std::vector<dvec2> outline;
     for (const dvec3& q : model.polygons[p].vertices) outline.push_back(texel_coords(g, q));
-    auto on_polygon = [&](double a, double b) {
+    auto on_polygon = [&](double tx, double ty) {
       for (size_t k = 0; k < outline.size(); ++k) {
-        const dvec2 e = outline[(k + 1) % outline.size()] - outline[k], r = dvec2(a, b) - outline[k];
+        const dvec2 e = outline[(k + 1) % outline.size()] - outline[k], r = dvec2(tx, ty) - outline[k];
         if (e.x * r.y - e.y * r.x < 0.0) return false;
       }
       return true;

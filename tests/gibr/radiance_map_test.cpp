@@ -94,7 +94,9 @@ TEST(GibrMapping, DoorFrameSilhouettePixelIsNotMappedOntoTheWallBehind) {
           }
     EXPECT_GT(samples, 1000u);
     EXPECT_EQ(from_silhouette, 0u);
-    if (all_boundaries) EXPECT_EQ(from_mixed, 0u);
+    if (all_boundaries) {
+      EXPECT_EQ(from_mixed, 0u);
+    }
   }
 }
 

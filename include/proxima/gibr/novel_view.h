@@ -10,8 +10,8 @@
 //   w_i = 1 / (1 − cos θ_i + 1e-7),   θ_i = angle at x between (c_i − x) and (eye − x),
 // (≈ 2/θ_i² for small angles: a novel view at a photograph's pose takes that photograph).
 // Holes (no layer has a sample at x): the texel nearest to x, within `hole_radius` texels,
-// of the layer whose photograph's eye is nearest to x (the nearest photograph that saw P);
-// the pixel is flagged in the unseen mask either way, and stays black when nothing is found.
+// of the layer whose photograph's eye is nearest to x (the nearest photograph that saw P),
+// else of the other layers in ranked order; the pixel is flagged in the unseen mask either way, and stays black when nothing is found.
 #pragma once
 
 #include <cstdint>
@@ -27,7 +27,7 @@ namespace proxima::gibr {
 
 struct NovelViewOptions {
   int k = 3;             // photographs blended per pixel, ≥ 1
-  int hole_radius = 4;   // texels searched around a hole
+  int hole_radius = 8;   // texels searched around a hole
 };
 
 struct NovelView {

@@ -79,6 +79,9 @@ std::vector<TexelGrid> make_texel_grids(const visibility::ModelPolygons& model, 
 // wholly inside one polygon's regions (or sees the background).
 ImageU32 vismap_pixel_polygons(const visibility::VisibilityMap& map, bool exclude_all_boundaries = false);
 
+// 1 where a pixel center lies within `radius` px of a silhouette edge of the map, else 0.
+ImageU8 silhouette_pixel_mask(const visibility::VisibilityMap& map, double radius);
+
 // Item-buffer mapping: the rasterized (z-buffer) polygon at each pixel center.
 ImageU32 itembuffer_pixel_polygons(const Scene& scene, const visibility::ModelPolygons& model, const Camera& camera);
 
