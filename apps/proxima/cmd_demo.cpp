@@ -28,6 +28,7 @@ std::vector<SectionDef> demo_sections() {
       {"cluster", "cluster reflections", cluster_steps, cluster_section},
       {"temporal", "temporal reuse", temporal_steps, temporal_section},
       {"visibility", "visibility maps", visibility_steps, visibility_section},
+      {"gibr", "image-based rendering", one, gibr_section},
   };
 }
 

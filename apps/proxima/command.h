@@ -72,5 +72,6 @@ Command register_reflect(CLI::App& root);
 Command register_shadows(CLI::App& root);
 Command register_view(CLI::App& root);
 Command register_bench_view(CLI::App& bench);  // `bench view`, cmd_bench_view.cpp
+Command register_gibr(CLI::App& root);
 
 }  // namespace proxima::cli

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
       cli::register_reflect(root),
       cli::register_shadows(root),
       cli::register_view(root),
+      cli::register_gibr(root),
   };
   try {
     root.parse(argc, argv);

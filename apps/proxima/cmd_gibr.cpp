@@ -1,0 +1,325 @@
+// `proxima gibr`: the four phases of Funkhouser's hybrid geometry- and image-based rendering
+// system (section 2) on a built-in model: synthetic calibrated photographs, (1) BSP →
+// winged pair, (2) a visibility map per photograph, (3) radiance maps, (4) novel views
+// along the walkthrough path, each compared with a reference render; visibility-map mapping
+// against the item-buffer (z-buffer) mapping of Debevec et al. docs/gibr.md.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+
+#include "command.h"
+#include "proxima/core/error.h"
+#include "proxima/core/image_io.h"
+#include "proxima/core/parallel.h"
+#include "proxima/core/rng.h"
+#include "proxima/core/timer.h"
+#include "proxima/eval/image_error.h"
+#include "proxima/gibr/novel_view.h"
+#include "proxima/gibr/photo_set.h"
+#include "proxima/gibr/radiance_map.h"
+#include "proxima/scene/load.h"
+#include "proxima/visibility/bsp_build.h"
+
+namespace proxima::cli {
+
+namespace {
+
+using namespace proxima::gibr;
+using namespace proxima::visibility;
+
+struct GibrFlags {
+  CommonOptions common;
+  int photos = 100;
+  std::string views = "path";
+  int frames = 10;
+  int photo_width = 320, photo_height = 240;
+  double texel = 0.0;  // 0 = the scene's default
+  int k = 3;
+  int supersample = 2;
+  double period = 0.0;  // 0 = the scene's default
+  bool exclude_boundaries = false;
+  bool photo_images = true;
+  int fps_repeat = 3;
+};
+
+// Texel size and texture period per built-in model: texels about the size of a photograph
+// pixel's footprint at typical distances along the walk (docs/gibr.md).
+struct SceneDefaults {
+  double texel, period;
+};
+SceneDefaults defaults_for(const std::string& scene, double scale) {
+  if (scene == "rooms") return {0.02, 1.0};
+  if (scene == "floor" || scene == "building") return {0.03, 1.0};
+  if (scene == "vcity") return {0.15, 6.0};
+  if (scene == "maze") return {0.03, 1.0};
+  if (scene == "arena") return {0.05, 2.0};
+  return {scale / 500.0, scale / 10.0};
+}
+
+// Pooled error over frames: squared and absolute sums on the 0–255 display scale.
+struct Pool {
+  double se = 0.0, ae = 0.0, values = 0.0;
+  void add(const ImageError& e) {
+    if (e.pixels == 0) return;
+    const double n = 3.0 * double(e.pixels);
+    const double mse = std::isfinite(e.psnr_db) ? 255.0 * 255.0 / std::pow(10.0, e.psnr_db / 10.0) : 0.0;
+    se += mse * n;
+    ae += e.mae_avg * n;
+    values += n;
+  }
+  double psnr() const { return values > 0 && se > 0 ? 10.0 * std::log10(255.0 * 255.0 / (se / values)) : INFINITY; }
+  double mae() const { return values > 0 ? ae / values : 0.0; }
+};
+
+std::string numbered(const char* stem, int i, const char* suffix) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%s_%03d%s", stem, i, suffix);
+  return buf;
+}
+
+}  // namespace
+
+Command register_gibr(CLI::App& root) {
+  static GibrFlags f;
+  auto* app = root.add_subcommand(
+      "gibr", "hybrid geometry- and image-based rendering: photos → visibility maps → radiance maps → novel views");
+  add_scene_flag(app, f.common, "rooms");
+  f.common.width = 640;
+  f.common.height = 480;
+  add_size_flags(app, f.common);
+  add_threads_flag(app, f.common);
+  add_seed_flag(app, f.common);
+  add_out_flag(app, f.common, true);
+  app->add_option("--photos", f.photos, "calibrated photographs rendered along the walk path")->capture_default_str();
+  app->add_option("--views", f.views, "novel views: 'path' (along the walk path) or 'photos' (at the first photo poses)")
+      ->capture_default_str();
+  app->add_option("--frames", f.frames, "novel views rendered and compared")->capture_default_str();
+  app->add_option("--photo-width", f.photo_width, "photograph width in pixels")->capture_default_str();
+  app->add_option("--photo-height", f.photo_height, "photograph height in pixels")->capture_default_str();
+  app->add_option("--texel", f.texel, "radiance-map texel size in meters (default: per scene, docs/gibr.md)");
+  app->add_option("--period", f.period, "texture repeat in meters (default: per scene)");
+  app->add_option("--k", f.k, "photographs blended per pixel")->capture_default_str();
+  app->add_option("--supersample", f.supersample, "k×k samples per photograph / ground-truth pixel")
+      ->capture_default_str();
+  app->add_flag("--exclude-boundaries", f.exclude_boundaries,
+                "visibility-map mapping also drops pixels touching any edge between different polygons");
+  app->add_option("--fps-repeat", f.fps_repeat, "timed renders of each novel view (median → novel_view_fps)")
+      ->capture_default_str();
+  app->add_flag("!--no-photo-images", f.photo_images, "do not write the photographs as PNG");
+
+  return {app, [] {
+            if (f.common.threads < 0) fail_input("--threads: must be ≥ 0");
+            if (f.photos < 1 || f.photos > 10000) fail_input("--photos: must be in 1..10000");
+            if (f.frames < 1 || f.frames > 10000) fail_input("--frames: must be in 1..10000");
+            if (f.views != "path" && f.views != "photos") fail_input("--views: must be 'path' or 'photos' (got '" + f.views + "')");
+            if (f.fps_repeat < 1 || f.fps_repeat > 1000) fail_input("--fps-repeat: must be in 1..1000");
+            if (f.k < 1 || f.k > 64) fail_input("--k: must be in 1..64");
+            if (f.supersample < 1 || f.supersample > 8) fail_input("--supersample: must be in 1..8");
+            if (f.texel < 0.0 || !std::isfinite(f.texel)) fail_input("--texel: must be a positive size in meters");
+            if (f.period < 0.0 || !std::isfinite(f.period)) fail_input("--period: must be a positive length in meters");
+            ThreadLimit limit(f.common.threads);
+            const Scene model_scene = load_scene(f.common.scene);
+            if (model_scene.camera_paths.empty()) fail_input("--scene: '" + model_scene.name + "' has no camera path");
+            const CameraPath& path = model_scene.camera_paths.front();
+            const ModelPolygons model = extract_polygons(model_scene);
+            const SceneDefaults def = defaults_for(model_scene.name, model.scale);
+            const double texel = f.texel > 0 ? f.texel : def.texel;
+            PhotoSceneOptions pso;
+            pso.period = f.period > 0 ? f.period : def.period;
+            pso.seed = f.common.seed;
+            const Scene scene = make_photo_scene(model_scene, pso);
+            const float far = std::max(10.0f, 4.0f * scene_bounds(scene).diagonal());
+            validate_camera(look_at({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 60, f.photo_width, f.photo_height), "--photo-width/--photo-height");
+            validate_camera(look_at({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 60, f.common.width, f.common.height), "--width/--height");
+            (void)make_texel_grids(model, texel);  // rejects a texel too small for the model before anything is written
+
+            Results results;
+            results.command = command_line();
+            results.threads = active_threads();
+            auto& m = results.metrics;
+            Table phases{"time per phase (" + model_scene.name + ")", {"phase", "ms"}, {}};
+
+            RayScene rays(scene);
+            PhotoPoseOptions ppo;
+            ppo.count = f.photos;
+            ppo.width = f.photo_width;
+            ppo.height = f.photo_height;
+            ppo.seed = f.common.seed;
+            const std::vector<Camera> cams = photo_poses(rays, path, ppo, 0.01f, far);
+            Stopwatch w;
+            std::vector<ImageF> photos(cams.size());
+            for (size_t i = 0; i < cams.size(); ++i)
+              photos[i] = render_photo(scene, rays, cams[i], f.supersample, derive_seed(f.common.seed, i, 1));
+            phases.rows.push_back({std::string("photographs (reference renders)"), w.elapsed_ms()});
+            auto out = prepare_out_dir(f.common.out);
+            std::vector<CalibratedPhoto> calibrated;
+            std::filesystem::create_directories(out / "photos");
+            for (size_t i = 0; i < cams.size(); ++i) {
+              calibrated.push_back({numbered("photo", int(i), ".png"), cams[i]});
+              if (f.photo_images) write_png_linear(out / "photos" / calibrated.back().image, photos[i]);
+            }
+            write_camera_file(out / "photos" / "cameras.json", calibrated);
+
+            // Phase 1: spatial subdivision.
+            BspStats bsp;
+            const WingedPair wp = build_winged_pair(model, {}, &bsp);
+            phases.rows.push_back({std::string("1 spatial subdivision (BSP → winged pair)"), bsp.build_ms});
+            // Phase 2: a visibility map per photograph; the baseline's item buffers.
+            w.restart();
+            std::vector<ImageU32> vis_labels(cams.size()), item_labels(cams.size());
+            std::vector<double> silhouettes(cams.size());
+            parallel_for(cams.size(), 1, [&](size_t b, size_t e) {
+              for (size_t i = b; i < e; ++i) {
+                const VisibilityMap map = trace_visibility_map(wp, cams[i]);
+                silhouettes[i] = double(map.stats.silhouette_edges);
+                vis_labels[i] = vismap_pixel_polygons(map, f.exclude_boundaries);
+              }
+            });
+            const double vis_ms = w.elapsed_ms();
+            phases.rows.push_back({std::string("2 visibility maps (all photographs)"), vis_ms});
+            w.restart();
+            for (size_t i = 0; i < cams.size(); ++i) item_labels[i] = itembuffer_pixel_polygons(scene, model, cams[i]);
+            phases.rows.push_back({std::string("2' item buffers (baseline, all photographs)"), w.elapsed_ms()});
+            // Phase 3: radiance maps, both mappings.
+            const RadianceMaps vis_maps = build_radiance_maps(model, texel, cams, photos, vis_labels);
+            phases.rows.push_back({std::string("3 radiance maps (visibility-map mapping)"), vis_maps.stats.ms});
+            const RadianceMaps item_maps = build_radiance_maps(model, texel, cams, photos, item_labels);
+            phases.rows.push_back({std::string("3' radiance maps (item-buffer mapping)"), item_maps.stats.ms});
+            Table stats{"radiance maps of " + model_scene.name + " (texel " + std::to_string(texel) + " m)",
+                        {"mapping", "photos", "layers", "samples", "texels", "texels covered %", "pixels mapped", "MiB"},
+                        {}};
+            for (const auto& [name, maps] : {std::pair<const char*, const RadianceMaps*>{"visibility map", &vis_maps},
+                                              std::pair<const char*, const RadianceMaps*>{"item buffer", &item_maps}}) {
+              const RadianceStats& s = maps->stats;
+              stats.rows.push_back({std::string(name), double(s.photos), double(s.layers), double(s.samples), double(s.texels),
+                                    100.0 * double(s.texels_covered) / double(std::max<size_t>(1, s.texels)),
+                                    double(s.pixels_mapped), double(s.bytes) / (1024.0 * 1024.0)});
+            }
+            m["texel_m"] = texel;
+            m["photos"] = double(cams.size());
+            m["layers_vismap"] = double(vis_maps.stats.layers);
+            m["samples_vismap"] = double(vis_maps.stats.samples);
+            m["samples_itembuffer"] = double(item_maps.stats.samples);
+            m["texels_covered_pct_vismap"] = 100.0 * double(vis_maps.stats.texels_covered) / double(std::max<size_t>(1, vis_maps.stats.texels));
+            m["pixels_mapped_vismap"] = double(vis_maps.stats.pixels_mapped);
+            m["pixels_mapped_itembuffer"] = double(item_maps.stats.pixels_mapped);
+
+            // Phase 4: novel views, ground truth and errors.
+            std::vector<Camera> views;
+            for (int i = 0; i < f.frames; ++i) {
+              if (f.views == "photos") {
+                views.push_back(cams[size_t(i) % cams.size()]);
+              } else {
+                const float t = f.frames == 1 ? path.keys.front().time
+                                              : path.keys.front().time + (path.keys.back().time - path.keys.front().time) *
+                                                                             float(i) / float(f.frames - 1);
+                views.push_back(camera_at_time(path, t, f.common.width, f.common.height, 0.01f, far));
+              }
+            }
+            std::filesystem::create_directories(out / "views");
+            NovelViewOptions nvo;
+            nvo.k = f.k;
+            Pool all_v, all_i, sil_v, sil_i, seen_v, seen_i, silseen_v, silseen_i;
+            std::vector<double> frame_ms, frame_cpu_ms;
+            double truth_ms = 0.0, holes_v = 0.0, holes_i = 0.0, covered = 0.0;
+            Table per_view{"novel views of " + model_scene.name + " ('" + f.views + "')",
+                           {"view", "psnr vismap", "psnr itembuffer", "mae vismap", "mae itembuffer", "sil mae vismap",
+                            "sil mae itembuffer", "unseen % vismap", "ms vismap"},
+                           {}};
+            for (size_t i = 0; i < views.size(); ++i) {
+              const Camera& cam = views[i];
+              NovelView nv;
+              // Timing: --fps-repeat renders of the same view, wall and process CPU time each.
+              for (int r = 0; r < f.fps_repeat; ++r) {
+                const std::clock_t c0 = std::clock();
+                nv = render_novel_view(scene, model, vis_maps, cam, nvo);
+                frame_cpu_ms.push_back(1000.0 * double(std::clock() - c0) / CLOCKS_PER_SEC);
+                frame_ms.push_back(nv.raster_ms + nv.blend_ms);
+              }
+              const NovelView ni = render_novel_view(scene, model, item_maps, cam, nvo);
+              w.restart();
+              const ImageF truth = render_photo(scene, rays, cam, f.supersample, derive_seed(f.common.seed, i, 2));
+              truth_ms += w.elapsed_ms();
+              const ImageU8 sil = silhouette_pixel_mask(trace_visibility_map(wp, cam), 2.0);
+              ImageU8 seen(cam.width, cam.height, 1, 0);
+              for (int y = 0; y < cam.height; ++y)
+                for (int x = 0; x < cam.width; ++x) seen.at(x, y) = !nv.unseen.at(x, y) && !ni.unseen.at(x, y);
+              const ImageError ev = compare_images(nv.color, truth), ei = compare_images(ni.color, truth);
+              const ImageError sv = compare_images(nv.color, truth, &sil), si = compare_images(ni.color, truth, &sil);
+              all_v.add(ev);
+              all_i.add(ei);
+              sil_v.add(sv);
+              sil_i.add(si);
+              seen_v.add(compare_images(nv.color, truth, &seen));
+              seen_i.add(compare_images(ni.color, truth, &seen));
+              ImageU8 sil_seen = sil;
+              for (size_t p = 0; p < sil_seen.data().size(); ++p) sil_seen.data()[p] = sil.data()[p] && seen.data()[p];
+              silseen_v.add(compare_images(nv.color, truth, &sil_seen));
+              silseen_i.add(compare_images(ni.color, truth, &sil_seen));
+              holes_v += double(nv.holes);
+              holes_i += double(ni.holes);
+              covered += double(nv.covered);
+              per_view.rows.push_back({double(i), ev.psnr_db, ei.psnr_db, ev.mae_avg, ei.mae_avg, sv.mae_avg, si.mae_avg,
+                                       100.0 * double(nv.holes) / double(std::max<size_t>(1, nv.covered)),
+                                       nv.raster_ms + nv.blend_ms});
+              write_png_linear(out / "views" / numbered("vismap", int(i), ".png"), nv.color);
+              write_png_linear(out / "views" / numbered("itembuffer", int(i), ".png"), ni.color);
+              write_png_linear(out / "views" / numbered("truth", int(i), ".png"), truth);
+              write_png_linear(out / "views" / numbered("error_vismap", int(i), ".png"),
+                               error_heatmap(error_image(nv.color, truth), 32.0f));
+              write_png_linear(out / "views" / numbered("error_itembuffer", int(i), ".png"),
+                               error_heatmap(error_image(ni.color, truth), 32.0f));
+              ImageU8 unseen_png(cam.width, cam.height, 1, 0);
+              for (size_t p = 0; p < unseen_png.data().size(); ++p) unseen_png.data()[p] = nv.unseen.data()[p] ? 255 : 0;
+              write_png(out / "views" / numbered("unseen_vismap", int(i), ".png"), unseen_png);
+              if (i == 0)
+                results.images = {{"novel_vismap", "views/vismap_000.png"}, {"novel_itembuffer", "views/itembuffer_000.png"},
+                                  {"truth", "views/truth_000.png"}, {"error_vismap", "views/error_vismap_000.png"},
+                                  {"error_itembuffer", "views/error_itembuffer_000.png"}};
+            }
+            const double med = median(frame_ms);
+            m["novel_view_cpu_ms"] = median(frame_cpu_ms);
+            phases.rows.push_back({std::string("4 novel view (median per frame, visibility-map maps)"), med});
+            phases.rows.push_back({std::string("4 novel view, process CPU time (median per frame, all threads)"), m["novel_view_cpu_ms"]});
+            phases.rows.push_back({std::string("ground truth (reference renders, all views)"), truth_ms});
+            m["psnr_vismap"] = all_v.psnr();
+            m["psnr_itembuffer"] = all_i.psnr();
+            m["mae_vismap"] = all_v.mae();
+            m["mae_itembuffer"] = all_i.mae();
+            m["silhouette_mae_vismap"] = sil_v.mae();
+            m["silhouette_mae_itembuffer"] = sil_i.mae();
+            m["silhouette_psnr_vismap"] = sil_v.psnr();
+            m["silhouette_psnr_itembuffer"] = sil_i.psnr();
+            m["silhouette_mae_seen_vismap"] = silseen_v.mae();
+            m["silhouette_mae_seen_itembuffer"] = silseen_i.mae();
+            m["psnr_seen_vismap"] = seen_v.psnr();
+            m["psnr_seen_itembuffer"] = seen_i.psnr();
+            m["unseen_pct_vismap"] = 100.0 * holes_v / std::max(1.0, covered);
+            m["unseen_pct_itembuffer"] = 100.0 * holes_i / std::max(1.0, covered);
+            m["novel_view_ms"] = med;
+            m["novel_view_fps"] = med > 0 ? 1000.0 / med : 0.0;
+            m["bsp_ms"] = bsp.build_ms;
+            m["vismap_ms_avg"] = vis_ms / double(cams.size());
+            m["silhouette_edges_avg"] = [&] {
+              double s = 0;
+              for (double v : silhouettes) s += v;
+              return s / double(silhouettes.size());
+            }();
+            Table summary{"novel views vs ground truth (" + model_scene.name + ", " + std::to_string(views.size()) +
+                              " views, " + std::to_string(cams.size()) + " photos)",
+                          {"mapping", "PSNR dB", "MAE", "PSNR ≤2px silhouettes", "MAE ≤2px silhouettes", "PSNR seen",
+                           "MAE ≤2px silhouettes, seen", "unseen %"},
+                          {{std::string("visibility map"), m["psnr_vismap"], m["mae_vismap"], m["silhouette_psnr_vismap"],
+                            m["silhouette_mae_vismap"], m["psnr_seen_vismap"], m["silhouette_mae_seen_vismap"],
+                            m["unseen_pct_vismap"]},
+                           {std::string("item buffer"), m["psnr_itembuffer"], m["mae_itembuffer"],
+                            m["silhouette_psnr_itembuffer"], m["silhouette_mae_itembuffer"], m["psnr_seen_itembuffer"],
+                            m["silhouette_mae_seen_itembuffer"], m["unseen_pct_itembuffer"]}}};
+            results.tables = {summary, stats, phases, per_view};
+            publish_results(out, results);
+            return 0;
+          }};
+}
+
+}  // namespace proxima::cli

@@ -1,0 +1,44 @@
+// Novel views from radiance maps (Funkhouser, section 2, phase 4; view-dependent texture
+// mapping after Debevec et al.): rasterize the model, and per pixel blend the samples of the
+// photographs whose directions are closest to the viewing direction.
+//
+// Per frame, each polygon's layers are ranked by the angle at the polygon's centroid
+// between the directions to the photograph's eye and to the novel eye. Per pixel x on
+// polygon P (rasterized depth → world point, texel coordinates on P's grid): the first k
+// layers in that order with a sample at x (bilinear over the layer's 2 × 2 texels around
+// x that hold samples, weights renormalized) are blended with weights
+//   w_i = 1 / (1 − cos θ_i + 1e-7),   θ_i = angle at x between (c_i − x) and (eye − x),
+// (≈ 2/θ_i² for small angles: a novel view at a photograph's pose takes that photograph).
+// Holes (no layer has a sample at x): the texel nearest to x, within `hole_radius` texels,
+// of the layer whose photograph's eye is nearest to x (the nearest photograph that saw P),
+// else of the other layers in ranked order; the pixel is flagged in the unseen mask either way, and stays black when nothing is found.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "proxima/core/camera.h"
+#include "proxima/core/image.h"
+#include "proxima/gibr/radiance_map.h"
+#include "proxima/scene/scene.h"
+
+namespace proxima::gibr {
+
+struct NovelViewOptions {
+  int k = 3;             // photographs blended per pixel, ≥ 1
+  int hole_radius = 8;   // texels searched around a hole
+};
+
+struct NovelView {
+  ImageF color;   // linear RGB, 3 channels; background (nothing rasterized) black
+  ImageU8 unseen; // 1 where no photograph's sample covers the pixel's surface point (hole)
+  size_t holes = 0, holes_filled = 0, covered = 0;  // pixels with surface: holes, filled holes, total
+  double raster_ms = 0.0, blend_ms = 0.0;
+};
+
+// `scene` and `model` as used for the maps (model = extract_polygons(scene)).
+NovelView render_novel_view(const Scene& scene, const visibility::ModelPolygons& model, const RadianceMaps& maps,
+                            const Camera& camera, const NovelViewOptions& options = {});
+
+}  // namespace proxima::gibr

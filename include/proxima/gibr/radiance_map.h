@@ -1,0 +1,106 @@
+// Radiance maps (Funkhouser, section 2, phase 3; view-dependent texture maps after Debevec
+// et al.): per input polygon a texel grid on its plane, and per photograph that sees the
+// polygon a layer of samples, filled only from pixels the mapping assigns to the polygon.
+//
+// Mappings (which pixels of a photograph may color which polygon):
+// - visibility map (Funkhouser): a pixel maps onto polygon P only when the pixel square lies
+//   wholly inside P's regions of the photograph's exact visibility map, i.e. its center is
+//   in a region of P and no silhouette edge (option: no map edge between different
+//   polygons) passes within √2/2 px of its center (a conservative test of the square);
+// - item buffer (Debevec-style baseline): the z-buffered polygon id at the pixel center, no
+//   silhouette detection.
+// Texel (i, j) of polygon P has its center at origin + (i + ½)·s·u + (j + ½)·s·v (s = texel
+// size in meters, u, v unit axes in P's plane). It is filled from photograph k when its
+// center projects into a pixel mapped onto P: the bilinear interpolation of the pixel
+// centers around the projection, over the neighbors mapped onto P (weights renormalized).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "proxima/core/camera.h"
+#include "proxima/core/image.h"
+#include "proxima/scene/scene.h"
+#include "proxima/visibility/polygons.h"
+#include "proxima/visibility/visibility_map.h"
+
+namespace proxima::gibr {
+
+using visibility::kNone;
+using glm::dvec2;
+
+struct TexelGrid {
+  dvec3 origin{0.0};             // corner (texel coordinates (0, 0))
+  dvec3 u{1, 0, 0}, v{0, 1, 0};  // unit axes in the polygon's plane, u × v = plane normal
+  double texel = 0.02;           // meters
+  int width = 0, height = 0;     // texels
+};
+
+// Samples of one photograph on one polygon: a texel rectangle, sRGB 8-bit RGB + alpha
+// (255 = sample, 0 = none), row-major.
+struct SampleLayer {
+  uint32_t photo = 0;
+  int x0 = 0, y0 = 0, width = 0, height = 0;
+  std::vector<uint32_t> rgba;  // r | g << 8 | b << 16 | a << 24
+
+  bool has(int i, int j) const {
+    i -= x0;
+    j -= y0;
+    return i >= 0 && j >= 0 && i < width && j < height && (rgba[size_t(j) * size_t(width) + size_t(i)] >> 24) != 0;
+  }
+};
+
+struct RadianceStats {
+  size_t photos = 0;
+  size_t layers = 0;            // (polygon, photograph) pairs with ≥ 1 sample
+  size_t samples = 0;           // texel samples over all layers
+  size_t texels = 0;            // texels of all grids
+  size_t texels_covered = 0;    // texels with ≥ 1 sample
+  size_t pixels_mapped = 0;     // photograph pixels mapped onto some polygon
+  size_t bytes = 0;             // sample storage
+  double ms = 0.0;              // mapping (phase 3) wall time, labels excluded
+};
+
+struct RadianceMaps {
+  std::vector<TexelGrid> grids;                 // per polygon
+  std::vector<std::vector<SampleLayer>> layers; // per polygon, in photograph order
+  std::vector<Camera> cameras;                  // per photograph
+  RadianceStats stats;
+};
+
+// Texel grids of every polygon: u along the polygon's first edge, the rectangle its
+// vertices span plus one texel on every side. texel > 0 (InputError otherwise); a polygon
+// needing more than 2^26 texels throws InputError.
+std::vector<TexelGrid> make_texel_grids(const visibility::ModelPolygons& model, double texel);
+
+// Visibility-map mapping: per pixel the polygon it maps onto, kNone for a pixel that is not
+// wholly inside one polygon's regions (or sees the background).
+ImageU32 vismap_pixel_polygons(const visibility::VisibilityMap& map, bool exclude_all_boundaries = false);
+
+// 1 where a pixel center lies within `radius` px of a silhouette edge of the map, else 0.
+ImageU8 silhouette_pixel_mask(const visibility::VisibilityMap& map, double radius);
+
+// Item-buffer mapping: the rasterized (z-buffer) polygon at each pixel center.
+ImageU32 itembuffer_pixel_polygons(const Scene& scene, const visibility::ModelPolygons& model, const Camera& camera);
+
+// Builds the layers of every photograph from its image and pixel → polygon mapping (same
+// sizes as the camera). Parallel over photographs; the result does not depend on threads.
+RadianceMaps build_radiance_maps(const visibility::ModelPolygons& model, double texel, std::span<const Camera> cameras,
+                                 std::span<const ImageF> photos, std::span<const ImageU32> pixel_polygons);
+
+// Texel coordinates (continuous, texel centers at +0.5) of a world point on the grid's plane.
+inline dvec2 texel_coords(const TexelGrid& g, const dvec3& p) {
+  const dvec3 d = p - g.origin;
+  return {glm::dot(d, g.u) / g.texel, glm::dot(d, g.v) / g.texel};
+}
+inline dvec3 texel_center(const TexelGrid& g, int i, int j) {
+  return g.origin + ((i + 0.5) * g.texel) * g.u + ((j + 0.5) * g.texel) * g.v;
+}
+
+// sRGB 8-bit packing of linear RGB (clamped to [0, 1]) and back.
+uint32_t pack_srgb8(const vec3& linear);
+vec3 unpack_srgb8(uint32_t rgba);
+
+}  // namespace proxima::gibr

@@ -1,0 +1,172 @@
+// Phase 4 of Funkhouser's GIBR system (section 2): "synthetic images are generated from the
+// radiance maps at interactive rates for an arbitrary viewpoint". The radiance maps are
+// view-dependent texture maps (as the paper's system, after Debevec et al.); the blend
+// weights and hole filling are documented in novel_view.h and docs/gibr.md.
+#include "proxima/gibr/novel_view.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "proxima/core/parallel.h"
+#include "proxima/core/timer.h"
+#include "proxima/raster/rasterizer.h"
+
+namespace proxima::gibr {
+
+using namespace proxima::visibility;
+
+namespace {
+
+struct GridF {
+  vec3 origin, u, v;
+  float inv_texel;
+};
+
+// Bilinear sample of a layer at continuous texel coordinates over the texels holding
+// samples; false when none of the 2 × 2 does.
+bool sample_layer(const SampleLayer& L, vec2 tc, vec3& out) {
+  const float sx = tc.x - 0.5f - float(L.x0), sy = tc.y - 0.5f - float(L.y0);
+  const float fx0 = std::floor(sx), fy0 = std::floor(sy);
+  const int i0 = int(fx0), j0 = int(fy0);
+  if (i0 < -1 || j0 < -1 || i0 >= L.width || j0 >= L.height) return false;
+  const float fx = sx - fx0, fy = sy - fy0;
+  vec3 c(0.0f);
+  float wsum = 0.0f;
+  for (int k = 0; k < 4; ++k) {
+    const int i = i0 + (k & 1), j = j0 + (k >> 1);
+    if (i < 0 || j < 0 || i >= L.width || j >= L.height) continue;
+    const uint32_t t = L.rgba[size_t(j) * size_t(L.width) + size_t(i)];
+    if ((t >> 24) == 0) continue;
+    const float w = ((k & 1) ? fx : 1.0f - fx) * ((k >> 1) ? fy : 1.0f - fy);
+    c += w * unpack_srgb8(t);
+    wsum += w;
+  }
+  if (wsum <= 1e-6f) return false;
+  out = c / wsum;
+  return true;
+}
+
+// The sample nearest to texel (ci, cj) within `radius` rings (ring by ring, row-major).
+bool nearest_sample(const SampleLayer& L, int ci, int cj, int radius, vec3& out) {
+  for (int r = 0; r <= radius; ++r)
+    for (int j = cj - r; j <= cj + r; ++j)
+      for (int i = ci - r; i <= ci + r; ++i) {
+        if (std::max(std::abs(i - ci), std::abs(j - cj)) != r) continue;
+        if (L.has(i, j)) {
+          out = unpack_srgb8(L.rgba[size_t(j - L.y0) * size_t(L.width) + size_t(i - L.x0)]);
+          return true;
+        }
+      }
+  return false;
+}
+
+}  // namespace
+
+NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, const RadianceMaps& maps,
+                            const Camera& camera, const NovelViewOptions& options) {
+  NovelView nv;
+  Stopwatch watch;
+  RasterOptions ro;
+  ro.outputs = kRasterDepthId;
+  RasterImages img = rasterize(scene, camera, ro);
+  nv.raster_ms = watch.elapsed_ms();
+  watch.restart();
+
+  // Rank each polygon's layers by the angle at its centroid (closest direction first).
+  const size_t np = model.polygons.size();
+  const vec3 eye = camera.position;
+  std::vector<uint32_t> offset(np + 1, 0), order;
+  std::vector<GridF> grids(np);
+  std::vector<std::pair<float, uint32_t>> keyed;
+  for (size_t p = 0; p < np; ++p) {
+    const TexelGrid& g = maps.grids[p];
+    grids[p] = {vec3(g.origin), vec3(g.u), vec3(g.v), float(1.0 / g.texel)};
+    const auto& layers = maps.layers[p];
+    offset[p + 1] = offset[p] + uint32_t(layers.size());
+    if (layers.empty()) continue;
+    dvec3 c(0.0);
+    for (const dvec3& q : model.polygons[p].vertices) c += q;
+    const vec3 centroid(c / double(model.polygons[p].vertices.size()));
+    const vec3 to_eye = glm::normalize(eye - centroid);
+    keyed.clear();
+    for (uint32_t i = 0; i < layers.size(); ++i) {
+      const vec3 to_photo = glm::normalize(maps.cameras[layers[i].photo].position - centroid);
+      keyed.push_back({-glm::dot(to_photo, to_eye), i});
+    }
+    std::sort(keyed.begin(), keyed.end());
+    for (const auto& kv : keyed) order.push_back(kv.second);
+  }
+
+  const int W = camera.width, H = camera.height;
+  nv.color = ImageF(W, H, 3, 0.0f);
+  nv.unseen = ImageU8(W, H, 1, 0);
+  const int k = std::max(1, options.k);
+  std::vector<size_t> tile_holes, tile_filled, tile_covered;
+  const int tile = 32;
+  const int tiles = ((W + tile - 1) / tile) * ((H + tile - 1) / tile);
+  tile_holes.assign(size_t(tiles), 0);
+  tile_filled.assign(size_t(tiles), 0);
+  tile_covered.assign(size_t(tiles), 0);
+  parallel_for_tiles(W, H, tile, [&](const Tile& t) {
+    size_t holes = 0, filled = 0, covered = 0;
+    for (int y = t.y0; y < t.y1; ++y)
+      for (int x = t.x0; x < t.x1; ++x) {
+        const uint32_t tri = img.triangle.at(x, y);
+        if (tri == kNoTriangle) continue;
+        const uint32_t p = model.triangle_polygon[tri];
+        if (p == kNone) continue;
+        ++covered;
+        const vec3 w = unproject(camera, vec2(float(x) + 0.5f, float(y) + 0.5f), img.depth.at(x, y));
+        const GridF& g = grids[p];
+        const vec3 d = w - g.origin;
+        const vec2 tc(glm::dot(d, g.u) * g.inv_texel, glm::dot(d, g.v) * g.inv_texel);
+        const vec3 view = glm::normalize(eye - w);
+        const auto& layers = maps.layers[p];
+        vec3 sum(0.0f);
+        float wsum = 0.0f;
+        int found = 0;
+        for (uint32_t o = offset[p]; o < offset[p + 1] && found < k; ++o) {
+          const SampleLayer& L = layers[order[o]];
+          vec3 c;
+          if (!sample_layer(L, tc, c)) continue;
+          const float cosv = glm::dot(glm::normalize(maps.cameras[L.photo].position - w), view);
+          const float wt = 1.0f / (1.0f - cosv + 1e-7f);
+          sum += wt * c;
+          wsum += wt;
+          ++found;
+        }
+        vec3 color(0.0f);
+        if (found > 0) {
+          color = sum / wsum;
+        } else {
+          ++holes;
+          nv.unseen.at(x, y) = 1;
+          // The nearest photograph (eye distance) that saw the polygon.
+          const SampleLayer* best = nullptr;
+          float best_d = INFINITY;
+          for (const SampleLayer& L : layers) {
+            const float dd = glm::length(maps.cameras[L.photo].position - w);
+            if (dd < best_d) best_d = dd, best = &L;
+          }
+          const int ci = int(std::floor(tc.x)), cj = int(std::floor(tc.y));
+          bool got = best && nearest_sample(*best, ci, cj, options.hole_radius, color);
+          // Then the other photographs that saw P, closest direction first.
+          for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
+            got = nearest_sample(layers[order[o]], ci, cj, options.hole_radius, color);
+          filled += got;
+        }
+        for (int c = 0; c < 3; ++c) nv.color.at(x, y, c) = color[c];
+      }
+    tile_holes[size_t(t.index)] = holes;
+    tile_filled[size_t(t.index)] = filled;
+    tile_covered[size_t(t.index)] = covered;
+  });
+  nv.holes = std::accumulate(tile_holes.begin(), tile_holes.end(), size_t(0));
+  nv.holes_filled = std::accumulate(tile_filled.begin(), tile_filled.end(), size_t(0));
+  nv.covered = std::accumulate(tile_covered.begin(), tile_covered.end(), size_t(0));
+  nv.blend_ms = watch.elapsed_ms();
+  return nv;
+}
+
+}  // namespace proxima::gibr

@@ -1,0 +1,259 @@
+// Phase 3 of Funkhouser's GIBR system (section 2): "the visibility maps are used to map
+// regions of the calibrated images onto 3D polygons to create a set of radiance maps".
+// The paper's point (section 1, Figure 1) is that pixels covering several disjoint surfaces
+// — along silhouette edges — must not be mapped onto any single surface; the visibility
+// map finds them, a z-buffer item buffer (Debevec et al.'s visibility) does not.
+#include "proxima/gibr/radiance_map.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "proxima/core/error.h"
+#include "proxima/core/image_io.h"
+#include "proxima/core/parallel.h"
+#include "proxima/core/timer.h"
+#include "proxima/raster/rasterizer.h"
+
+namespace proxima::gibr {
+
+using namespace proxima::visibility;
+
+uint32_t pack_srgb8(const vec3& linear) {
+  uint32_t out = 0xFF000000u;
+  for (int c = 0; c < 3; ++c) {
+    const float s = linear_to_srgb(std::clamp(linear[c], 0.0f, 1.0f));
+    out |= uint32_t(std::lround(s * 255.0f)) << (8 * c);
+  }
+  return out;
+}
+
+namespace {
+struct SrgbTable {
+  float v[256];
+  SrgbTable() {
+    for (int i = 0; i < 256; ++i) v[i] = srgb_to_linear(float(i) / 255.0f);
+  }
+};
+const SrgbTable kSrgb;
+}  // namespace
+
+vec3 unpack_srgb8(uint32_t rgba) {
+  return {kSrgb.v[rgba & 0xFF], kSrgb.v[(rgba >> 8) & 0xFF], kSrgb.v[(rgba >> 16) & 0xFF]};
+}
+
+std::vector<TexelGrid> make_texel_grids(const ModelPolygons& model, double texel) {
+  if (!(texel > 0.0) || !std::isfinite(texel)) fail_input("--texel: must be a positive size in meters");
+  std::vector<TexelGrid> grids;
+  grids.reserve(model.polygons.size());
+  for (const InputPolygon& p : model.polygons) {
+    TexelGrid g;
+    g.texel = texel;
+    g.u = glm::normalize(p.vertices[1] - p.vertices[0]);
+    g.v = glm::normalize(glm::cross(p.plane.normal, g.u));
+    dvec2 lo(INFINITY), hi(-INFINITY);
+    for (const dvec3& q : p.vertices) {
+      const dvec2 c(glm::dot(q - p.vertices[0], g.u), glm::dot(q - p.vertices[0], g.v));
+      lo = glm::min(lo, c);
+      hi = glm::max(hi, c);
+    }
+    lo -= dvec2(texel);
+    hi += dvec2(texel);
+    g.origin = p.vertices[0] + lo.x * g.u + lo.y * g.v;
+    const double w = std::ceil((hi.x - lo.x) / texel), h = std::ceil((hi.y - lo.y) / texel);
+    if (w * h > double(1 << 26)) fail_input("--texel: " + std::to_string(texel) + " m gives a polygon of " +
+                                            std::to_string(w * h) + " texels (at most 2^26)");
+    g.width = int(w);
+    g.height = int(h);
+    grids.push_back(g);
+  }
+  return grids;
+}
+
+ImageU8 silhouette_pixel_mask(const VisibilityMap& map, double radius) {
+  VisibilityMap sil;
+  sil.width = map.width;
+  sil.height = map.height;
+  sil.vertices = map.vertices;
+  sil.regions = map.regions;
+  for (const MapEdge& e : map.edges)
+    if (e.silhouette) sil.edges.push_back(e);
+  return map_edge_mask(sil, radius);
+}
+
+ImageU32 vismap_pixel_polygons(const VisibilityMap& map, bool exclude_all_boundaries) {
+  ImageU32 labels = rasterize_map(map);
+  // A pixel square touches a segment only if the segment passes within √2/2 of its center.
+  const double radius = std::sqrt(0.5) + 1e-9;
+  const ImageU8 touched = exclude_all_boundaries ? map_edge_mask(map, radius) : silhouette_pixel_mask(map, radius);
+  for (int y = 0; y < map.height; ++y)
+    for (int x = 0; x < map.width; ++x)
+      if (touched.at(x, y)) labels.at(x, y) = kNone;
+  return labels;
+}
+
+ImageU32 itembuffer_pixel_polygons(const Scene& scene, const ModelPolygons& model, const Camera& camera) {
+  RasterOptions ro;
+  ro.outputs = kRasterTriangle | kRasterDepth;
+  RasterImages img = rasterize(scene, camera, ro);
+  ImageU32 out(camera.width, camera.height, 1, kNone);
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      const uint32_t t = img.triangle.at(x, y);
+      if (t != kNoTriangle) out.at(x, y) = model.triangle_polygon[t];
+    }
+  return out;
+}
+
+namespace {
+
+struct PhotoLayers {
+  std::vector<std::pair<uint32_t, SampleLayer>> layers;
+  size_t pixels_mapped = 0;
+};
+
+PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& grids, uint32_t photo,
+                      const Camera& cam, const ImageF& image, const ImageU32& labels) {
+  PhotoLayers out;
+  const dvec3 eye(cam.position), R(camera_right(cam)), U(camera_up(cam)), F(camera_forward(cam));
+  const double f = focal_length_px(cam), cx = 0.5 * cam.width, cy = 0.5 * cam.height;
+  const int W = cam.width, H = cam.height;
+  // Texel-coordinate bounds of each polygon's mapped pixels (their corners on its plane).
+  std::vector<glm::dvec4> box(model.polygons.size(), glm::dvec4(INFINITY, INFINITY, -INFINITY, -INFINITY));
+  std::vector<uint32_t> seen;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const uint32_t p = labels.at(x, y);
+      if (p == kNone) continue;
+      ++out.pixels_mapped;
+      const Plane& pl = model.polygons[p].plane;
+      const double d = pl.distance(eye);
+      if (box[p].x == INFINITY) seen.push_back(p);
+      for (int k = 0; k < 4; ++k) {
+        const double px = x + (k & 1), py = y + (k >> 1);
+        const dvec3 dir = F + ((px - cx) / f) * R - ((py - cy) / f) * U;
+        const double denom = glm::dot(pl.normal, dir);
+        if (denom == 0.0) continue;
+        const double t = -d / denom;
+        if (!(t > 0.0) || !std::isfinite(t)) continue;
+        const dvec2 c = texel_coords(grids[p], eye + t * dir);
+        box[p] = glm::dvec4(std::min(box[p].x, c.x), std::min(box[p].y, c.y), std::max(box[p].z, c.x), std::max(box[p].w, c.y));
+      }
+    }
+  std::sort(seen.begin(), seen.end());
+  for (uint32_t p : seen) {
+    const TexelGrid& g = grids[p];
+    const glm::dvec4 b = box[p];
+    if (!(b.x <= b.z)) continue;
+    const int i0 = std::max(0, int(std::floor(b.x)) - 1), j0 = std::max(0, int(std::floor(b.y)) - 1);
+    const int i1 = std::min(g.width, int(std::ceil(b.z)) + 1), j1 = std::min(g.height, int(std::ceil(b.w)) + 1);
+    if (i0 >= i1 || j0 >= j1) continue;
+    SampleLayer L;
+    L.photo = photo;
+    L.x0 = i0;
+    L.y0 = j0;
+    L.width = i1 - i0;
+    L.height = j1 - j0;
+    L.rgba.assign(size_t(L.width) * size_t(L.height), 0u);
+    int fi0 = i1, fj0 = j1, fi1 = i0 - 1, fj1 = j0 - 1;
+    // The polygon in texel coordinates (counter-clockwise: u × v is its normal). Only texel
+    // centers on the polygon get samples: one off it (in the grid's margin) can project
+    // into a mapped pixel yet lie behind a neighbor polygon.
+    std::vector<dvec2> outline;
+    for (const dvec3& q : model.polygons[p].vertices) outline.push_back(texel_coords(g, q));
+    auto on_polygon = [&](double tx, double ty) {
+      for (size_t k = 0; k < outline.size(); ++k) {
+        const dvec2 e = outline[(k + 1) % outline.size()] - outline[k], r = dvec2(tx, ty) - outline[k];
+        if (e.x * r.y - e.y * r.x < 0.0) return false;
+      }
+      return true;
+    };
+    for (int j = j0; j < j1; ++j)
+      for (int i = i0; i < i1; ++i) {
+        if (!on_polygon(i + 0.5, j + 0.5)) continue;
+        const dvec3 d = texel_center(g, i, j) - eye;
+        const double z = glm::dot(d, F);
+        if (z <= 0.0) continue;
+        const double px = cx + f * glm::dot(d, R) / z, py = cy - f * glm::dot(d, U) / z;
+        if (!(px >= 0.0 && py >= 0.0 && px < W && py < H)) continue;
+        if (labels.at(int(px), int(py)) != p) continue;
+        // Bilinear over the pixel centers around (px, py) that map onto p.
+        const double sx = px - 0.5, sy = py - 0.5;
+        const int x0 = int(std::floor(sx)), y0 = int(std::floor(sy));
+        const double fx = sx - x0, fy = sy - y0;
+        vec3 c(0.0f);
+        double wsum = 0.0;
+        for (int k = 0; k < 4; ++k) {
+          const int xx = x0 + (k & 1), yy = y0 + (k >> 1);
+          if (xx < 0 || yy < 0 || xx >= W || yy >= H || labels.at(xx, yy) != p) continue;
+          const double w = ((k & 1) ? fx : 1.0 - fx) * ((k >> 1) ? fy : 1.0 - fy);
+          c += float(w) * vec3(image.at(xx, yy, 0), image.at(xx, yy, 1), image.at(xx, yy, 2));
+          wsum += w;
+        }
+        if (wsum <= 0.0) continue;
+        L.rgba[size_t(j - j0) * size_t(L.width) + size_t(i - i0)] = pack_srgb8(c / float(wsum));
+        fi0 = std::min(fi0, i);
+        fj0 = std::min(fj0, j);
+        fi1 = std::max(fi1, i);
+        fj1 = std::max(fj1, j);
+      }
+    if (fi1 < fi0) continue;
+    // Shrink to the samples' rectangle.
+    SampleLayer S;
+    S.photo = photo;
+    S.x0 = fi0;
+    S.y0 = fj0;
+    S.width = fi1 - fi0 + 1;
+    S.height = fj1 - fj0 + 1;
+    S.rgba.resize(size_t(S.width) * size_t(S.height));
+    for (int j = 0; j < S.height; ++j)
+      std::copy_n(L.rgba.begin() + long(size_t(j + fj0 - j0) * size_t(L.width) + size_t(fi0 - i0)), S.width,
+                  S.rgba.begin() + long(size_t(j) * size_t(S.width)));
+    out.layers.push_back({p, std::move(S)});
+  }
+  return out;
+}
+
+}  // namespace
+
+RadianceMaps build_radiance_maps(const ModelPolygons& model, double texel, std::span<const Camera> cameras,
+                                 std::span<const ImageF> photos, std::span<const ImageU32> pixel_polygons) {
+  if (cameras.size() != photos.size() || cameras.size() != pixel_polygons.size())
+    fail_input("radiance maps: one image and one pixel mapping per camera");
+  Stopwatch watch;
+  RadianceMaps maps;
+  maps.grids = make_texel_grids(model, texel);
+  maps.layers.resize(model.polygons.size());
+  maps.cameras.assign(cameras.begin(), cameras.end());
+  std::vector<PhotoLayers> per(cameras.size());
+  parallel_for(cameras.size(), 1, [&](size_t b, size_t e) {
+    for (size_t k = b; k < e; ++k)
+      per[k] = map_photo(model, maps.grids, uint32_t(k), cameras[k], photos[k], pixel_polygons[k]);
+  });
+  RadianceStats& s = maps.stats;
+  s.photos = cameras.size();
+  for (PhotoLayers& pl : per) {
+    s.pixels_mapped += pl.pixels_mapped;
+    for (auto& [p, layer] : pl.layers) maps.layers[p].push_back(std::move(layer));
+  }
+  for (size_t p = 0; p < maps.layers.size(); ++p) {
+    const TexelGrid& g = maps.grids[p];
+    s.texels += size_t(g.width) * size_t(g.height);
+    if (maps.layers[p].empty()) continue;
+    std::vector<uint8_t> covered(size_t(g.width) * size_t(g.height), 0);
+    for (const SampleLayer& L : maps.layers[p]) {
+      ++s.layers;
+      s.bytes += L.rgba.size() * sizeof(uint32_t);
+      for (int j = 0; j < L.height; ++j)
+        for (int i = 0; i < L.width; ++i)
+          if (L.rgba[size_t(j) * size_t(L.width) + size_t(i)] >> 24) {
+            ++s.samples;
+            covered[size_t(j + L.y0) * size_t(g.width) + size_t(i + L.x0)] = 1;
+          }
+    }
+    for (uint8_t c : covered) s.texels_covered += c;
+  }
+  s.ms = watch.elapsed_ms();
+  return maps;
+}
+
+}  // namespace proxima::gibr

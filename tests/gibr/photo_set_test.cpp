@@ -1,0 +1,40 @@
+// Camera file of calibrated photographs: exact round trip of intrinsics and pose; malformed
+// files are InputErrors naming the file.
+#include "proxima/gibr/photo_set.h"
+
+#include <gtest/gtest.h>
+
+#include "../test_util.h"
+
+namespace proxima::gibr {
+namespace {
+
+TEST(GibrCameraFile, RoundTripsIntrinsicsAndPose) {
+  TempDir dir;
+  const Camera cam = look_at({1.0f, 1.6f, 2.0f}, {4.0f, 1.2f, 1.0f}, {0, 1, 0}, 65.0f, 320, 240, 0.01f, 500.0f);
+  write_camera_file(dir.path / "cameras.json", {{"photo_000.png", cam}});
+  const std::vector<CalibratedPhoto> back = read_camera_file(dir.path / "cameras.json");
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_EQ(back[0].image, "photo_000.png");
+  EXPECT_EQ(back[0].camera.width, 320);
+  EXPECT_EQ(back[0].camera.vfov_deg, 65.0f);
+  EXPECT_EQ(back[0].camera.position, cam.position);
+  EXPECT_NEAR(glm::length(camera_forward(back[0].camera) - camera_forward(cam)), 0.0f, 1e-6f);
+}
+
+TEST(GibrCameraFile, MalformedFilesNameTheFile) {
+  TempDir dir;
+  const auto p = dir.path / "bad.json";
+  EXPECT_NE(error_of([&] { read_camera_file(p); }).find("bad.json"), std::string::npos);
+  for (const char* text : {"{", "{\"format\": \"other\", \"version\": 1, \"photos\": []}",
+                           "{\"format\": \"proxima-cameras\", \"version\": 1, \"photos\": [{\"image\": \"a.png\"}]}",
+                           "{\"format\": \"proxima-cameras\", \"version\": 1, \"photos\": [{\"image\": \"a.png\", "
+                           "\"width\": 0, \"height\": 2, \"vfov_deg\": 60, \"position\": [0,0,0], "
+                           "\"orientation\": [1,0,0,0]}]}"}) {
+    write_file(p, text);
+    EXPECT_NE(error_of([&] { read_camera_file(p); }).find("bad.json"), std::string::npos) << text;
+  }
+}
+
+}  // namespace
+}  // namespace proxima::gibr

@@ -1,0 +1,151 @@
+// Radiance maps (phase 3): the visibility-map mapping never maps a pixel straddling the
+// door frame's silhouette onto the wall behind, and never gives a texel the color of a
+// photograph it is occluded in — both checked against Embree ray casts, and both shown to
+// fail for the item-buffer baseline (so the checks can fail).
+#include "proxima/gibr/radiance_map.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "proxima/gibr/photo_set.h"
+#include "proxima/scene/visibility_models.h"
+#include "proxima/trace/ray_scene.h"
+#include "proxima/visibility/bsp_build.h"
+
+namespace proxima::gibr {
+namespace {
+
+using namespace proxima::visibility;
+
+// In room A, looking through the door (z 1.5..2.5, x 5..5.2) at room B's far wall, so the
+// jamb at z = 1.5 is a silhouette against the wall behind.
+Camera door_camera(int w, int h) { return look_at({3.2f, 1.3f, 2.4f}, {9.0f, 1.2f, 1.2f}, {0, 1, 0}, 40.0f, w, h); }
+
+struct SubSamples {
+  std::set<uint32_t> polygons;
+  float t_min = INFINITY, t_max = 0.0f;
+};
+
+// 8 × 8 ray casts per pixel: the polygons each pixel square covers and their hit distances.
+Image<SubSamples> sub_samples(const RayScene& rays, const ModelPolygons& model, const Camera& cam) {
+  Image<SubSamples> out(cam.width, cam.height, 1);
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x)
+      for (int j = 0; j < 8; ++j)
+        for (int i = 0; i < 8; ++i) {
+          const Ray r = ray_through(cam, vec2(float(x) + (float(i) + 0.5f) / 8.0f, float(y) + (float(j) + 0.5f) / 8.0f));
+          const Hit h = rays.intersect(r);
+          SubSamples& s = out.at(x, y);
+          s.polygons.insert(h.valid() ? model.triangle_polygon[h.triangle] : kNone);
+          if (h.valid()) s.t_min = std::min(s.t_min, h.t), s.t_max = std::max(s.t_max, h.t);
+        }
+  return out;
+}
+
+TEST(GibrMapping, DoorFrameSilhouettePixelIsNotMappedOntoTheWallBehind) {
+  const Scene scene = make_vis_rooms();
+  const ModelPolygons model = extract_polygons(scene);
+  const WingedPair wp = build_winged_pair(model);
+  const RayScene rays(scene);
+  const Camera cam = door_camera(64, 48);
+  const ImageU32 vis = vismap_pixel_polygons(trace_visibility_map(wp, cam));
+  const ImageU32 item = itembuffer_pixel_polygons(scene, model, cam);
+  const Image<SubSamples> sub = sub_samples(rays, model, cam);
+  int straddling = 0, vis_mapped = 0, item_mapped_behind = 0;
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x) {
+      const SubSamples& s = sub.at(x, y);
+      // A silhouette pixel: several surfaces with a depth jump (the jamb in front of the wall).
+      if (s.polygons.size() < 2 || s.t_max - s.t_min < 0.5f) continue;
+      ++straddling;
+      vis_mapped += vis.at(x, y) != kNone;
+      // The baseline maps it onto whatever its center sees, often the far wall.
+      const Ray center = ray_through(cam, vec2(float(x) + 0.5f, float(y) + 0.5f));
+      const Hit h = rays.intersect(center);
+      item_mapped_behind += item.at(x, y) != kNone && h.valid() && h.t > s.t_min + 0.25f;
+    }
+  EXPECT_GT(straddling, 10);
+  EXPECT_EQ(vis_mapped, 0);
+  EXPECT_GT(item_mapped_behind, 0);
+
+  // And on the radiance maps: no sample of this photograph comes from a pixel straddling a
+  // silhouette; with --exclude-boundaries, every sample comes from a pixel wholly on the
+  // sample's polygon (all 64 sub-samples).
+  const ImageF photo = render_photo(make_photo_scene(scene), rays, cam, 2, 1);
+  const std::vector<Camera> cams{cam};
+  const std::vector<ImageF> photos{photo};
+  for (bool all_boundaries : {false, true}) {
+    const std::vector<ImageU32> labels{vismap_pixel_polygons(trace_visibility_map(wp, cam), all_boundaries)};
+    const RadianceMaps maps = build_radiance_maps(model, 0.02, cams, photos, labels);
+    size_t samples = 0, from_silhouette = 0, from_mixed = 0;
+    for (uint32_t p = 0; p < maps.layers.size(); ++p)
+      for (const SampleLayer& L : maps.layers[p])
+        for (int j = L.y0; j < L.y0 + L.height; ++j)
+          for (int i = L.x0; i < L.x0 + L.width; ++i) {
+            if (!L.has(i, j)) continue;
+            ++samples;
+            const auto q = project(cam, vec3(texel_center(maps.grids[p], i, j)));
+            ASSERT_TRUE(q.has_value());
+            const SubSamples& s = sub.at(std::clamp(int(q->pixel.x), 0, cam.width - 1),
+                                         std::clamp(int(q->pixel.y), 0, cam.height - 1));
+            from_mixed += s.polygons != std::set<uint32_t>{p};
+            from_silhouette += s.polygons.size() > 1 && s.t_max - s.t_min >= 0.5f;
+          }
+    EXPECT_GT(samples, 1000u);
+    EXPECT_EQ(from_silhouette, 0u);
+    if (all_boundaries) {
+      EXPECT_EQ(from_mixed, 0u);
+    }
+  }
+}
+
+TEST(GibrMapping, OccludedTexelNeverReceivesThatPhotographsColor) {
+  const Scene scene = make_vis_rooms();
+  const ModelPolygons model = extract_polygons(scene);
+  const WingedPair wp = build_winged_pair(model);
+  const RayScene rays(scene);
+  const Scene textured = make_photo_scene(scene);
+  PhotoPoseOptions po;
+  po.count = 3;
+  po.width = 48;
+  po.height = 36;
+  std::vector<Camera> cams = photo_poses(rays, scene.camera_paths.front(), po, 0.01f, 100.0f);
+  cams.push_back(door_camera(48, 36));
+  std::vector<ImageF> photos;
+  std::vector<ImageU32> vis, item;
+  for (const Camera& c : cams) {
+    photos.push_back(render_photo(textured, rays, c, 1, 1));
+    vis.push_back(vismap_pixel_polygons(trace_visibility_map(wp, c)));
+    item.push_back(itembuffer_pixel_polygons(scene, model, c));
+  }
+  // A sample of photograph k at texel center x is occluded when the segment from k's eye to
+  // x hits something before x (tolerance 1e-4 × model scale).
+  auto occluded_samples = [&](const RadianceMaps& maps, size_t& total) {
+    size_t bad = 0;
+    total = 0;
+    const float eps = float(1e-4 * model.scale);
+    for (uint32_t p = 0; p < maps.layers.size(); ++p)
+      for (const SampleLayer& L : maps.layers[p]) {
+        const vec3 eye = maps.cameras[L.photo].position;
+        for (int j = L.y0; j < L.y0 + L.height; ++j)
+          for (int i = L.x0; i < L.x0 + L.width; ++i) {
+            if (!L.has(i, j)) continue;
+            ++total;
+            const vec3 x(texel_center(maps.grids[p], i, j));
+            const float d = glm::length(x - eye);
+            bad += rays.occluded(Ray{eye, (x - eye) / d, 0.0f, d - eps});
+          }
+      }
+    return bad;
+  };
+  size_t vis_total = 0, item_total = 0;
+  const size_t vis_bad = occluded_samples(build_radiance_maps(model, 0.02, cams, photos, vis), vis_total);
+  const size_t item_bad = occluded_samples(build_radiance_maps(model, 0.02, cams, photos, item), item_total);
+  EXPECT_GT(vis_total, 10000u);
+  EXPECT_EQ(vis_bad, 0u) << "of " << vis_total;
+  EXPECT_GT(item_bad, 0u) << "the item-buffer baseline should map some occluded texels (of " << item_total << ")";
+}
+
+}  // namespace
+}  // namespace proxima::gibr
