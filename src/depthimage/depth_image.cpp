@@ -79,13 +79,4 @@ Reprojection::Reprojection(const Camera& from, const Camera& to) {
   row_w_ = row(2);
 }
 
-bool Reprojection::map(int x, int y, float d, vec2& out_pixel, float& out_depth) const {
-  const vec4 u((float(x) + 0.5f) * d, (float(y) + 0.5f) * d, d, 1.0f);
-  const float w = glm::dot(row_w_, u);
-  if (!(w > 0.0f)) return false;
-  out_pixel = vec2(glm::dot(row_x_, u), glm::dot(row_y_, u)) / w;
-  out_depth = w;
-  return true;
-}
-
 }  // namespace proxima

@@ -47,7 +47,15 @@ class Reprojection {
   Reprojection(const Camera& from, const Camera& to);
   // Pixel (x, y) of `from` at depth d → pixel of `to`; false when the point is not in
   // front of `to` (depth ≤ 0). `out_depth` is −z_cam of `to`.
-  bool map(int x, int y, float d, vec2& out_pixel, float& out_depth) const;
+  // Inline: called per fragment by the pixel-redundancy test and per sample by the metrics.
+  bool map(int x, int y, float d, vec2& out_pixel, float& out_depth) const {
+    const vec4 u((float(x) + 0.5f) * d, (float(y) + 0.5f) * d, d, 1.0f);
+    const float w = glm::dot(row_w_, u);
+    if (!(w > 0.0f)) return false;
+    out_pixel = vec2(glm::dot(row_x_, u), glm::dot(row_y_, u)) / w;
+    out_depth = w;
+    return true;
+  }
 
  private:
   // Rows of the 3×4 map from (x_c·d, y_c·d, d, 1), x_c = x + 0.5, to (X, Y, W) with
