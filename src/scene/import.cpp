@@ -502,6 +502,35 @@ void check_extension(const fs::path& path) {
                "' (mesh files are .obj, .ply, .gltf or .glb; convert others to glTF)");
 }
 
+// What assimp's importer built, checked before any post-processing step reads it:
+// ValidateDataStructure skips the face checks of a mesh whose primitive types are not set
+// yet (the PLY reader leaves them 0), so a face without indices or one pointing past the
+// vertex array would reach Triangulate and the steps after it. The triangle count after
+// triangulation (n − 2 per n-gon) is checked against the limits here too, before the steps
+// allocate for it.
+void check_imported_meshes(const std::string& file, const aiScene& ai) {
+  uint64_t triangles = 0, vertices = 0;
+  for (unsigned m = 0; m < ai.mNumMeshes; ++m) {
+    const aiMesh* mesh = ai.mMeshes[m];
+    const std::string where = file + ": mesh " + std::to_string(m);
+    if (mesh == nullptr || (mesh->mNumVertices > 0 && mesh->mVertices == nullptr) ||
+        (mesh->mNumFaces > 0 && mesh->mFaces == nullptr))
+      fail_input(where + " is incomplete");
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices == 0 || face.mIndices == nullptr)
+        fail_input(where + ": face " + std::to_string(f) + " has no vertex indices");
+      for (unsigned k = 0; k < face.mNumIndices; ++k)
+        if (face.mIndices[k] >= mesh->mNumVertices)
+          fail_input(where + ": face " + std::to_string(f) + " refers to vertex " + std::to_string(face.mIndices[k]) +
+                     " of " + std::to_string(mesh->mNumVertices));
+      if (face.mNumIndices >= 3) triangles += face.mNumIndices - 2;
+    }
+    vertices += mesh->mNumVertices;
+  }
+  check_geometry_budget(file, triangles, vertices);
+}
+
 Scene import_assimp(const fs::path& path) {
   const std::string file = path.string();
   std::error_code ec;
@@ -517,10 +546,19 @@ Scene import_assimp(const fs::path& path) {
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                          aiProcess_GenSmoothNormals | aiProcess_SortByPType |
                          aiProcess_ValidateDataStructure;
+  // Read first, post-process after proxima's own checks: assimp's steps trust what its
+  // importer built, and a malformed file can build nonsense (check_imported_meshes).
   const aiScene* ai = nullptr;
   try {
-    ai = importer.ReadFile(file, flags);
+    ai = importer.ReadFile(file, aiProcess_ValidateDataStructure);
   } catch (const std::exception& e) {  // assimp catches its own errors, but not every one
+    fail_input(file + ": " + e.what());
+  }
+  if (ai == nullptr) fail_input(file + ": " + importer.GetErrorString());
+  check_imported_meshes(file, *ai);
+  try {
+    ai = importer.ApplyPostProcessing(flags);  // validates again, now with primitive types set
+  } catch (const std::exception& e) {
     fail_input(file + ": " + e.what());
   }
   if (ai == nullptr) fail_input(file + ": " + importer.GetErrorString());

@@ -353,7 +353,10 @@ TEST(ImportTest, MalformedPlyHeaderIsAnErrorNotAHang) {
 }
 
 // Regression (ply_fuzz, issue 13): a garbled face list tripped an internal assertion in
-// assimp's triangulation, which called abort() — proxima crashed with exit 134.
+// assimp's triangulation, which called abort() — proxima crashed with exit 134. The
+// interposed aiAssertViolation made it an error; the cause (a face the PLY reader left
+// without indices, as in PlyFacesWithoutIndicesAreAnErrorNotAPostProcessingCrash) is now
+// refused before any post-processing step runs (robust3).
 TEST(ImportTest, PlyTrippingAnAssimpAssertionIsAnError) {
   TempDir dir;
   write_file(dir.path / "garbled.ply",
@@ -361,7 +364,7 @@ TEST(ImportTest, PlyTrippingAnAssimpAssertionIsAnError) {
              "element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
              "3 0 1 2\nat x\nproperty float y\np3 0 2 3\n");
   const std::string msg = error_of([&] { import_mesh_file(dir.path / "garbled.ply"); });
-  EXPECT_NE(msg.find("garbled.ply: assimp internal check failed"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("garbled.ply: mesh 0: face 1 has no vertex indices"), std::string::npos) << msg;
 }
 
 // Regression (ply_fuzz, issue 13, robust2): assimp's PLY reader looped forever (fread in a
@@ -407,6 +410,45 @@ TEST(ImportTest, PlyMalformedPropertyLineIsAnError) {
              "element face 6\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 \n");
   const std::string msg = error_of([&] { import_mesh_file(dir.path / "prop.ply"); });
   EXPECT_NE(msg.find("prop.ply: PLY header has a malformed property line 'property float(y'"), std::string::npos) << msg;
+}
+
+// Regression (ply_fuzz, issue 13, robust3): BUS crash inside assimp 5.2.5's SortByPType step.
+// The PLY reader allocates the declared `element face N` faces up front and, on this garbled
+// body (a face line running into the next, then a second header), fills only two of them;
+// the rest keep zero indices. ValidateDataStructure skips face checks while the mesh's
+// primitive types are unset (the PLY reader leaves them 0), the preprocessor then counts
+// the empty faces as polygons, and SortByPType (the only step that crashes on its own on
+// this input) reads through a garbage pointer. proxima now reads without post-processing,
+// checks every face, and only then runs the steps.
+TEST(ImportTest, PlyFacesWithoutIndicesAreAnErrorNotAPostProcessingCrash) {
+  TempDir dir;
+  write_file(dir.path / "empty_faces.ply",
+             "ply\n"
+             "format ascii 1.0\n"
+             "element vertex 4\n"
+             "property float x\n"
+             "property float y\n"
+             "property float z\n"
+             "element face 4\n"
+             "property list uchar int vertex_indices\n"
+             "end_header\n"
+             "0 0 0\n"
+             "1 0 0\n"
+             "1 1 0\n"
+             "0 1 01 0\n"
+             "3 02\n"
+             "2z\n"
+             "element face 4\n"
+             "property list uchar int vertex_indices\n"
+             "end_header\n"
+             "0 0 0\n"
+             "1 0 0\n"
+             "1 1 0\n"
+             "0 1 0\n"
+             "3 0 1 2\n"
+             "2 0 0 2 3\n");
+  const std::string msg = error_of([&] { import_mesh_file(dir.path / "empty_faces.ply"); });
+  EXPECT_NE(msg.find("empty_faces.ply: mesh 0: face 2 has no vertex indices"), std::string::npos) << msg;
 }
 
 TEST(ImportTest, WriteObjIntoMissingDirectoryLeavesNothing) {
