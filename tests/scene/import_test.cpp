@@ -412,6 +412,43 @@ TEST(ImportTest, PlyMalformedPropertyLineIsAnError) {
   EXPECT_NE(msg.find("prop.ply: PLY header has a malformed property line 'property float(y'"), std::string::npos) << msg;
 }
 
+
+// Regression (ply_fuzz, issue 13, robust3): assimp's PLY reader reserves what the file
+// declares before reading it. An ASCII face list counting 3111…1 entries (wrapped to
+// 3,340,757,319) made it request 26 GB (ASan: out of memory; a bad_alloc or worse without
+// it). Declared element counts must fit in the bytes after end_header, and ASCII list
+// counts in their line.
+TEST(ImportTest, PlyCountsLargerThanTheFileAreRefusedBeforeAllocating) {
+  TempDir dir;
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 2\nproperty list uchar int vertex_indices\nend_header\n";
+  write_file(dir.path / "list.ply",
+             header + "0 0 0\n1 0 0\n1  10\n0 1 0\n3" + std::string(67, '1') + " 0 1 2\n3 0 1 2\n");
+  std::string msg = error_of([&] { import_mesh_file(dir.path / "list.ply"); });
+  EXPECT_NE(msg.find("list.ply: PLY body line 5 has a list of 31111111111111111111 entries, longer than the line"),
+            std::string::npos)
+      << msg;
+  write_file(dir.path / "long.ply", header + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4000000000 0 1 2\n3 0 1 2\n");
+  msg = error_of([&] { import_mesh_file(dir.path / "long.ply"); });
+  EXPECT_NE(msg.find("long.ply: PLY body line 5 has a list of 4000000000 entries"), std::string::npos) << msg;
+  // Element counts against the file size, ASCII and binary (12 bytes per float vertex).
+  std::string many = header;
+  many.replace(many.find("vertex 4"), 8, "vertex 2000000000");
+  write_file(dir.path / "many.ply", many + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+  msg = error_of([&] { import_mesh_file(dir.path / "many.ply"); });
+  EXPECT_NE(msg.find("many.ply: PLY header declares 2000000000 'vertex' elements, more than the 40 bytes after end_header can hold"),
+            std::string::npos)
+      << msg;
+  write_file(dir.path / "binary.ply",
+             "ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+             "property float z\nend_header\n" + std::string(23, '\0'));
+  msg = error_of([&] { import_mesh_file(dir.path / "binary.ply"); });
+  EXPECT_NE(msg.find("binary.ply: PLY header declares 2 'vertex' elements, more than the 23 bytes"), std::string::npos) << msg;
+  // The same files with honest counts load.
+  write_file(dir.path / "honest.ply", header + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+  EXPECT_EQ(import_mesh_file(dir.path / "honest.ply").triangles.size(), 2u);
+}
 // Regression (ply_fuzz, issue 13, robust3): BUS crash inside assimp 5.2.5's SortByPType step.
 // The PLY reader allocates the declared `element face N` faces up front and, on this garbled
 // body (a face line running into the next, then a second header), fills only two of them;
