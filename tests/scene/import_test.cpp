@@ -415,7 +415,7 @@ TEST(ImportTest, PlyMalformedPropertyLineIsAnError) {
 
 // Regression (ply_fuzz, issue 13, robust3): assimp's PLY reader reserves what the file
 // declares before reading it. An ASCII face list counting 3111…1 entries (wrapped to
-// 3,340,757,319) made it request 26 GB (ASan: out of memory; a bad_alloc or worse without
+// 3,340,530,119 entries of 8 bytes) made it request 26.7 GB (ASan: out of memory; a bad_alloc or worse without
 // it). Declared element counts must fit in the bytes after end_header, and ASCII list
 // counts in their line.
 TEST(ImportTest, PlyCountsLargerThanTheFileAreRefusedBeforeAllocating) {
@@ -448,6 +448,8 @@ TEST(ImportTest, PlyCountsLargerThanTheFileAreRefusedBeforeAllocating) {
   // The same files with honest counts load.
   write_file(dir.path / "honest.ply", header + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
   EXPECT_EQ(import_mesh_file(dir.path / "honest.ply").triangles.size(), 2u);
+  write_file(dir.path / "no_newline.ply", header + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3");
+  EXPECT_EQ(import_mesh_file(dir.path / "no_newline.ply").triangles.size(), 2u);
 }
 // Regression (ply_fuzz, issue 13, robust3): BUS crash inside assimp 5.2.5's SortByPType step.
 // The PLY reader allocates the declared `element face N` faces up front and, on this garbled
