@@ -63,6 +63,12 @@ std::string tiny_gltf(const std::string& node_fields) {
 
 vec3 corner(const Scene& s, uint32_t triangle, int k) { return s.positions[s.triangles[triangle][k]]; }
 
+// ASCII PLY header: 4 float vertices, `faces` faces with a uchar-counted index list.
+std::string quad_ply_header(int faces) {
+  return "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+         "element face " + std::to_string(faces) + "\nproperty list uchar int vertex_indices\nend_header\n";
+}
+
 TEST(ImportTest, ObjRoundTripKeepsGeometryAndMaterials) {
   TempDir dir;
   Scene scene;
@@ -420,9 +426,7 @@ TEST(ImportTest, PlyMalformedPropertyLineIsAnError) {
 // counts in their line.
 TEST(ImportTest, PlyCountsLargerThanTheFileAreRefusedBeforeAllocating) {
   TempDir dir;
-  const std::string header =
-      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-      "element face 2\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string header = quad_ply_header(2);
   write_file(dir.path / "list.ply",
              header + "0 0 0\n1 0 0\n1  10\n0 1 0\n3" + std::string(67, '1') + " 0 1 2\n3 0 1 2\n");
   std::string msg = error_of([&] { import_mesh_file(dir.path / "list.ply"); });
@@ -451,6 +455,7 @@ TEST(ImportTest, PlyCountsLargerThanTheFileAreRefusedBeforeAllocating) {
   write_file(dir.path / "no_newline.ply", header + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3");
   EXPECT_EQ(import_mesh_file(dir.path / "no_newline.ply").triangles.size(), 2u);
 }
+
 // Regression (ply_fuzz, issue 13, robust3): BUS crash inside assimp 5.2.5's SortByPType step.
 // The PLY reader allocates the declared `element face N` faces up front and, on this garbled
 // body (a face line running into the next, then a second header), fills only two of them;
@@ -461,31 +466,11 @@ TEST(ImportTest, PlyCountsLargerThanTheFileAreRefusedBeforeAllocating) {
 // checks every face, and only then runs the steps.
 TEST(ImportTest, PlyFacesWithoutIndicesAreAnErrorNotAPostProcessingCrash) {
   TempDir dir;
+  // The input as found: a garbled body, then the header's last lines and a body again.
   write_file(dir.path / "empty_faces.ply",
-             "ply\n"
-             "format ascii 1.0\n"
-             "element vertex 4\n"
-             "property float x\n"
-             "property float y\n"
-             "property float z\n"
-             "element face 4\n"
-             "property list uchar int vertex_indices\n"
-             "end_header\n"
-             "0 0 0\n"
-             "1 0 0\n"
-             "1 1 0\n"
-             "0 1 01 0\n"
-             "3 02\n"
-             "2z\n"
-             "element face 4\n"
-             "property list uchar int vertex_indices\n"
-             "end_header\n"
-             "0 0 0\n"
-             "1 0 0\n"
-             "1 1 0\n"
-             "0 1 0\n"
-             "3 0 1 2\n"
-             "2 0 0 2 3\n");
+             quad_ply_header(4) + "0 0 0\n1 0 0\n1 1 0\n0 1 01 0\n3 02\n2z\n" +
+                 quad_ply_header(4).substr(quad_ply_header(4).find("element face")) +
+                 "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n2 0 0 2 3\n");
   const std::string msg = error_of([&] { import_mesh_file(dir.path / "empty_faces.ply"); });
   EXPECT_NE(msg.find("empty_faces.ply: mesh 0: face 2 has no vertex indices"), std::string::npos) << msg;
 }
