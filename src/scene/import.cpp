@@ -344,18 +344,31 @@ void check_ply_body(const fs::path& path, const std::vector<PlyElement>& element
     needed += e.count * per;
   }
   if (!ascii) return;
-  // One line per element instance; each list count checked against its line's length.
-  // Lines that do not parse as the header says are left to assimp to reject.
+  // One line per element instance, as assimp reads them: a line ends at '\n' and is cut at
+  // '\0', '\r' or '\f'; a last line without '\n' is never delivered, and once the body is
+  // used up every further instance re-reads the last line (ply_fuzz: a face list count in
+  // the last full line, re-read as each missing face, 19 GB). Each list count is checked
+  // against its line's length; lines that do not parse as the header says are left to
+  // assimp to reject.
   std::ifstream in(path, std::ios::binary);
   in.seekg(std::streamoff(body_offset));
   std::string line;
   uint64_t number = 0;
+  bool exhausted = false;
   for (const PlyElement& e : elements) {
     const bool has_list = std::any_of(e.properties.begin(), e.properties.end(), [](const PlyProperty& p) { return p.list; });
     for (uint64_t i = 0; i < e.count; ++i) {
-      if (!std::getline(in, line)) return;
-      ++number;
+      if (!exhausted) {
+        std::string next;
+        if (std::getline(in, next) && !in.eof()) {
+          line = next.substr(0, next.find_first_of(std::string("\0\r\f", 3)));
+          ++number;
+        } else {
+          exhausted = true;
+        }
+      }
       if (!has_list) continue;
+      if (exhausted && i > 0) break;  // the same last line again: checked once per element
       size_t at = 0;  // a plain tokenizer: this runs over every face line of large files
       auto next_word = [&](std::string_view& word) {
         at = line.find_first_not_of(" \t\r", at);
