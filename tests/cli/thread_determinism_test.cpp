@@ -26,11 +26,11 @@ namespace fs = std::filesystem;
 
 std::map<std::string, std::string> image_files(const fs::path& dir) {
   std::map<std::string, std::string> files;
-  for (const auto& e : fs::directory_iterator(dir)) {
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {  // gibr writes into subfolders
     const std::string ext = e.path().extension().string();
     if (ext != ".png" && ext != ".exr" && ext != ".svg") continue;
     std::ifstream in(e.path(), std::ios::binary);
-    files[e.path().filename().string()] = std::string(std::istreambuf_iterator<char>(in), {});
+    files[fs::relative(e.path(), dir).string()] = std::string(std::istreambuf_iterator<char>(in), {});
   }
   return files;
 }
@@ -98,6 +98,9 @@ std::vector<Case> cases() {
                    s, std::string(s) != "cornell"});
   for (const char* s : {"rooms", "maze", "arena", "vcity", "floor", "building"})
     out.push_back({"visibility", "--frames 2 --width 32 --height 24", s, true});
+  for (const char* s : {"rooms", "vcity"})
+    out.push_back({"gibr", "--photos 6 --frames 2 --width 32 --height 24 --photo-width 32 --photo-height 24 --fps-repeat 1",
+                   s, true});
   return out;
 }
 
