@@ -73,6 +73,45 @@ bool RedundancyTest::operator()(int x, int y, float depth, uint32_t triangle) co
   return false;  // more back faces than we walk past: call it occluded
 }
 
+uint64_t RedundancyTest::redundant_run(const Fragment* fragments, int n, uint64_t candidates) const {
+  assert(n >= 0 && n <= 64);
+  uint64_t redundant = 0;
+  if (kind_ != Redundancy::Pixel) {
+    for (int k = 0; k < n; ++k) {
+      const Fragment& f = fragments[k];
+      if (((candidates >> k) & 1u) && (*this)(f.x, f.y, f.depth, f.triangle)) redundant |= uint64_t(1) << k;
+    }
+    return redundant;
+  }
+  const Camera& to = against_->camera;
+  const float width = float(to.width), height = float(to.height);  // pixel_in()'s bounds
+  const uint32_t* ids = against_->triangle.data().data();
+  const size_t stride = size_t(against_->triangle.width());
+  for (int k = 0; k < n; k += 4) {
+    const unsigned lanes = unsigned(candidates >> k) & 0xFu;
+    if (lanes == 0) continue;
+    int x[4];
+    float d[4];
+    for (int l = 0; l < 4; ++l) {
+      const Fragment& f = fragments[std::min(k + l, n - 1)];  // past n: a copy, ignored
+      x[l] = f.x;
+      d[l] = f.depth;
+    }
+    float px[4], py[4];
+    const unsigned ok = reproject_.map4(x, fragments[k].y, d, px, py) & lanes;
+    // pixel_in() and the id compare without branches: the outcome is data-dependent
+    // (mispredicted often), and the id loads of the four lanes can then overlap.
+    for (int l = 0; l < 4 && k + l < n; ++l) {
+      const bool inside =
+          (((ok >> l) & 1u) != 0) & (px[l] >= 0.0f) & (py[l] >= 0.0f) & (px[l] < width) & (py[l] < height);
+      const size_t at = size_t(int(inside ? py[l] : 0.0f)) * stride + size_t(int(inside ? px[l] : 0.0f));
+      const bool same = inside & (ids[at] == fragments[k + l].triangle);
+      redundant |= uint64_t(same) << (k + l);
+    }
+  }
+  return redundant;
+}
+
 std::vector<DepthImage> sample_conventional(const Scene& scene, std::span<const Camera> cameras, bool shade) {
   std::vector<DepthImage> images;
   for (const Camera& c : cameras) images.push_back(render_depth_image(scene, c, shade));
@@ -124,6 +163,15 @@ struct NonRedundantTest {
     for (size_t j = 0; j < earlier.size(); ++j)
       if (((mask >> std::min<size_t>(j, 7)) & 1u) && earlier[j](f.x, f.y, f.depth, f.triangle)) return true;
     return false;
+  }
+  // The rasterizer's run form (one triangle, one row): the same answers, with the
+  // presence mask read once per run and four reprojections at a time.
+  uint64_t keep_run(const Fragment* f, int n) const {
+    uint64_t keep = n == 64 ? ~uint64_t(0) : (uint64_t(1) << n) - 1;
+    const uint8_t mask = held ? held[f[0].triangle] : uint8_t(0xFFu);
+    for (size_t j = 0; j < earlier.size() && keep != 0; ++j)
+      if ((mask >> std::min<size_t>(j, 7)) & 1u) keep &= ~earlier[j].redundant_run(f, n, keep);
+    return keep;
   }
 };
 

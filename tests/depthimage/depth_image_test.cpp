@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+
+#include "proxima/core/rng.h"
+
 #include "figure11.h"
 
 namespace proxima {
@@ -41,6 +45,47 @@ TEST(DepthImage, ReprojectionMatchesUnprojectThenProject) {
       EXPECT_NEAR(depth, want->depth, 1e-4f);
     }
   }
+}
+
+// map4 (the redundancy test's four-lane form) must give map()'s bits: the pixel
+// redundancy test compares the truncated pixel, so any last-bit difference could flip a
+// sample. Random pixels and depths, target cameras in front, beside and behind.
+TEST(DepthImage, MapFourIsBitIdenticalToMap) {
+  const Camera a = look_at(vec3(1, 2, 5), vec3(0), vec3(0, 1, 0), 50.0f, 1024, 768);
+  const Camera targets[] = {look_at(vec3(1.3f, 2.1f, 4.9f), vec3(0.1f, 0, 0), vec3(0, 1, 0), 50.0f, 1024, 1024),
+                            look_at(vec3(-4, 1, 0), vec3(0), vec3(0, 1, 0), 35.0f, 200, 300),
+                            look_at(vec3(0, 0, -5), vec3(0, 0, -10), vec3(0, 1, 0), 60.0f, 64, 64)};
+  Pcg32 rng(17);
+  size_t mapped = 0, unmapped = 0;
+  for (const Camera& b : targets) {
+    const Reprojection r(a, b);
+    for (int trial = 0; trial < 20000; ++trial) {
+      const int y = int(rng.next_u32() % 768u);
+      int x[4];
+      float d[4];
+      for (int k = 0; k < 4; ++k) {
+        x[k] = int(rng.next_u32() % 1024u);
+        d[k] = 0.05f + 20.0f * rng.next_float();
+      }
+      float px[4], py[4];
+      const unsigned ok = r.map4(x, y, d, px, py);
+      for (int k = 0; k < 4; ++k) {
+        vec2 p;
+        float depth;
+        const bool want = r.map(x[k], y, d[k], p, depth);
+        ASSERT_EQ(((ok >> k) & 1u) != 0, want) << trial;
+        if (!want) {
+          ++unmapped;
+          continue;
+        }
+        ++mapped;
+        ASSERT_EQ(std::bit_cast<uint32_t>(px[k]), std::bit_cast<uint32_t>(p.x)) << trial;
+        ASSERT_EQ(std::bit_cast<uint32_t>(py[k]), std::bit_cast<uint32_t>(p.y)) << trial;
+      }
+    }
+  }
+  EXPECT_GT(mapped, 100000u);
+  EXPECT_GT(unmapped, 10000u);
 }
 
 TEST(DepthImage, BehindTheTargetCameraIsNotMapped) {

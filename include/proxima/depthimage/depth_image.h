@@ -56,6 +56,11 @@ class Reprojection {
     out_depth = w;
     return true;
   }
+  // map() of four pixels (x[k], y) at depths d[k] at once: bit k of the result is what
+  // map() returns for lane k, and where it is set, px[k], py[k] are map()'s out_pixel bit
+  // for bit (the same IEEE operations in the same order, in SSE lanes; a loop over map()
+  // where SSE2 is missing or the compiler may fuse multiply-adds).
+  unsigned map4(const int x[4], int y, const float d[4], float px[4], float py[4]) const;
 
  private:
   // Rows of the 3×4 map from (x_c·d, y_c·d, d, 1), x_c = x + 0.5, to (X, Y, W) with

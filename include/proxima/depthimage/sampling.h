@@ -41,6 +41,10 @@ class RedundancyTest {
   RedundancyTest(Redundancy kind, const Scene& scene, const RayScene* rays, const Camera& from,
                  const DepthImage& against, float epsilon = kVisibilityEpsilon);
   bool operator()(int x, int y, float depth, uint32_t triangle) const;
+  // operator() on fragments[k] for every bit k of `candidates` (n ≤ 64; bit k of the
+  // result set iff redundant), four reprojections at a time for Pixel. The fragments are
+  // one row's, as the rasterizer's keep_run gives them (rasterizer.h).
+  uint64_t redundant_run(const Fragment* fragments, int n, uint64_t candidates) const;
 
  private:
   Redundancy kind_;

@@ -109,6 +109,11 @@ std::vector<Bounds3> raster_object_bounds(const Scene& scene);
 // for two fragments of the same pixel at once; for one pixel the calls come in draw order
 // (the order of `objects` / `triangles` / the scene). A test that keeps per-pixel state
 // in its own image is therefore race-free and deterministic.
+// A test may also have keep_run(const Fragment*, int n) → uint64_t (bit k keeps fragment
+// k): with the depth test on, the rasterizer calls it instead, once per row run of a
+// triangle with the run's depth-passing fragments (raster_frame.h, RunFragmentTest) —
+// the same fragments in the same per-pixel order, so it must answer as the per-fragment
+// test would.
 // Throws InputError for an invalid camera (validate_camera).
 template <typename FragmentTest>
 RasterStats rasterize(const Scene& scene, const Camera& camera, const RasterOptions& options,

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <algorithm>
+#include <concepts>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -22,6 +23,7 @@ namespace raster_detail {
 inline constexpr int kTileSize = 64;      // pixels per side of a raster tile
 inline constexpr int kSubpixelBits = 12;  // 20.12 fixed point
 inline constexpr int kSubpixel = 1 << kSubpixelBits;
+static_assert(kTileSize <= 64, "a row run's keep mask is one uint64_t");
 
 // One screen triangle ready for coverage (a clipped triangle gives several).
 struct Setup {
@@ -128,6 +130,15 @@ RasterStats finish_frame(const Frame& frame);
   end = x;
 }
 
+// A fragment test that can also take one row run of a setup at once:
+// keep_run(fragments, n) → bit k set keeps fragments[k]; n ≤ kTileSize, the fragments are
+// one triangle's, in one row, left to right, each past the depth test. Used instead of
+// the per-fragment call when the depth test is on (rasterizer.h, Fragment tests).
+template <typename Test>
+concept RunFragmentTest = requires(Test& test, const Fragment* fragments, int n) {
+  { test.keep_run(fragments, n) } -> std::convertible_to<uint64_t>;
+};
+
 // Coverage of one setup inside one tile.
 template <bool kDepthTest, bool kUV, typename Test>
 inline void raster_setup(const Setup& s, const Tile& tile, TileBuffer& buf, Test& test, TileCounts& counts) {
@@ -159,6 +170,45 @@ inline void raster_setup(const Setup& s, const Tile& tile, TileBuffer& buf, Test
     const size_t row = size_t(y - tile.y0) * kTileSize;
     float* depth_row = buf.depth.data() + row;
     uint32_t* id_row = buf.id.data() + row;
+    if constexpr (kDepthTest && RunFragmentTest<Test>) {
+      // The same fragments, tested and written as below, but the test sees the run's
+      // depth-passing fragments at once (its pixels are distinct, so no write in the run
+      // changes another fragment's depth test or the per-pixel call order).
+      Fragment run[kTileSize];
+      int n = 0;
+      for (int x = begin; x < end; ++x) {
+        const int tx = x - tile.x0;
+        const float fx = float(x - s.x0);
+        const float depth = 1.0f / (z_row + s.z[1] * fx);
+        const float held = depth_row[tx];
+        if (!(depth < held || (depth == held && s.triangle < id_row[tx]))) continue;
+        Fragment& f = run[n++];
+        f = Fragment{x, y, s.triangle, depth, 0.0f, 0.0f};
+        if constexpr (kUV) {
+          f.u = (s.u[0] + s.u[2] * fy + s.u[1] * fx) * depth;
+          f.v = (s.v[0] + s.v[2] * fy + s.v[1] * fx) * depth;
+        }
+      }
+      if (n > 0) {
+        counts.tested += uint64_t(n);
+        const uint64_t keep = test.keep_run(static_cast<const Fragment*>(run), n);
+        for (int k = 0; k < n; ++k) {
+          if (!((keep >> k) & 1u)) continue;
+          ++counts.written;
+          const int tx = run[k].x - tile.x0;
+          depth_row[tx] = run[k].depth;
+          id_row[tx] = s.triangle;
+          if constexpr (kUV) {
+            buf.u[row + size_t(tx)] = run[k].u;
+            buf.v[row + size_t(tx)] = run[k].v;
+          }
+        }
+      }
+      e[0] += step_y[0];
+      e[1] += step_y[1];
+      e[2] += step_y[2];
+      continue;
+    }
     for (int x = begin; x < end; ++x) {
       const int tx = x - tile.x0;
       const float fx = float(x - s.x0);
