@@ -87,6 +87,7 @@ uint64_t RedundancyTest::redundant_run(const Fragment* fragments, int n, uint64_
   const float width = float(to.width), height = float(to.height);  // pixel_in()'s bounds
   const uint32_t* ids = against_->triangle.data().data();
   const size_t stride = size_t(against_->triangle.width());
+  const int rows = against_->triangle.height();
   for (int k = 0; k < n; k += 4) {
     const unsigned lanes = unsigned(candidates >> k) & 0xFu;
     if (lanes == 0) continue;
@@ -104,9 +105,13 @@ uint64_t RedundancyTest::redundant_run(const Fragment* fragments, int n, uint64_
     for (int l = 0; l < 4 && k + l < n; ++l) {
       const bool inside =
           (((ok >> l) & 1u) != 0) & (px[l] >= 0.0f) & (py[l] >= 0.0f) & (px[l] < width) & (py[l] < height);
-      const size_t at = size_t(int(inside ? py[l] : 0.0f)) * stride + size_t(int(inside ? px[l] : 0.0f));
+      const int ry = int(inside ? py[l] : 0.0f);
+      const size_t at = size_t(ry) * stride + size_t(int(inside ? px[l] : 0.0f));
       const bool same = inside & (ids[at] == fragments[k + l].triangle);
       redundant |= uint64_t(same) << (k + l);
+      // The triangle's next row run (the rasterizer's next call) lands about one row
+      // down in I_j: fetch that line now (a hint only; any address is harmless).
+      if (k == 0 && l == 0 && ry + 1 < rows) __builtin_prefetch(ids + at + stride);
     }
   }
   return redundant;
