@@ -83,7 +83,9 @@ TEST(GibrMapping, DoorFrameSilhouettePixelIsNotMappedOntoTheWallBehind) {
       for (const SampleLayer& L : maps.layers[p])
         for (int j = L.y0; j < L.y0 + L.height; ++j)
           for (int i = L.x0; i < L.x0 + L.width; ++i) {
-            if (!L.has(i, j)) continue;
+            // Exact-visible samples project into silhouette pixels by design; their colors'
+            // sources are checked in ExactVisibleTexelsTakeColorOnlyFromPixelsWhollyOnTheirPolygon.
+            if (!L.has(i, j) || L.rgba[size_t(j - L.y0) * size_t(L.width) + size_t(i - L.x0)] >> 24 != 0xFF) continue;
             ++samples;
             const auto q = project(cam, vec3(texel_center(maps.grids[p], i, j)));
             ASSERT_TRUE(q.has_value());
@@ -140,11 +142,66 @@ TEST(GibrMapping, OccludedTexelNeverReceivesThatPhotographsColor) {
     return bad;
   };
   size_t vis_total = 0, item_total = 0;
-  const size_t vis_bad = occluded_samples(build_radiance_maps(model, 0.02, cams, photos, vis), vis_total);
+  const RadianceMaps vis_maps = build_radiance_maps(model, 0.02, cams, photos, vis);
+  EXPECT_GT(vis_maps.stats.samples_extrapolated, 100u) << "the check should cover exact-visible texels in silhouette pixels";
+  const size_t vis_bad = occluded_samples(vis_maps, vis_total);
   const size_t item_bad = occluded_samples(build_radiance_maps(model, 0.02, cams, photos, item), item_total);
   EXPECT_GT(vis_total, 10000u);
   EXPECT_EQ(vis_bad, 0u) << "of " << vis_total;
   EXPECT_GT(item_bad, 0u) << "the item-buffer baseline should map some occluded texels (of " << item_total << ")";
+}
+
+// The sub-pixel record fills texels seen only in pixels touching a silhouette, never with
+// those pixels' colors: a synthetic photograph is white on pixels wholly on one side of a
+// silhouette and black on pixels straddling one (8 × 8 ray casts), so a sample darker than
+// white took color from a straddling pixel. The item buffer does (the check can fail); the
+// exact-visible samples exist, and the mapping covers more texels than without the record.
+TEST(GibrMapping, ExactVisibleTexelsTakeColorOnlyFromPixelsWhollyOnTheirPolygon) {
+  const Scene scene = make_vis_rooms();
+  const ModelPolygons model = extract_polygons(scene);
+  const WingedPair wp = build_winged_pair(model);
+  const RayScene rays(scene);
+  const Camera cam = door_camera(64, 48);
+  const Image<SubSamples> sub = sub_samples(rays, model, cam);
+  ImageF photo(cam.width, cam.height, 3, 1.0f);
+  int straddling = 0;
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x) {
+      const SubSamples& s = sub.at(x, y);
+      if (s.polygons.size() < 2 || s.t_max - s.t_min < 0.5f) continue;
+      ++straddling;
+      for (int c = 0; c < 3; ++c) photo.at(x, y, c) = 0.0f;
+    }
+  ASSERT_GT(straddling, 10);
+  const std::vector<Camera> cams{cam};
+  const std::vector<ImageF> photos{photo};
+  const VisibilityMap map = trace_visibility_map(wp, cam);
+  struct Count {
+    size_t samples = 0, extrapolated = 0, dark = 0;
+  };
+  auto count = [&](const ImageU32& labels) {
+    const RadianceMaps maps = build_radiance_maps(model, 0.02, cams, photos, std::vector<ImageU32>{labels});
+    Count n;
+    for (const auto& layers : maps.layers)
+      for (const SampleLayer& L : layers)
+        for (uint32_t t : L.rgba) {
+          if ((t >> 24) == 0) continue;
+          ++n.samples;
+          n.extrapolated += (t >> 24) == kExtrapolated;
+          n.dark += (t & 0xFFu) < 255u;
+        }
+    EXPECT_EQ(n.extrapolated, maps.stats.samples_extrapolated);
+    return n;
+  };
+  const Count exact = count(vismap_pixel_polygons(map));
+  const Count whole = count(vismap_pixel_polygons(map, false, false));
+  const Count item = count(itembuffer_pixel_polygons(scene, model, cam));
+  EXPECT_GT(exact.extrapolated, 50u);
+  EXPECT_EQ(exact.dark, 0u) << "of " << exact.samples << " samples, " << exact.extrapolated << " exact-visible";
+  EXPECT_EQ(whole.extrapolated, 0u);
+  EXPECT_EQ(whole.dark, 0u);
+  EXPECT_EQ(exact.samples, whole.samples + exact.extrapolated);
+  EXPECT_GT(item.dark, 50u) << "the item buffer maps straddling pixels' colors";
 }
 
 }  // namespace
