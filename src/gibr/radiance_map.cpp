@@ -253,10 +253,16 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
               const double dd = (xx + 0.5 - px) * (xx + 0.5 - px) + (yy + 0.5 - py) * (yy + 0.5 - py);
               if (dd < best) best = dd, c = vec3(image.at(xx, yy, 0), image.at(xx, yy, 1), image.at(xx, yy, 2)), wsum = 1.0;
             }
-          if (wsum <= 0.0) continue;
         }
-        uint32_t packed = pack_srgb8(c / float(wsum));
-        if (!direct) packed = (packed & 0x00FFFFFFu) | (kExtrapolated << 24);
+        uint32_t alpha = direct ? 0xFFu : kExtrapolated;
+        if (wsum <= 0.0) {
+          // No pixel wholly on p near it (a sliver of p along a silhouette): the pixel's own,
+          // mixed color, flagged as a last resort for holes (novel_view.h).
+          c = vec3(image.at(ix, iy, 0), image.at(ix, iy, 1), image.at(ix, iy, 2));
+          wsum = 1.0;
+          alpha = kMixed;
+        }
+        const uint32_t packed = (pack_srgb8(c / float(wsum)) & 0x00FFFFFFu) | (alpha << 24);
         L.rgba[size_t(j - j0) * size_t(L.width) + size_t(i - i0)] = packed;
         fi0 = std::min(fi0, i);
         fj0 = std::min(fj0, j);
@@ -312,7 +318,9 @@ RadianceMaps build_radiance_maps(const ModelPolygons& model, double texel, std::
       s.bytes += L.rgba.size() * sizeof(uint32_t);
       for (int j = 0; j < L.height; ++j)
         for (int i = 0; i < L.width; ++i)
-          if (const uint32_t a = L.rgba[size_t(j) * size_t(L.width) + size_t(i)] >> 24) {
+          if (const uint32_t a = L.rgba[size_t(j) * size_t(L.width) + size_t(i)] >> 24; a == kMixed) {
+            ++s.samples_mixed;
+          } else if (a != 0) {
             ++s.samples;
             s.samples_extrapolated += a == kExtrapolated;
             covered[size_t(j + L.y0) * size_t(g.width) + size_t(i + L.x0)] = 1;

@@ -8,6 +8,7 @@
 
 #include <set>
 
+#include "proxima/gibr/novel_view.h"
 #include "proxima/gibr/photo_set.h"
 #include "proxima/scene/visibility_models.h"
 #include "proxima/trace/ray_scene.h"
@@ -177,29 +178,51 @@ TEST(GibrMapping, ExactVisibleTexelsTakeColorOnlyFromPixelsWhollyOnTheirPolygon)
   const std::vector<ImageF> photos{photo};
   const VisibilityMap map = trace_visibility_map(wp, cam);
   struct Count {
-    size_t samples = 0, extrapolated = 0, dark = 0;
+    size_t samples = 0, extrapolated = 0, mixed = 0, dark = 0;
   };
-  auto count = [&](const ImageU32& labels) {
-    const RadianceMaps maps = build_radiance_maps(model, 0.02, cams, photos, std::vector<ImageU32>{labels});
+  auto count = [&](const RadianceMaps& maps) {
     Count n;
     for (const auto& layers : maps.layers)
       for (const SampleLayer& L : layers)
         for (uint32_t t : L.rgba) {
           if ((t >> 24) == 0) continue;
+          if ((t >> 24) == kMixed) {
+            ++n.mixed;  // last resort for holes, the straddling pixel's color by design
+            continue;
+          }
           ++n.samples;
           n.extrapolated += (t >> 24) == kExtrapolated;
           n.dark += (t & 0xFFu) < 255u;
         }
+    EXPECT_EQ(n.samples, maps.stats.samples);
     EXPECT_EQ(n.extrapolated, maps.stats.samples_extrapolated);
+    EXPECT_EQ(n.mixed, maps.stats.samples_mixed);
     return n;
   };
-  const Count exact = count(vismap_pixel_polygons(map));
-  const Count whole = count(vismap_pixel_polygons(map, false, false));
-  const Count item = count(itembuffer_pixel_polygons(scene, model, cam));
+  auto count_labels = [&](const ImageU32& labels) {
+    return count(build_radiance_maps(model, 0.02, cams, photos, std::vector<ImageU32>{labels}));
+  };
+  const RadianceMaps exact_maps = build_radiance_maps(model, 0.02, cams, photos, std::vector<ImageU32>{vismap_pixel_polygons(map)});
+  const Count exact = count(exact_maps);
+  const Count whole = count_labels(vismap_pixel_polygons(map, false, false));
+  const Count item = count_labels(itembuffer_pixel_polygons(scene, model, cam));
   EXPECT_GT(exact.extrapolated, 50u);
+  EXPECT_GT(exact.mixed, 0u) << "the novel-view check below should meet last-resort samples";
   EXPECT_EQ(exact.dark, 0u) << "of " << exact.samples << " samples, " << exact.extrapolated << " exact-visible";
   EXPECT_EQ(whole.extrapolated, 0u);
+  EXPECT_EQ(whole.mixed, 0u);
   EXPECT_EQ(whole.dark, 0u);
+  // A novel view blends only clean samples: every pixel not flagged unseen is white.
+  const NovelView nv = render_novel_view(scene, model, exact_maps, cam);
+  size_t seen = 0, seen_dark = 0;
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x) {
+      if (nv.unseen.at(x, y)) continue;  // (the rooms are closed: no background pixels)
+      ++seen;
+      seen_dark += nv.color.at(x, y, 0) < 0.99f;
+    }
+  EXPECT_GT(seen, size_t(cam.width * cam.height / 2));
+  EXPECT_EQ(seen_dark, 0u);
   EXPECT_EQ(exact.samples, whole.samples + exact.extrapolated);
   EXPECT_GT(item.dark, 50u) << "the item buffer maps straddling pixels' colors";
 }

@@ -39,7 +39,8 @@ struct TexelGrid {
 };
 
 // Samples of one photograph on one polygon: a texel rectangle, sRGB 8-bit RGB + alpha
-// (255 = sample, kExtrapolated = sample colored from neighboring pixels, 0 = none), row-major.
+// (255 = sample, kExtrapolated = sample colored from neighboring pixels, kMixed = last-resort
+// sample for holes, 0 = none), row-major.
 struct SampleLayer {
   uint32_t photo = 0;
   int x0 = 0, y0 = 0, width = 0, height = 0;
@@ -55,12 +56,16 @@ struct SampleLayer {
 // Alpha of a sample whose texel is exactly visible in a pixel touching a silhouette, its color
 // taken from neighboring pixels wholly on the polygon (blended like any other sample).
 inline constexpr uint32_t kExtrapolated = 0x80;
+// Alpha of a last-resort sample: an exact-visible texel with no pixel wholly on its polygon
+// within 2 px takes its own (mixed) pixel's color; used only to fill holes (novel_view.h).
+inline constexpr uint32_t kMixed = 0x40;
 
 struct RadianceStats {
   size_t photos = 0;
   size_t layers = 0;            // (polygon, photograph) pairs with ≥ 1 sample
   size_t samples = 0;           // texel samples over all layers
   size_t samples_extrapolated = 0;  // of which exact-visible texels in silhouette pixels
+  size_t samples_mixed = 0;     // last-resort samples (kMixed), not in `samples`
   size_t texels = 0;            // texels of all grids
   size_t texels_covered = 0;    // texels with ≥ 1 sample
   size_t pixels_mapped = 0;     // photograph pixels mapped onto some polygon
@@ -105,7 +110,8 @@ ImageU32 itembuffer_pixel_polygons(const Scene& scene, const visibility::ModelPo
 // of P is sampled when its center projects into a pixel mapped onto P ("direct": bilinear
 // over the 2 × 2 pixel centers around the projection that map onto P, alpha 255) or into a
 // sub-cell wholly inside P of a pixel touching a silhouette ("exact-visible": the same
-// bilinear, else the nearest pixel center within 2 px mapped onto P; alpha kExtrapolated).
+// bilinear, else the nearest pixel center within 2 px mapped onto P; alpha kExtrapolated;
+// with none, the pixel's own mixed color, alpha kMixed, for holes only).
 // Parallel over photographs; the result does not depend on threads.
 RadianceMaps build_radiance_maps(const visibility::ModelPolygons& model, double texel, std::span<const Camera> cameras,
                                  std::span<const ImageF> photos, std::span<const ImageU32> pixel_polygons);
