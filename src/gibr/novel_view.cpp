@@ -24,8 +24,8 @@ struct GridF {
 };
 
 // Bilinear sample of a layer at continuous texel coordinates over the texels holding
-// samples; false when none of the 2 × 2 does.
-bool sample_layer(const SampleLayer& L, vec2 tc, vec3& out) {
+// samples with alpha ≥ min_alpha; false when none of the 2 × 2 does.
+bool sample_layer(const SampleLayer& L, vec2 tc, uint32_t min_alpha, vec3& out) {
   const float sx = tc.x - 0.5f - float(L.x0), sy = tc.y - 0.5f - float(L.y0);
   const float fx0 = std::floor(sx), fy0 = std::floor(sy);
   const int i0 = int(fx0), j0 = int(fy0);
@@ -37,7 +37,7 @@ bool sample_layer(const SampleLayer& L, vec2 tc, vec3& out) {
     const int i = i0 + (k & 1), j = j0 + (k >> 1);
     if (i < 0 || j < 0 || i >= L.width || j >= L.height) continue;
     const uint32_t t = L.rgba[size_t(j) * size_t(L.width) + size_t(i)];
-    if ((t >> 24) < kExtrapolated) continue;  // none, or a last-resort (mixed) sample
+    if ((t >> 24) < min_alpha) continue;
     const float w = ((k & 1) ? fx : 1.0f - fx) * ((k >> 1) ? fy : 1.0f - fy);
     c += w * unpack_srgb8(t);
     wsum += w;
@@ -127,10 +127,13 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
         vec3 sum(0.0f);
         float wsum = 0.0f;
         int found = 0;
+        // Direct samples first; exact-visible (extrapolated) ones only where no photograph
+        // has a direct sample (mixed last-resort samples never: holes only).
+        for (int pass = 0; pass < 2 && found == 0; ++pass)
         for (uint32_t o = offset[p]; o < offset[p + 1] && found < k; ++o) {
           const SampleLayer& L = layers[order[o]];
           vec3 c;
-          if (!sample_layer(L, tc, c)) continue;
+          if (!sample_layer(L, tc, pass == 0 ? 0xFFu : kExtrapolated, c)) continue;
           const float cosv = glm::dot(glm::normalize(maps.cameras[L.photo].position - w), view);
           const float wt = 1.0f / (1.0f - cosv + 1e-7f);
           sum += wt * c;
