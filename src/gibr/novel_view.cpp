@@ -160,7 +160,7 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
           for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
             got = nearest_sample(layers[order[o]], ci, cj, options.hole_radius, kExtrapolated, color);
           for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
-            got = nearest_sample(layers[order[o]], ci, cj, options.hole_radius, kMixed, color);
+            got = layers[order[o]].mixed > 0 && nearest_sample(layers[order[o]], ci, cj, options.hole_radius, kMixed, color);
           filled += got;
         }
         for (int c = 0; c < 3; ++c) nv.color.at(x, y, c) = color[c];

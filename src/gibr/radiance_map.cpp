@@ -264,6 +264,7 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
         }
         const uint32_t packed = (pack_srgb8(c / float(wsum)) & 0x00FFFFFFu) | (alpha << 24);
         L.rgba[size_t(j - j0) * size_t(L.width) + size_t(i - i0)] = packed;
+        L.mixed += alpha == kMixed;
         fi0 = std::min(fi0, i);
         fj0 = std::min(fj0, j);
         fi1 = std::max(fi1, i);
@@ -273,6 +274,7 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
     // Shrink to the samples' rectangle.
     SampleLayer S;
     S.photo = photo;
+    S.mixed = L.mixed;
     S.x0 = fi0;
     S.y0 = fj0;
     S.width = fi1 - fi0 + 1;

@@ -45,6 +45,7 @@ struct SampleLayer {
   uint32_t photo = 0;
   int x0 = 0, y0 = 0, width = 0, height = 0;
   std::vector<uint32_t> rgba;  // r | g << 8 | b << 16 | a << 24
+  size_t mixed = 0;            // kMixed samples (lets hole filling skip layers without any)
 
   bool has(int i, int j) const {
     i -= x0;
