@@ -44,21 +44,34 @@ Image<SubSamples> sub_samples(const RayScene& rays, const ModelPolygons& model, 
   return out;
 }
 
+// The rooms model seen through the door at 64 × 48, with its 8 × 8 ray casts per pixel.
+struct DoorView {
+  Scene scene = make_vis_rooms();
+  ModelPolygons model = extract_polygons(scene);
+  WingedPair wp = build_winged_pair(model);
+  RayScene rays{scene};
+  Camera cam = door_camera(64, 48);
+  Image<SubSamples> sub = sub_samples(rays, model, cam);
+};
+
+// A silhouette pixel: several surfaces with a depth jump (the jamb in front of the wall).
+bool straddles(const SubSamples& s) { return s.polygons.size() >= 2 && s.t_max - s.t_min >= 0.5f; }
+
 TEST(GibrMapping, DoorFrameSilhouettePixelIsNotMappedOntoTheWallBehind) {
-  const Scene scene = make_vis_rooms();
-  const ModelPolygons model = extract_polygons(scene);
-  const WingedPair wp = build_winged_pair(model);
-  const RayScene rays(scene);
-  const Camera cam = door_camera(64, 48);
+  const DoorView door;
+  const Scene& scene = door.scene;
+  const ModelPolygons& model = door.model;
+  const WingedPair& wp = door.wp;
+  const RayScene& rays = door.rays;
+  const Camera& cam = door.cam;
+  const Image<SubSamples>& sub = door.sub;
   const ImageU32 vis = vismap_pixel_polygons(trace_visibility_map(wp, cam));
   const ImageU32 item = itembuffer_pixel_polygons(scene, model, cam);
-  const Image<SubSamples> sub = sub_samples(rays, model, cam);
   int straddling = 0, vis_mapped = 0, item_mapped_behind = 0;
   for (int y = 0; y < cam.height; ++y)
     for (int x = 0; x < cam.width; ++x) {
       const SubSamples& s = sub.at(x, y);
-      // A silhouette pixel: several surfaces with a depth jump (the jamb in front of the wall).
-      if (s.polygons.size() < 2 || s.t_max - s.t_min < 0.5f) continue;
+      if (!straddles(s)) continue;
       ++straddling;
       vis_mapped += vis.at(x, y) != kNone;
       // The baseline maps it onto whatever its center sees, often the far wall.
@@ -93,7 +106,7 @@ TEST(GibrMapping, DoorFrameSilhouettePixelIsNotMappedOntoTheWallBehind) {
             const SubSamples& s = sub.at(std::clamp(int(q->pixel.x), 0, cam.width - 1),
                                          std::clamp(int(q->pixel.y), 0, cam.height - 1));
             from_mixed += s.polygons != std::set<uint32_t>{p};
-            from_silhouette += s.polygons.size() > 1 && s.t_max - s.t_min >= 0.5f;
+            from_silhouette += straddles(s);
           }
     EXPECT_GT(samples, 1000u);
     EXPECT_EQ(from_silhouette, 0u);
@@ -158,25 +171,21 @@ TEST(GibrMapping, OccludedTexelNeverReceivesThatPhotographsColor) {
 // white took color from a straddling pixel. The item buffer does (the check can fail); the
 // exact-visible samples exist, and the mapping covers more texels than without the record.
 TEST(GibrMapping, ExactVisibleTexelsTakeColorOnlyFromPixelsWhollyOnTheirPolygon) {
-  const Scene scene = make_vis_rooms();
-  const ModelPolygons model = extract_polygons(scene);
-  const WingedPair wp = build_winged_pair(model);
-  const RayScene rays(scene);
-  const Camera cam = door_camera(64, 48);
-  const Image<SubSamples> sub = sub_samples(rays, model, cam);
+  const DoorView door;
+  const Camera& cam = door.cam;
+  const ModelPolygons& model = door.model;
   ImageF photo(cam.width, cam.height, 3, 1.0f);
   int straddling = 0;
   for (int y = 0; y < cam.height; ++y)
     for (int x = 0; x < cam.width; ++x) {
-      const SubSamples& s = sub.at(x, y);
-      if (s.polygons.size() < 2 || s.t_max - s.t_min < 0.5f) continue;
+      if (!straddles(door.sub.at(x, y))) continue;
       ++straddling;
       for (int c = 0; c < 3; ++c) photo.at(x, y, c) = 0.0f;
     }
   ASSERT_GT(straddling, 10);
   const std::vector<Camera> cams{cam};
   const std::vector<ImageF> photos{photo};
-  const VisibilityMap map = trace_visibility_map(wp, cam);
+  const VisibilityMap map = trace_visibility_map(door.wp, cam);
   struct Count {
     size_t samples = 0, extrapolated = 0, mixed = 0, dark = 0;
   };
@@ -205,7 +214,7 @@ TEST(GibrMapping, ExactVisibleTexelsTakeColorOnlyFromPixelsWhollyOnTheirPolygon)
   const RadianceMaps exact_maps = build_radiance_maps(model, 0.02, cams, photos, std::vector<ImageU32>{vismap_pixel_polygons(map)});
   const Count exact = count(exact_maps);
   const Count whole = count_labels(vismap_pixel_polygons(map, false, false));
-  const Count item = count_labels(itembuffer_pixel_polygons(scene, model, cam));
+  const Count item = count_labels(itembuffer_pixel_polygons(door.scene, model, cam));
   EXPECT_GT(exact.extrapolated, 50u);
   EXPECT_GT(exact.mixed, 0u) << "the novel-view check below should meet last-resort samples";
   EXPECT_EQ(exact.dark, 0u) << "of " << exact.samples << " samples, " << exact.extrapolated << " exact-visible";
@@ -213,7 +222,7 @@ TEST(GibrMapping, ExactVisibleTexelsTakeColorOnlyFromPixelsWhollyOnTheirPolygon)
   EXPECT_EQ(whole.mixed, 0u);
   EXPECT_EQ(whole.dark, 0u);
   // A novel view blends only clean samples: every pixel not flagged unseen is white.
-  const NovelView nv = render_novel_view(scene, model, exact_maps, cam);
+  const NovelView nv = render_novel_view(door.scene, model, exact_maps, cam);
   size_t seen = 0, seen_dark = 0;
   for (int y = 0; y < cam.height; ++y)
     for (int x = 0; x < cam.width; ++x) {
