@@ -39,6 +39,7 @@ struct GibrFlags {
   int supersample = 2;
   double period = 0.0;  // 0 = the scene's default
   bool exclude_boundaries = false;
+  bool whole_pixels = false;
   bool photo_images = true;
   int fps_repeat = 3;
 };
@@ -104,6 +105,9 @@ Command register_gibr(CLI::App& root) {
       ->capture_default_str();
   app->add_flag("--exclude-boundaries", f.exclude_boundaries,
                 "visibility-map mapping also drops pixels touching any edge between different polygons");
+  app->add_flag("--whole-pixels", f.whole_pixels,
+                "visibility-map mapping without the sub-pixel record: texels seen only in pixels touching a "
+                "silhouette get no sample");
   app->add_option("--fps-repeat", f.fps_repeat, "timed renders of each novel view (median → novel_view_fps)")
       ->capture_default_str();
   app->add_flag("!--no-photo-images", f.photo_images, "do not write the photographs as PNG");
@@ -173,7 +177,7 @@ Command register_gibr(CLI::App& root) {
               for (size_t i = b; i < e; ++i) {
                 const VisibilityMap map = trace_visibility_map(wp, cams[i]);
                 silhouettes[i] = double(map.stats.silhouette_edges);
-                vis_labels[i] = vismap_pixel_polygons(map, f.exclude_boundaries);
+                vis_labels[i] = vismap_pixel_polygons(map, f.exclude_boundaries, !f.whole_pixels);
               }
             });
             const double vis_ms = w.elapsed_ms();

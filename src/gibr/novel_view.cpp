@@ -24,8 +24,8 @@ struct GridF {
 };
 
 // Bilinear sample of a layer at continuous texel coordinates over the texels holding
-// samples; false when none of the 2 × 2 does.
-bool sample_layer(const SampleLayer& L, vec2 tc, vec3& out) {
+// samples with alpha ≥ min_alpha; false when none of the 2 × 2 does.
+bool sample_layer(const SampleLayer& L, vec2 tc, uint32_t min_alpha, vec3& out) {
   const float sx = tc.x - 0.5f - float(L.x0), sy = tc.y - 0.5f - float(L.y0);
   const float fx0 = std::floor(sx), fy0 = std::floor(sy);
   const int i0 = int(fx0), j0 = int(fy0);
@@ -37,7 +37,7 @@ bool sample_layer(const SampleLayer& L, vec2 tc, vec3& out) {
     const int i = i0 + (k & 1), j = j0 + (k >> 1);
     if (i < 0 || j < 0 || i >= L.width || j >= L.height) continue;
     const uint32_t t = L.rgba[size_t(j) * size_t(L.width) + size_t(i)];
-    if ((t >> 24) == 0) continue;
+    if ((t >> 24) < min_alpha) continue;
     const float w = ((k & 1) ? fx : 1.0f - fx) * ((k >> 1) ? fy : 1.0f - fy);
     c += w * unpack_srgb8(t);
     wsum += w;
@@ -47,16 +47,17 @@ bool sample_layer(const SampleLayer& L, vec2 tc, vec3& out) {
   return true;
 }
 
-// The sample nearest to texel (ci, cj) within `radius` rings (ring by ring, row-major).
-bool nearest_sample(const SampleLayer& L, int ci, int cj, int radius, vec3& out) {
+// The sample with alpha ≥ min_alpha nearest to texel (ci, cj) within `radius` rings (ring by
+// ring, row-major).
+bool nearest_sample(const SampleLayer& L, int ci, int cj, int radius, uint32_t min_alpha, vec3& out) {
   for (int r = 0; r <= radius; ++r)
     for (int j = cj - r; j <= cj + r; ++j)
       for (int i = ci - r; i <= ci + r; ++i) {
-        if (std::max(std::abs(i - ci), std::abs(j - cj)) != r) continue;
-        if (L.has(i, j)) {
-          out = unpack_srgb8(L.rgba[size_t(j - L.y0) * size_t(L.width) + size_t(i - L.x0)]);
-          return true;
-        }
+        if (std::max(std::abs(i - ci), std::abs(j - cj)) != r || !L.has(i, j)) continue;
+        const uint32_t t = L.rgba[size_t(j - L.y0) * size_t(L.width) + size_t(i - L.x0)];
+        if ((t >> 24) < min_alpha) continue;
+        out = unpack_srgb8(t);
+        return true;
       }
   return false;
 }
@@ -126,10 +127,13 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
         vec3 sum(0.0f);
         float wsum = 0.0f;
         int found = 0;
+        // Direct samples first; exact-visible (extrapolated) ones only where no photograph
+        // has a direct sample (mixed last-resort samples never: holes only).
+        for (int pass = 0; pass < 2 && found == 0; ++pass)
         for (uint32_t o = offset[p]; o < offset[p + 1] && found < k; ++o) {
           const SampleLayer& L = layers[order[o]];
           vec3 c;
-          if (!sample_layer(L, tc, c)) continue;
+          if (!sample_layer(L, tc, pass == 0 ? 0xFFu : kExtrapolated, c)) continue;
           const float cosv = glm::dot(glm::normalize(maps.cameras[L.photo].position - w), view);
           const float wt = 1.0f / (1.0f - cosv + 1e-7f);
           sum += wt * c;
@@ -150,10 +154,13 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
             if (dd < best_d) best_d = dd, best = &L;
           }
           const int ci = int(std::floor(tc.x)), cj = int(std::floor(tc.y));
-          bool got = best && nearest_sample(*best, ci, cj, options.hole_radius, color);
-          // Then the other photographs that saw P, closest direction first.
+          bool got = best && nearest_sample(*best, ci, cj, options.hole_radius, kExtrapolated, color);
+          // Then the other photographs that saw P, closest direction first; last, the
+          // mixed samples of texels no photograph saw in a pixel wholly on P.
           for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
-            got = nearest_sample(layers[order[o]], ci, cj, options.hole_radius, color);
+            got = nearest_sample(layers[order[o]], ci, cj, options.hole_radius, kExtrapolated, color);
+          for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
+            got = layers[order[o]].mixed > 0 && nearest_sample(layers[order[o]], ci, cj, options.hole_radius, kMixed, color);
           filled += got;
         }
         for (int c = 0; c < 3; ++c) nv.color.at(x, y, c) = color[c];

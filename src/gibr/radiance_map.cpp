@@ -80,14 +80,51 @@ ImageU8 silhouette_pixel_mask(const VisibilityMap& map, double radius) {
   return map_edge_mask(sil, radius);
 }
 
-ImageU32 vismap_pixel_polygons(const VisibilityMap& map, bool exclude_all_boundaries) {
-  ImageU32 labels = rasterize_map(map);
+ImageU32 vismap_pixel_polygons(const VisibilityMap& map, bool exclude_all_boundaries, bool subpixel) {
+  const ImageU32 centers = rasterize_map(map);
   // A pixel square touches a segment only if the segment passes within √2/2 of its center.
   const double radius = std::sqrt(0.5) + 1e-9;
-  const ImageU8 touched = exclude_all_boundaries ? map_edge_mask(map, radius) : silhouette_pixel_mask(map, radius);
+  auto touched_mask = [&](const VisibilityMap& m) {
+    return exclude_all_boundaries ? map_edge_mask(m, radius) : silhouette_pixel_mask(m, radius);
+  };
+  const ImageU8 touched = touched_mask(map);
+  ImageU32 labels(map.width, map.height, subpixel ? 4 : 1, kNone);
+  if (subpixel)
+    for (int y = 0; y < map.height; ++y)
+      for (int x = 0; x < map.width; ++x) labels.at(x, y, 3) = 0;
   for (int y = 0; y < map.height; ++y)
     for (int x = 0; x < map.width; ++x)
-      if (touched.at(x, y)) labels.at(x, y) = kNone;
+      if (!touched.at(x, y)) labels.at(x, y) = centers.at(x, y);
+  if (!subpixel) return labels;
+  // The same test on the map scaled by kSubCells: which sub-cells of a touched pixel lie
+  // wholly inside one polygon's regions.
+  VisibilityMap fine = map;
+  fine.width *= kSubCells;
+  fine.height *= kSubCells;
+  for (dvec2& v : fine.vertices) v *= double(kSubCells);
+  for (MapRegion& r : fine.regions)
+    for (dvec2& v : r.vertices) v *= double(kSubCells);
+  const ImageU32 fine_centers = rasterize_map(fine);
+  const ImageU8 fine_touched = touched_mask(fine);
+  for (int y = 0; y < map.height; ++y)
+    for (int x = 0; x < map.width; ++x) {
+      if (!touched.at(x, y)) continue;
+      uint32_t mask = 0;
+      for (int s = 0; s < kSubCells * kSubCells; ++s) {
+        const int fx = x * kSubCells + s % kSubCells, fy = y * kSubCells + s / kSubCells;
+        const uint32_t p = fine_centers.at(fx, fy);
+        if (p == kNone || fine_touched.at(fx, fy)) continue;
+        // Up to two polygons per pixel (the two sides of a silhouette); a third is dropped.
+        for (int k = 0; k < 2; ++k) {
+          uint32_t& q = labels.at(x, y, 1 + k);
+          if (q == kNone) q = p;
+          if (q != p) continue;
+          mask |= 1u << (16 * k + s);
+          break;
+        }
+      }
+      labels.at(x, y, 3) = mask;
+    }
   return labels;
 }
 
@@ -120,23 +157,31 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
   // Texel-coordinate bounds of each polygon's mapped pixels (their corners on its plane).
   std::vector<glm::dvec4> box(model.polygons.size(), glm::dvec4(INFINITY, INFINITY, -INFINITY, -INFINITY));
   std::vector<uint32_t> seen;
+  const bool sub = labels.channels() == 4;
+  auto add_pixel = [&](uint32_t p, int x, int y) {
+    const Plane& pl = model.polygons[p].plane;
+    const double d = pl.distance(eye);
+    if (box[p].x == INFINITY) seen.push_back(p);
+    for (int k = 0; k < 4; ++k) {
+      const double px = x + (k & 1), py = y + (k >> 1);
+      const dvec3 dir = F + ((px - cx) / f) * R - ((py - cy) / f) * U;
+      const double denom = glm::dot(pl.normal, dir);
+      if (denom == 0.0) continue;
+      const double t = -d / denom;
+      if (!(t > 0.0) || !std::isfinite(t)) continue;
+      const dvec2 c = texel_coords(grids[p], eye + t * dir);
+      box[p] = glm::dvec4(std::min(box[p].x, c.x), std::min(box[p].y, c.y), std::max(box[p].z, c.x), std::max(box[p].w, c.y));
+    }
+  };
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {
       const uint32_t p = labels.at(x, y);
-      if (p == kNone) continue;
-      ++out.pixels_mapped;
-      const Plane& pl = model.polygons[p].plane;
-      const double d = pl.distance(eye);
-      if (box[p].x == INFINITY) seen.push_back(p);
-      for (int k = 0; k < 4; ++k) {
-        const double px = x + (k & 1), py = y + (k >> 1);
-        const dvec3 dir = F + ((px - cx) / f) * R - ((py - cy) / f) * U;
-        const double denom = glm::dot(pl.normal, dir);
-        if (denom == 0.0) continue;
-        const double t = -d / denom;
-        if (!(t > 0.0) || !std::isfinite(t)) continue;
-        const dvec2 c = texel_coords(grids[p], eye + t * dir);
-        box[p] = glm::dvec4(std::min(box[p].x, c.x), std::min(box[p].y, c.y), std::max(box[p].z, c.x), std::max(box[p].w, c.y));
+      if (p != kNone) {
+        ++out.pixels_mapped;
+        add_pixel(p, x, y);
+      } else if (sub && labels.at(x, y, 3) != 0) {
+        for (int k = 0; k < 2; ++k)
+          if ((labels.at(x, y, 3) >> (16 * k)) & 0xFFFFu) add_pixel(labels.at(x, y, 1 + k), x, y);
       }
     }
   std::sort(seen.begin(), seen.end());
@@ -175,7 +220,17 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
         if (z <= 0.0) continue;
         const double px = cx + f * glm::dot(d, R) / z, py = cy - f * glm::dot(d, U) / z;
         if (!(px >= 0.0 && py >= 0.0 && px < W && py < H)) continue;
-        if (labels.at(int(px), int(py)) != p) continue;
+        const int ix = int(px), iy = int(py);
+        const bool direct = labels.at(ix, iy) == p;
+        if (!direct) {
+          // A pixel touching a silhouette: is the sub-cell holding the projection wholly on p?
+          if (!sub) continue;
+          const int s = std::min(kSubCells - 1, int((px - ix) * kSubCells)) +
+                        kSubCells * std::min(kSubCells - 1, int((py - iy) * kSubCells));
+          const uint32_t mask = labels.at(ix, iy, 3);
+          if (!((labels.at(ix, iy, 1) == p && ((mask >> s) & 1u)) || (labels.at(ix, iy, 2) == p && ((mask >> (16 + s)) & 1u))))
+            continue;
+        }
         // Bilinear over the pixel centers around (px, py) that map onto p.
         const double sx = px - 0.5, sy = py - 0.5;
         const int x0 = int(std::floor(sx)), y0 = int(std::floor(sy));
@@ -189,8 +244,27 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
           c += float(w) * vec3(image.at(xx, yy, 0), image.at(xx, yy, 1), image.at(xx, yy, 2));
           wsum += w;
         }
-        if (wsum <= 0.0) continue;
-        L.rgba[size_t(j - j0) * size_t(L.width) + size_t(i - i0)] = pack_srgb8(c / float(wsum));
+        if (wsum <= 0.0) {
+          // Exact-visible texel with no wholly-on-p pixel among the 2 × 2: the nearest within 2 px.
+          double best = 4.0 + 1e-9;
+          for (int yy = iy - 2; yy <= iy + 2; ++yy)
+            for (int xx = ix - 2; xx <= ix + 2; ++xx) {
+              if (xx < 0 || yy < 0 || xx >= W || yy >= H || labels.at(xx, yy) != p) continue;
+              const double dd = (xx + 0.5 - px) * (xx + 0.5 - px) + (yy + 0.5 - py) * (yy + 0.5 - py);
+              if (dd < best) best = dd, c = vec3(image.at(xx, yy, 0), image.at(xx, yy, 1), image.at(xx, yy, 2)), wsum = 1.0;
+            }
+        }
+        uint32_t alpha = direct ? 0xFFu : kExtrapolated;
+        if (wsum <= 0.0) {
+          // No pixel wholly on p near it (a sliver of p along a silhouette): the pixel's own,
+          // mixed color, flagged as a last resort for holes (novel_view.h).
+          c = vec3(image.at(ix, iy, 0), image.at(ix, iy, 1), image.at(ix, iy, 2));
+          wsum = 1.0;
+          alpha = kMixed;
+        }
+        const uint32_t packed = (pack_srgb8(c / float(wsum)) & 0x00FFFFFFu) | (alpha << 24);
+        L.rgba[size_t(j - j0) * size_t(L.width) + size_t(i - i0)] = packed;
+        L.mixed += alpha == kMixed;
         fi0 = std::min(fi0, i);
         fj0 = std::min(fj0, j);
         fi1 = std::max(fi1, i);
@@ -200,6 +274,7 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
     // Shrink to the samples' rectangle.
     SampleLayer S;
     S.photo = photo;
+    S.mixed = L.mixed;
     S.x0 = fi0;
     S.y0 = fj0;
     S.width = fi1 - fi0 + 1;
@@ -245,8 +320,11 @@ RadianceMaps build_radiance_maps(const ModelPolygons& model, double texel, std::
       s.bytes += L.rgba.size() * sizeof(uint32_t);
       for (int j = 0; j < L.height; ++j)
         for (int i = 0; i < L.width; ++i)
-          if (L.rgba[size_t(j) * size_t(L.width) + size_t(i)] >> 24) {
+          if (const uint32_t a = L.rgba[size_t(j) * size_t(L.width) + size_t(i)] >> 24; a == kMixed) {
+            ++s.samples_mixed;
+          } else if (a != 0) {
             ++s.samples;
+            s.samples_extrapolated += a == kExtrapolated;
             covered[size_t(j + L.y0) * size_t(g.width) + size_t(i + L.x0)] = 1;
           }
     }

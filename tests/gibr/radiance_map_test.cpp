@@ -8,6 +8,7 @@
 
 #include <set>
 
+#include "proxima/gibr/novel_view.h"
 #include "proxima/gibr/photo_set.h"
 #include "proxima/scene/visibility_models.h"
 #include "proxima/trace/ray_scene.h"
@@ -43,21 +44,34 @@ Image<SubSamples> sub_samples(const RayScene& rays, const ModelPolygons& model, 
   return out;
 }
 
+// The rooms model seen through the door at 64 × 48, with its 8 × 8 ray casts per pixel.
+struct DoorView {
+  Scene scene = make_vis_rooms();
+  ModelPolygons model = extract_polygons(scene);
+  WingedPair wp = build_winged_pair(model);
+  RayScene rays{scene};
+  Camera cam = door_camera(64, 48);
+  Image<SubSamples> sub = sub_samples(rays, model, cam);
+};
+
+// A silhouette pixel: several surfaces with a depth jump (the jamb in front of the wall).
+bool straddles(const SubSamples& s) { return s.polygons.size() >= 2 && s.t_max - s.t_min >= 0.5f; }
+
 TEST(GibrMapping, DoorFrameSilhouettePixelIsNotMappedOntoTheWallBehind) {
-  const Scene scene = make_vis_rooms();
-  const ModelPolygons model = extract_polygons(scene);
-  const WingedPair wp = build_winged_pair(model);
-  const RayScene rays(scene);
-  const Camera cam = door_camera(64, 48);
+  const DoorView door;
+  const Scene& scene = door.scene;
+  const ModelPolygons& model = door.model;
+  const WingedPair& wp = door.wp;
+  const RayScene& rays = door.rays;
+  const Camera& cam = door.cam;
+  const Image<SubSamples>& sub = door.sub;
   const ImageU32 vis = vismap_pixel_polygons(trace_visibility_map(wp, cam));
   const ImageU32 item = itembuffer_pixel_polygons(scene, model, cam);
-  const Image<SubSamples> sub = sub_samples(rays, model, cam);
   int straddling = 0, vis_mapped = 0, item_mapped_behind = 0;
   for (int y = 0; y < cam.height; ++y)
     for (int x = 0; x < cam.width; ++x) {
       const SubSamples& s = sub.at(x, y);
-      // A silhouette pixel: several surfaces with a depth jump (the jamb in front of the wall).
-      if (s.polygons.size() < 2 || s.t_max - s.t_min < 0.5f) continue;
+      if (!straddles(s)) continue;
       ++straddling;
       vis_mapped += vis.at(x, y) != kNone;
       // The baseline maps it onto whatever its center sees, often the far wall.
@@ -83,14 +97,16 @@ TEST(GibrMapping, DoorFrameSilhouettePixelIsNotMappedOntoTheWallBehind) {
       for (const SampleLayer& L : maps.layers[p])
         for (int j = L.y0; j < L.y0 + L.height; ++j)
           for (int i = L.x0; i < L.x0 + L.width; ++i) {
-            if (!L.has(i, j)) continue;
+            // Exact-visible samples project into silhouette pixels by design; their colors'
+            // sources are checked in ExactVisibleTexelsTakeColorOnlyFromPixelsWhollyOnTheirPolygon.
+            if (!L.has(i, j) || L.rgba[size_t(j - L.y0) * size_t(L.width) + size_t(i - L.x0)] >> 24 != 0xFF) continue;
             ++samples;
             const auto q = project(cam, vec3(texel_center(maps.grids[p], i, j)));
             ASSERT_TRUE(q.has_value());
             const SubSamples& s = sub.at(std::clamp(int(q->pixel.x), 0, cam.width - 1),
                                          std::clamp(int(q->pixel.y), 0, cam.height - 1));
             from_mixed += s.polygons != std::set<uint32_t>{p};
-            from_silhouette += s.polygons.size() > 1 && s.t_max - s.t_min >= 0.5f;
+            from_silhouette += straddles(s);
           }
     EXPECT_GT(samples, 1000u);
     EXPECT_EQ(from_silhouette, 0u);
@@ -140,11 +156,84 @@ TEST(GibrMapping, OccludedTexelNeverReceivesThatPhotographsColor) {
     return bad;
   };
   size_t vis_total = 0, item_total = 0;
-  const size_t vis_bad = occluded_samples(build_radiance_maps(model, 0.02, cams, photos, vis), vis_total);
+  const RadianceMaps vis_maps = build_radiance_maps(model, 0.02, cams, photos, vis);
+  EXPECT_GT(vis_maps.stats.samples_extrapolated, 100u) << "the check should cover exact-visible texels in silhouette pixels";
+  const size_t vis_bad = occluded_samples(vis_maps, vis_total);
   const size_t item_bad = occluded_samples(build_radiance_maps(model, 0.02, cams, photos, item), item_total);
   EXPECT_GT(vis_total, 10000u);
   EXPECT_EQ(vis_bad, 0u) << "of " << vis_total;
   EXPECT_GT(item_bad, 0u) << "the item-buffer baseline should map some occluded texels (of " << item_total << ")";
+}
+
+// The sub-pixel record fills texels seen only in pixels touching a silhouette, never with
+// those pixels' colors: a synthetic photograph is white on pixels wholly on one side of a
+// silhouette and black on pixels straddling one (8 × 8 ray casts), so a sample darker than
+// white took color from a straddling pixel. The item buffer does (the check can fail); the
+// exact-visible samples exist, and the mapping covers more texels than without the record.
+TEST(GibrMapping, ExactVisibleTexelsTakeColorOnlyFromPixelsWhollyOnTheirPolygon) {
+  const DoorView door;
+  const Camera& cam = door.cam;
+  const ModelPolygons& model = door.model;
+  ImageF photo(cam.width, cam.height, 3, 1.0f);
+  int straddling = 0;
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x) {
+      if (!straddles(door.sub.at(x, y))) continue;
+      ++straddling;
+      for (int c = 0; c < 3; ++c) photo.at(x, y, c) = 0.0f;
+    }
+  ASSERT_GT(straddling, 10);
+  const std::vector<Camera> cams{cam};
+  const std::vector<ImageF> photos{photo};
+  const VisibilityMap map = trace_visibility_map(door.wp, cam);
+  struct Count {
+    size_t samples = 0, extrapolated = 0, mixed = 0, dark = 0;
+  };
+  auto count = [&](const RadianceMaps& maps) {
+    Count n;
+    for (const auto& layers : maps.layers)
+      for (const SampleLayer& L : layers)
+        for (uint32_t t : L.rgba) {
+          if ((t >> 24) == 0) continue;
+          if ((t >> 24) == kMixed) {
+            ++n.mixed;  // last resort for holes, the straddling pixel's color by design
+            continue;
+          }
+          ++n.samples;
+          n.extrapolated += (t >> 24) == kExtrapolated;
+          n.dark += (t & 0xFFu) < 255u;
+        }
+    EXPECT_EQ(n.samples, maps.stats.samples);
+    EXPECT_EQ(n.extrapolated, maps.stats.samples_extrapolated);
+    EXPECT_EQ(n.mixed, maps.stats.samples_mixed);
+    return n;
+  };
+  auto count_labels = [&](const ImageU32& labels) {
+    return count(build_radiance_maps(model, 0.02, cams, photos, std::vector<ImageU32>{labels}));
+  };
+  const RadianceMaps exact_maps = build_radiance_maps(model, 0.02, cams, photos, std::vector<ImageU32>{vismap_pixel_polygons(map)});
+  const Count exact = count(exact_maps);
+  const Count whole = count_labels(vismap_pixel_polygons(map, false, false));
+  const Count item = count_labels(itembuffer_pixel_polygons(door.scene, model, cam));
+  EXPECT_GT(exact.extrapolated, 50u);
+  EXPECT_GT(exact.mixed, 0u) << "the novel-view check below should meet last-resort samples";
+  EXPECT_EQ(exact.dark, 0u) << "of " << exact.samples << " samples, " << exact.extrapolated << " exact-visible";
+  EXPECT_EQ(whole.extrapolated, 0u);
+  EXPECT_EQ(whole.mixed, 0u);
+  EXPECT_EQ(whole.dark, 0u);
+  // A novel view blends only clean samples: every pixel not flagged unseen is white.
+  const NovelView nv = render_novel_view(door.scene, model, exact_maps, cam);
+  size_t seen = 0, seen_dark = 0;
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x) {
+      if (nv.unseen.at(x, y)) continue;  // (the rooms are closed: no background pixels)
+      ++seen;
+      seen_dark += nv.color.at(x, y, 0) < 0.99f;
+    }
+  EXPECT_GT(seen, size_t(cam.width * cam.height / 2));
+  EXPECT_EQ(seen_dark, 0u);
+  EXPECT_EQ(exact.samples, whole.samples + exact.extrapolated);
+  EXPECT_GT(item.dark, 50u) << "the item buffer maps straddling pixels' colors";
 }
 
 }  // namespace

@@ -5,13 +5,17 @@
 // Per frame, each polygon's layers are ranked by the angle at the polygon's centroid
 // between the directions to the photograph's eye and to the novel eye. Per pixel x on
 // polygon P (rasterized depth → world point, texel coordinates on P's grid): the first k
-// layers in that order with a sample at x (bilinear over the layer's 2 × 2 texels around
-// x that hold samples, weights renormalized) are blended with weights
+// layers in that order with a direct sample at x (bilinear over the layer's 2 × 2 texels
+// around x that hold direct samples, weights renormalized) are blended with weights
 //   w_i = 1 / (1 − cos θ_i + 1e-7),   θ_i = angle at x between (c_i − x) and (eye − x),
 // (≈ 2/θ_i² for small angles: a novel view at a photograph's pose takes that photograph).
-// Holes (no layer has a sample at x): the texel nearest to x, within `hole_radius` texels,
-// of the layer whose photograph's eye is nearest to x (the nearest photograph that saw P),
-// else of the other layers in ranked order; the pixel is flagged in the unseen mask either way, and stays black when nothing is found.
+// Where no layer has a direct sample, the same over direct and exact-visible (kExtrapolated)
+// samples (radiance_map.h); the item buffer's samples are all direct.
+// Holes (no layer has such a sample at x): the texel nearest to x, within `hole_radius`
+// texels, of the layer whose photograph's eye is nearest to x (the nearest photograph that
+// saw P), else of the other layers in ranked order, else — last resort — the nearest kMixed
+// sample in ranked order; the pixel is flagged in the unseen mask either way, and stays
+// black when nothing is found.
 #pragma once
 
 #include <cstdint>

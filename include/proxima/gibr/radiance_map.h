@@ -39,11 +39,13 @@ struct TexelGrid {
 };
 
 // Samples of one photograph on one polygon: a texel rectangle, sRGB 8-bit RGB + alpha
-// (255 = sample, 0 = none), row-major.
+// (255 = sample, kExtrapolated = sample colored from neighboring pixels, kMixed = last-resort
+// sample for holes, 0 = none), row-major.
 struct SampleLayer {
   uint32_t photo = 0;
   int x0 = 0, y0 = 0, width = 0, height = 0;
   std::vector<uint32_t> rgba;  // r | g << 8 | b << 16 | a << 24
+  size_t mixed = 0;            // kMixed samples (lets hole filling skip layers without any)
 
   bool has(int i, int j) const {
     i -= x0;
@@ -52,10 +54,19 @@ struct SampleLayer {
   }
 };
 
+// Alpha of a sample whose texel is exactly visible in a pixel touching a silhouette, its color
+// taken from neighboring pixels wholly on the polygon (blended like any other sample).
+inline constexpr uint32_t kExtrapolated = 0x80;
+// Alpha of a last-resort sample: an exact-visible texel with no pixel wholly on its polygon
+// within 2 px takes its own (mixed) pixel's color; used only to fill holes (novel_view.h).
+inline constexpr uint32_t kMixed = 0x40;
+
 struct RadianceStats {
   size_t photos = 0;
   size_t layers = 0;            // (polygon, photograph) pairs with ≥ 1 sample
   size_t samples = 0;           // texel samples over all layers
+  size_t samples_extrapolated = 0;  // of which exact-visible texels in silhouette pixels
+  size_t samples_mixed = 0;     // last-resort samples (kMixed), not in `samples`
   size_t texels = 0;            // texels of all grids
   size_t texels_covered = 0;    // texels with ≥ 1 sample
   size_t pixels_mapped = 0;     // photograph pixels mapped onto some polygon
@@ -75,9 +86,19 @@ struct RadianceMaps {
 // needing more than 2^26 texels throws InputError.
 std::vector<TexelGrid> make_texel_grids(const visibility::ModelPolygons& model, double texel);
 
-// Visibility-map mapping: per pixel the polygon it maps onto, kNone for a pixel that is not
-// wholly inside one polygon's regions (or sees the background).
-ImageU32 vismap_pixel_polygons(const visibility::VisibilityMap& map, bool exclude_all_boundaries = false);
+// Sub-cells per pixel side of the visibility map's sub-pixel record (see below).
+inline constexpr int kSubCells = 4;
+
+// Visibility-map mapping: channel 0 is per pixel the polygon it maps onto, kNone for a pixel
+// that is not wholly inside one polygon's regions (or sees the background). With `subpixel`
+// (4 channels) a pixel touching a silhouette also records which of its kSubCells² sub-cells
+// lie wholly inside a polygon's regions (the same test on the map scaled by kSubCells):
+// channels 1 and 2 hold up to two polygons A, B (kNone if absent), channel 3 the sub-cell
+// bits of A (bits 0–15, row-major) and of B (bits 16–31). Its color is still never mapped:
+// a texel whose center projects into such a sub-cell of P is exactly visible and takes its
+// color from the nearest pixels wholly on P (build_radiance_maps).
+ImageU32 vismap_pixel_polygons(const visibility::VisibilityMap& map, bool exclude_all_boundaries = false,
+                               bool subpixel = true);
 
 // 1 where a pixel center lies within `radius` px of a silhouette edge of the map, else 0.
 ImageU8 silhouette_pixel_mask(const visibility::VisibilityMap& map, double radius);
@@ -86,7 +107,13 @@ ImageU8 silhouette_pixel_mask(const visibility::VisibilityMap& map, double radiu
 ImageU32 itembuffer_pixel_polygons(const Scene& scene, const visibility::ModelPolygons& model, const Camera& camera);
 
 // Builds the layers of every photograph from its image and pixel → polygon mapping (same
-// sizes as the camera). Parallel over photographs; the result does not depend on threads.
+// sizes as the camera; 1 channel, or 4 as vismap_pixel_polygons' sub-pixel record). A texel
+// of P is sampled when its center projects into a pixel mapped onto P ("direct": bilinear
+// over the 2 × 2 pixel centers around the projection that map onto P, alpha 255) or into a
+// sub-cell wholly inside P of a pixel touching a silhouette ("exact-visible": the same
+// bilinear, else the nearest pixel center within 2 px mapped onto P; alpha kExtrapolated;
+// with none, the pixel's own mixed color, alpha kMixed, for holes only).
+// Parallel over photographs; the result does not depend on threads.
 RadianceMaps build_radiance_maps(const visibility::ModelPolygons& model, double texel, std::span<const Camera> cameras,
                                  std::span<const ImageF> photos, std::span<const ImageU32> pixel_polygons);
 
