@@ -50,6 +50,8 @@ void validate(const TemporalReflectRun& r) {
   if (t.frame_step < 1 || t.frame_step > 100000) fail_input("--frame-step: must be in 1..100000");
   if (!(t.threshold >= 0.0f && t.threshold <= 1.0f)) fail_input("--threshold: must be in [0, 1]");
   if (!(t.stretch_limit >= 1.0f) || !std::isfinite(t.stretch_limit)) fail_input("--stretch-limit: must be ≥ 1");
+  if (!(t.spread_limit >= 1.0f)) fail_input("--spread-limit: must be ≥ 1 (inf = off)");
+  if (!(t.curved_contrast >= 0.0f)) fail_input("--curved-contrast: must be ≥ 0");
   if (t.image_frame < -1) fail_input("--image-frame: must be ≥ -1");
 }
 
@@ -75,6 +77,13 @@ void add_temporal_reflect_flags(CLI::App* app, TemporalReflectFlags& f) {
       ->capture_default_str();
   app->add_option("--stretch-limit", f.stretch_limit,
                   "temporal: warped grid triangles stretched more than this (area ratio) are unreliable")
+      ->capture_default_str();
+  app->add_option("--spread-limit", f.spread_limit,
+                  "temporal: warped grid triangles on a reflector that spreads neighbouring pixels' reflection "
+                  "directions more than this many times their view angle (curved mirrors) are unreliable; inf = off")
+      ->capture_default_str();
+  app->add_option("--curved-contrast", f.curved_contrast,
+                  "temporal: ... only where s*Lr differs between neighbouring key pixels by more than this (linear)")
       ->capture_default_str();
 }
 
@@ -103,6 +112,8 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   TemporalOptions to;
   to.keyframe_threshold = tf.threshold;
   to.warp.stretch_limit = tf.stretch_limit;
+  to.warp.spread_limit = tf.spread_limit;
+  to.warp.curved_contrast = tf.curved_contrast;
 
   Scene scene = animated ? pose_scene(rest, t_first) : rest;
   RayScene rays(scene);
@@ -110,7 +121,7 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   Series mirror_temporal_mae, mirror_direct_mae;
   Series reflective_pct, recompute_pct, traced_pct, temporal_mae, direct_mae, direct_recompute_pct, temporal_ms,
       reference_ms, frame_temporal_ms, frame_reference_ms, diffuse_ms, key_ms, match_ms, warp_ms, reproject_ms,
-      recompute_ms, compose_ms, intervals;
+      recompute_ms, compose_ms, intervals, curved_pct;
   Table per_frame{"Per frame", {"frame", "key", "reflective_pct", "recompute_pct", "disoccluded_pct", "unreliable_pct",
                                 "temporal_mae", "direct_mae", "diffuse_ms", "key_ms", "match_ms", "warp_ms",
                                 "reproject_ms", "recompute_ms", "compose_ms", "reference_trace_ms"}, {}};
@@ -149,6 +160,7 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
       traced_pct.add(st.reflective ? 100.0 : 0.0);
     } else {
       recompute_pct.add(100.0 * st.recompute_fraction());
+      curved_pct.add(st.reflective ? 100.0 * double(st.curved) / double(st.reflective) : 0.0);
       traced_pct.add(100.0 * st.recompute_fraction());
     }
     ++since_key;
@@ -233,9 +245,12 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   m["width"] = double(run.common.width);
   m["height"] = double(run.common.height);
   m["threshold"] = tf.threshold;
+  m["spread_limit"] = tf.spread_limit;
+  m["curved_contrast"] = tf.curved_contrast;
   m["reflective_pct_avg"] = reflective_pct.avg();
   m["reflective_pct_max"] = reflective_pct.max();
   m["recompute_pct_avg"] = recompute_pct.avg();  // non-key frames
+  m["curved_pct_avg"] = curved_pct.avg();        // of those, on strongly curved reflectors
   m["traced_pct_avg"] = traced_pct.avg();        // every frame, key frames at 100%
   m["keyframe_interval_avg"] = intervals.avg();
   m["keyframe_interval_max"] = intervals.max();

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "command.h"
+#include "proxima/core/math.h"
 
 namespace proxima::cli {
 
@@ -17,6 +18,8 @@ struct TemporalReflectFlags {
   int frame_step = 1;           // render every frame_step-th frame (reuse spans the skipped ones)
   float threshold = 0.3f;       // key-frame threshold on the recomputed fraction
   float stretch_limit = 16.0f;  // warp triangles stretched more than this in area are unreliable
+  float spread_limit = kInf;    // off; e.g. 8: warp triangles on reflectors bending directions more are unreliable
+  float curved_contrast = 0.05f;  // ... where s·Lr varies by more than this between neighbours
   int image_frame = -1;         // frame whose images are written; −1 = the first non-key frame
 };
 
@@ -30,7 +33,7 @@ struct TemporalReflectRun {
   TemporalReflectFlags temporal;
 };
 
-// --threshold --stretch-limit (--frames --frame-step --image-frame are the cluster group's,
+// --threshold --stretch-limit --spread-limit (--frames --frame-step --image-frame are the cluster group's,
 // copied into TemporalReflectFlags by cmd_reflect.cpp).
 void add_temporal_reflect_flags(CLI::App* app, TemporalReflectFlags& flags);
 

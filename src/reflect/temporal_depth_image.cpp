@@ -1,6 +1,7 @@
 // Reflection depth image (thesis ch. 5 §5.3) from a one-sample-per-pixel ReflectionFrame.
 #include "proxima/reflect/temporal_depth_image.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -21,6 +22,25 @@ vec3 key_reflected_point(const ReflectionDepthImage& key, int x, int y) {
   return pixel3(key.position, x, y) + key_mirror_direction(key, x, y) * key.distance.at(x, y);
 }
 
+float mirror_spread(const ReflectionDepthImage& key, int x, int y) {
+  const int w = key.object.width(), h = key.object.height();
+  const uint32_t object = key.object.at(x, y);
+  const vec3 e = key.camera.position;
+  const vec3 view = glm::normalize(pixel3(key.position, x, y) - e);
+  const vec3 mirror = key_mirror_direction(key, x, y);
+  constexpr int kStep[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
+  float spread = -1.0f;
+  for (const auto& d : kStep) {
+    const int nx = x + d[0], ny = y + d[1];
+    if (nx < 0 || ny < 0 || nx >= w || ny >= h || key.object.at(nx, ny) != object) continue;
+    // Angles from |a − b| of unit vectors (2 sin(θ/2)): accurate for the tiny pixel angles.
+    const float view_angle = glm::length(glm::normalize(pixel3(key.position, nx, ny) - e) - view);
+    const float mirror_angle = glm::length(key_mirror_direction(key, nx, ny) - mirror);
+    if (view_angle > 0.0f) spread = std::max(spread, mirror_angle / view_angle);
+  }
+  return spread < 0.0f ? kInf : spread;
+}
+
 ReflectionDepthImage make_reflection_depth_image(const ReflectionFrame& frame, const TracedReflections& traced,
                                                  float max_distance) {
   if (frame.supersample != 1) throw std::logic_error("reflection depth image: frame must have supersample 1");
@@ -35,6 +55,8 @@ ReflectionDepthImage make_reflection_depth_image(const ReflectionFrame& frame, c
   key.specular = ImageF(w, h, 1, 0.0f);
   key.radiance = ImageF(w, h, 3, 0.0f);
   key.distance = ImageF(w, h, 1, 0.0f);
+  key.spread = ImageF(w, h, 1, 0.0f);
+  key.lobe = ImageF(w, h, 1, 0.0f);
   key.reflective_pixels = frame.sample_count();
   const vec3 forward = camera_forward(frame.camera);
   for (size_t i = 0; i < frame.sample_count(); ++i) {
@@ -42,6 +64,7 @@ ReflectionDepthImage make_reflection_depth_image(const ReflectionFrame& frame, c
     key.object.at(x, y) = frame.reflector[i];
     key.depth.at(x, y) = glm::dot(frame.position[i] - frame.camera.position, forward);
     key.specular.at(x, y) = frame.specular[i];
+    key.lobe.at(x, y) = glossy_lobe_half_angle(frame.gloss[i]);
     for (int c = 0; c < 3; ++c) {
       key.position.at(x, y, c) = frame.position[i][c];
       key.normal.at(x, y, c) = frame.normal[i][c];
@@ -55,6 +78,10 @@ ReflectionDepthImage make_reflection_depth_image(const ReflectionFrame& frame, c
         ++finite;
       }
     key.distance.at(x, y) = finite ? std::min(float(sum / finite), max_distance) : max_distance;
+  }
+  for (size_t i = 0; i < frame.sample_count(); ++i) {
+    const int x = int(frame.pixel[i] % uint32_t(w)), y = int(frame.pixel[i] / uint32_t(w));
+    key.spread.at(x, y) = mirror_spread(key, x, y);
   }
   return key;
 }

@@ -82,6 +82,32 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
   auto valid = [&](int x, int y) {
     return key.object.at(x, y) != kNoReflector && offsets.valid[size_t(y) * size_t(w) + size_t(x)];
   };
+  // A glossy lobe averages over its cone: a reflector that bends the reflection by less
+  // than the lobe's half-angle per pixel does not change a pixel's value much.
+  const float pixel_angle = 1.0f / focal_length_px(key.camera);
+  auto contrast = [&](int x, int y) {
+    const uint32_t object = key.object.at(x, y);
+    constexpr int kStep[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
+    float most = 0.0f;
+    for (const auto& d : kStep) {
+      const int nx = x + d[0], ny = y + d[1];
+      if (nx < 0 || ny < 0 || nx >= w || ny >= h || key.object.at(nx, ny) != object) continue;
+      for (int c = 0; c < 3; ++c)
+        most = std::max(most, std::abs(key.specular.at(x, y) * key.radiance.at(x, y, c) -
+                                       key.specular.at(nx, ny) * key.radiance.at(nx, ny, c)));
+    }
+    return most;
+  };
+  std::vector<uint8_t> is_flat(size_t(w) * size_t(h), 1);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (key.object.at(x, y) == kNoReflector) continue;
+      const float spread = key.spread.at(x, y);
+      is_flat[size_t(y) * size_t(w) + size_t(x)] = spread <= options.spread_limit ||
+                                                   spread * pixel_angle <= key.lobe.at(x, y) ||
+                                                   contrast(x, y) <= options.curved_contrast;
+    }
+  auto flat = [&](int x, int y) { return is_flat[size_t(y) * size_t(w) + size_t(x)] != 0; };
   const float jump = 1.0f + options.depth_discontinuity;
   auto continuous = [&](std::array<float, 3> v) {
     const auto [lo, hi] = std::minmax({v[0], v[1], v[2]});
@@ -92,7 +118,7 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
   // Bin each into the row bands its bounding box touches (sequential: a fixed order).
   struct Tri {
     uint32_t id;
-    bool reliable;
+    uint8_t state;  // WarpState its pixels get
   };
   const int bands = (h + kBandRows - 1) / kBandRows;
   std::vector<std::vector<Tri>> band_tris(size_t(std::max(bands, 1)));
@@ -112,15 +138,18 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
         }
         ++out.triangles;
         const float area = 0.5f * std::abs(cross2(b.p - a.p, c.p - a.p));
-        const bool reliable = area <= options.stretch_limit * 0.5f;  // original area: ½ pixel²
-        if (!reliable) ++out.stretched;
+        const bool stretched = !(area <= options.stretch_limit * 0.5f);  // original area: ½ pixel²
+        const bool curved = !flat(cx[0], cy[0]) || !flat(cx[1], cy[1]) || !flat(cx[2], cy[2]);
+        const uint8_t state = curved ? kWarpCurved : stretched ? kWarpUnreliable : kWarpReliable;
+        out.stretched += stretched;
+        out.curved += curved;
         const float ymin = std::min({a.p.y, b.p.y, c.p.y}), ymax = std::max({a.p.y, b.p.y, c.p.y});
         const int r0 = std::max(0, int(std::ceil(ymin - 0.5f - kEdgeSlack)));
         const int r1 = std::min(h - 1, int(std::floor(ymax - 0.5f + kEdgeSlack)));
         if (r0 > r1) continue;
         const uint32_t id = 2u * (uint32_t(y) * uint32_t(w) + uint32_t(x)) + uint32_t(half);
         for (int band = r0 / kBandRows; band <= r1 / kBandRows; ++band)
-          band_tris[size_t(band)].push_back({id, reliable});
+          band_tris[size_t(band)].push_back({id, state});
       }
 
   parallel_for(size_t(bands), 1, [&](size_t first, size_t last) {
@@ -131,6 +160,7 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
         const int qx = int(quad % uint32_t(w)), qy = int(quad / uint32_t(w));
         Vertex v[3];
         for (int k = 0; k < 3; ++k) v[k] = vertex(qx + kCorner[half][k][0], qy + kCorner[half][k][1]);
+        const uint32_t object = key.object.at(qx, qy);
         const float area2 = cross2(v[1].p - v[0].p, v[2].p - v[0].p);
         if (std::abs(area2) < 1e-12f) continue;  // collapsed: covers no pixel centre
         const float ymin = std::min({v[0].p.y, v[1].p.y, v[2].p.y}), ymax = std::max({v[0].p.y, v[1].p.y, v[2].p.y});
@@ -142,6 +172,10 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
         const float slack = kEdgeSlack * std::sqrt(std::abs(area2));  // in edge-function units
         for (int py = py0; py <= py1; ++py)
           for (int px = px0; px <= px1; ++px) {
+            // Offsets stay on their reflector, so a pixel only takes its own reflector's
+            // triangles: another's (a floor mirror warped over a ball standing on it) would
+            // win the depth test there with the wrong reflection.
+            if (key.object.at(px, py) != object) continue;
             const vec2 p(float(px) + 0.5f, float(py) + 0.5f);
             // Barycentrics from edge functions, signed by the triangle's orientation.
             float e0 = cross2(v[2].p - v[1].p, p - v[1].p), e1 = cross2(v[0].p - v[2].p, p - v[2].p),
@@ -156,7 +190,7 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
             out.depth.at(px, py) = z;
             const vec3 lr = (b0 * v[0].lr + b1 * v[1].lr + b2 * v[2].lr) / sum;
             for (int c = 0; c < 3; ++c) out.radiance.at(px, py, c) = lr[c];
-            out.state.at(px, py) = t.reliable ? kWarpReliable : kWarpUnreliable;
+            out.state.at(px, py) = t.state;
             out.triangle.at(px, py) = t.id;
           }
       }
@@ -169,10 +203,12 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
       if (!valid(x, y)) continue;
       const Vertex v = vertex(x, y);
       const int px = int(std::floor(v.p.x)), py = int(std::floor(v.p.y));
-      if (px < 0 || py < 0 || px >= w || py >= h || out.state.at(px, py) != kWarpEmpty) continue;
+      if (px < 0 || py < 0 || px >= w || py >= h || out.state.at(px, py) != kWarpEmpty ||
+          key.object.at(px, py) != key.object.at(x, y))
+        continue;
       out.depth.at(px, py) = v.z;
       for (int c = 0; c < 3; ++c) out.radiance.at(px, py, c) = v.lr[c];
-      out.state.at(px, py) = kWarpReliable;
+      out.state.at(px, py) = flat(x, y) ? kWarpReliable : kWarpCurved;
     }
   return out;
 }

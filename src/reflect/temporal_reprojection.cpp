@@ -43,7 +43,7 @@ Reprojection reproject_reflections(const ReflectionFrame& frame, const Reflectio
         continue;
       }
       if (!reliable(nx, ny)) {
-        out.flag[i] = kReuseUnreliable;
+        out.flag[i] = uint8_t(kReuseUnreliable | (state->at(nx, ny) == kWarpCurved ? kReuseCurved : 0));
         continue;
       }
       if (mesh && warped_radiance_at(*mesh, q, out.radiance[i])) continue;
@@ -72,6 +72,7 @@ Reprojection reproject_reflections(const ReflectionFrame& frame, const Reflectio
   for (uint8_t f : out.flag) {
     out.disoccluded += (f & kReuseDisoccluded) != 0;
     out.unreliable += (f & kReuseUnreliable) != 0;
+    out.curved += (f & kReuseCurved) != 0;
   }
   return out;
 }

@@ -85,6 +85,7 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
     st.reproject_ms = watch.elapsed_ms();
     st.disoccluded = r.disoccluded;
     st.unreliable = r.unreliable;
+    st.curved = r.curved;
     st.recomputed = r.recompute();
     watch.restart();
     recompute(scene, rays, frame, r);
@@ -92,7 +93,7 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
     state.previous = std::move(offsets);
     ++state.frames_since_key;
     // §5.4.4: too much recomputed → the next frame refreshes the key frame.
-    state.need_key = st.recompute_fraction() > double(options.keyframe_threshold);
+    state.need_key = st.stale_fraction() > double(options.keyframe_threshold);
     radiance = std::move(r.radiance);
     if (flags) *flags = std::move(r.flag);
   }

@@ -39,6 +39,8 @@ TEST(TemporalCli, BadInputIsExitCodeTwoAndWritesNothing) {
                                   base + "--path nope --out " + out.string(),
                                   base + "--path 0 --threshold 1.5 --out " + out.string(),
                                   base + "--path 0 --stretch-limit 0.5 --out " + out.string(),
+                                  base + "--path 0 --spread-limit 0.5 --out " + out.string(),
+                                  base + "--path 0 --curved-contrast -1 --out " + out.string(),
                                   base + "--path 0 --frames -1 --out " + out.string(),
                                   base + "--path 0 --frame-step 0 --out " + out.string(),
                                   base + "--path 0 --glossy-rays 5000 --out " + out.string(),

@@ -223,4 +223,73 @@ TEST(TemporalReflections, KeyFramePolicyFollowsTheThreshold) {
   EXPECT_TRUE(st.key);
 }
 
+// A chrome ball (radius 0.25 m, 0.9 m above the floor mirror): its pixels minify the room,
+// so a sub-pixel shift changes what they show; the warp must mark them unreliable (they
+// are recomputed), while the planar floor mirror around it stays reliable.
+TEST(TemporalReflections, CurvedMirrorPixelsAreUnreliablePlanarOnesAreNot) {
+  Scene scene = floor_mirror(false);
+  Mesh ball = make_sphere(0.25f, 48, 24);
+  for (vec3& p : ball.positions) p += vec3(0.0f, 0.9f, 0.0f);
+  const uint32_t ball_id = add_object(scene, ball, "ball", add_diffuse(scene, vec3(0.5f), 1.0f));
+  const uint32_t floor_id = 0;
+  ASSERT_EQ(scene.objects[floor_id].name, "mirror");
+  RayScene rays(scene);
+  const ReflectionFrame frame0 = frame_at(scene, kKeyEye);
+  const ReflectionDepthImage key = make_reflection_depth_image(frame0, trace_reflections(scene, rays, frame0), 1e3f);
+  // The measure itself: ≈ 1 on the plane (an isometry of directions), ≫ 1 on the ball
+  // (about 1 + 2D/a ≈ 25 at D ≈ 3 m, a = 0.25 m).
+  size_t plane = 0, plane_flat = 0, ball_px = 0, ball_curved = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const uint32_t o = key.object.at(x, y);
+      if (o == floor_id) {
+        ++plane;
+        plane_flat += key.spread.at(x, y) < 1.01f;
+      } else if (o == ball_id) {
+        ++ball_px;
+        ball_curved += key.spread.at(x, y) > 8.0f;
+      }
+    }
+  ASSERT_GT(plane, 2000u);
+  ASSERT_GT(ball_px, 50u);
+  EXPECT_EQ(plane_flat, plane);
+  EXPECT_GE(double(ball_curved), 0.9 * double(ball_px)) << ball_curved << " of " << ball_px;
+
+  // A new camera: the ball's reused samples are flagged unreliable, the plane's mostly not.
+  const ReflectionFrame frame1 = frame_at(scene, kKeyEye + kMove);
+  const OffsetBuffer offsets = best_match_search(key, frame1.camera.position, nullptr, {});
+  WarpOptions on;
+  on.spread_limit = 8.0f;
+  on.curved_contrast = -1.0f;  // every curved pixel, even where it shows a uniform background
+  const IntermediateReflection mid = warp_reflections(key, offsets, on);
+  EXPECT_GT(mid.curved, 0u);
+  const WarpedMesh mesh{&key, &offsets, &mid};
+  const Reprojection r = reproject_reflections(frame1, key, mid.radiance, &mid.state, {}, &mesh);
+  size_t ball1 = 0, ball_ok = 0, plane1 = 0, plane_unreliable = 0;
+  for (size_t i = 0; i < frame1.sample_count(); ++i) {
+    if (frame1.reflector[i] == ball_id) {
+      ++ball1;
+      ball_ok += r.flag[i] == kReuseOk;
+    } else if (frame1.reflector[i] == floor_id) {
+      ++plane1;
+      plane_unreliable += (r.flag[i] & kReuseUnreliable) != 0;
+      EXPECT_EQ(r.flag[i] & kReuseCurved, 0) << i;
+    }
+  }
+  ASSERT_GT(ball1, 50u);
+  EXPECT_EQ(ball_ok, 0u);
+  EXPECT_GT(r.curved, ball1 / 2);  // the rest: disoccluded, or an empty warp there
+  EXPECT_LT(double(plane_unreliable), 0.1 * double(plane1)) << plane_unreliable << " of " << plane1;
+
+  // With the rule off (the default) the same ball pixels would be reused.
+  const WarpOptions off;
+  const IntermediateReflection mid_off = warp_reflections(key, offsets, off);
+  EXPECT_EQ(mid_off.curved, 0u);
+  const WarpedMesh mesh_off{&key, &offsets, &mid_off};
+  const Reprojection r_off = reproject_reflections(frame1, key, mid_off.radiance, &mid_off.state, {}, &mesh_off);
+  size_t ball_ok_off = 0;
+  for (size_t i = 0; i < frame1.sample_count(); ++i) ball_ok_off += frame1.reflector[i] == ball_id && r_off.flag[i] == kReuseOk;
+  EXPECT_GT(ball_ok_off, ball1 / 4);
+}
+
 }  // namespace proxima

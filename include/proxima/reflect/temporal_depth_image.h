@@ -26,6 +26,8 @@ struct ReflectionDepthImage {
   ImageF specular;    // s.f: the material's s (proxima's blend weight, docs/temporal.md)
   ImageF radiance;    // s.Lr, mean over the sample's reflection rays (3 channels)
   ImageF distance;    // s.r, clamped to max_distance for rays that escape
+  ImageF spread;      // how strongly the reflector bends the reflection here (mirror_spread)
+  ImageF lobe;        // glossy lobe half-angle (radians), 0 on mirrors
   size_t reflective_pixels = 0;
 };
 
@@ -34,6 +36,13 @@ vec3 key_mirror_direction(const ReflectionDepthImage& key, int x, int y);
 
 // Reflected point R = W + reflect(W − E_old, s.n)·s.r (eq. 8).
 vec3 key_reflected_point(const ReflectionDepthImage& key, int x, int y);
+
+// Angle between the mirror directions of neighbouring key pixels over the angle between
+// their view rays, the largest over the 4-neighbours on the same reflector; +inf when there
+// is none. 1 on a planar mirror (reflection is an isometry of directions); about 1 + 2D/a
+// on a convex mirror of radius a seen from distance D: it minifies the reflected scene by
+// this factor, so a sub-pixel shift of the reflector changes what a pixel shows.
+float mirror_spread(const ReflectionDepthImage& key, int x, int y);
 
 // `frame` must be prepared at supersample 1 (std::logic_error otherwise); `traced` is
 // trace_reflections of that frame. s.r is the mean finite hit distance over the sample's

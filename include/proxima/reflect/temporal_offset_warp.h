@@ -3,7 +3,9 @@
 // moved by its best-match offset, into an intermediate image on the key frame's pixel grid.
 // Vertices carry s.Lr; the depth test uses s.d + s.r so the nearer reflected surface wins
 // where warped reflections overlap. Triangles stretched by more than `stretch_limit` in area
-// are drawn but mark their pixels unreliable; triangles across a depth discontinuity (or
+// are drawn but mark their pixels unreliable, and so are triangles on a strongly curved
+// reflector (a corner's mirror_spread above `spread_limit`: there the reflector minifies the
+// scene so much that a sub-pixel shift changes what a pixel shows, which no reuse predicts); triangles across a depth discontinuity (or
 // with an INVALID corner) are not drawn, so the gaps they leave stay empty. Empty and
 // unreliable pixels are recomputed by the ray tracer. Valid samples that no triangle
 // covers are splatted as points onto the nearest pixel, if it is still empty.
@@ -17,12 +19,22 @@
 
 namespace proxima {
 
-enum WarpState : uint8_t { kWarpEmpty = 0, kWarpReliable = 1, kWarpUnreliable = 2 };
+// kWarpCurved: unreliable because the reflector is strongly curved there (spread_limit),
+// which a new key frame would not change.
+enum WarpState : uint8_t { kWarpEmpty = 0, kWarpReliable = 1, kWarpUnreliable = 2, kWarpCurved = 3 };
 
 struct WarpOptions {
   float stretch_limit = 16.0f;        // warped / original triangle area above this → unreliable
   float depth_discontinuity = 0.1f;   // corners whose s.d or s.d + s.r differ by more than this
                                       // fraction (max/min − 1) are not connected
+  float spread_limit = kInf;          // off by default (docs/temporal.md); triangles with a corner whose mirror_spread exceeds this
+                                      // (strongly curved reflector) are unreliable, unless the
+                                      // corner's glossy lobe is wider than the reflected angle
+                                      // one key pixel spans (spread / focal px); inf = off
+  float curved_contrast = 0.05f;      // ... and only where s·Lr differs from a 4-neighbour's on
+                                      // the same reflector by more than this (linear, any channel):
+                                      // a curved mirror showing a smooth wall is safe to reuse;
+                                      // negative: every curved pixel
 };
 
 inline constexpr uint32_t kNoWarpTriangle = 0xFFFFFFFFu;
@@ -32,7 +44,7 @@ struct IntermediateReflection {
   ImageF depth;       // its interpolated s.d + s.r, +inf where empty
   ImageU8 state;      // WarpState
   ImageU32 triangle;  // that triangle: 2·(y·width + x) + half of its grid quad, or kNoWarpTriangle
-  uint64_t triangles = 0, stretched = 0, discontinuous = 0;
+  uint64_t triangles = 0, stretched = 0, curved = 0, discontinuous = 0;
 };
 
 // Deterministic for any thread count (fixed row bands, triangles in a fixed order per band).

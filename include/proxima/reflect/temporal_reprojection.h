@@ -24,6 +24,7 @@ enum ReuseFlag : uint8_t {
   kReuseOk = 0,
   kReuseDisoccluded = 1u << 0,  // no key pixel of the same reflector at this depth
   kReuseUnreliable = 1u << 1,   // the image is empty or unreliable there
+  kReuseCurved = 1u << 2,       // with kReuseUnreliable: on a strongly curved reflector (kWarpCurved)
 };
 
 struct ReprojectOptions {
@@ -33,7 +34,7 @@ struct ReprojectOptions {
 struct Reprojection {
   std::vector<vec3> radiance;  // per sample of the frame; 0 where flagged
   std::vector<uint8_t> flag;   // ReuseFlag bits
-  uint64_t disoccluded = 0, unreliable = 0;
+  uint64_t disoccluded = 0, unreliable = 0, curved = 0;  // curved ⊂ unreliable
   uint64_t recompute() const { return disoccluded + unreliable; }
 };
 
