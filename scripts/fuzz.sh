@@ -4,7 +4,8 @@
 # winged_pair, results), or
 # `all` to run each in turn. Builds build/fuzz (clang, ASan + UBSan + libFuzzer) and the
 # seeds (scripts/fuzz_seeds.sh) when needed; the corpus grows in build/fuzz/corpus/TARGET,
-# crashes land in build/fuzz/artifacts/TARGET/. Exits non-zero on any finding (crash, leak,
+# crashes land in build/fuzz/artifacts/TARGET/; fuzz/regressions/TARGET/ (inputs of fixed
+# findings) is replayed as part of the corpus. Exits non-zero on any finding (crash, leak,
 # sanitizer report, timeout, out-of-memory) and prints the execution count.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -39,12 +40,15 @@ mkdir -p "$corpus" "$artifacts"
 dict=()
 case $target in scene_file | camera_path) dict=(-dict=fuzz/scene.dict) ;; results | winged_pair) dict=(-dict=fuzz/$target.dict) ;; gltf) dict=(-dict=fuzz/gltf.dict) ;; esac
 
+# Inputs of fixed findings (fuzz/regressions/TARGET/, read-only: new units go to $corpus).
+regressions=()
+[ -d "fuzz/regressions/$target" ] && regressions=("fuzz/regressions/$target")
 log=$build/$target.log
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/fuzz/lsan.supp}
 set +e
 begin=$SECONDS
 "$build/${target}_fuzz" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
-  -artifact_prefix="$artifacts" "${dict[@]}" "$@" "$corpus" "$seeds/$target" >"$log" 2>&1
+  -artifact_prefix="$artifacts" "${dict[@]}" "$@" "$corpus" "$seeds/$target" "${regressions[@]}" >"$log" 2>&1
 status=$?
 set -e
 execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)

@@ -39,6 +39,7 @@
 #include "proxima/core/error.h"
 #include "proxima/core/image_io.h"
 #include "proxima/core/limits.h"
+#include "proxima/scene/ply_check.h"
 
 // Debian's assimp 5.2 is built with its internal assertions on, and a failed one calls
 // abort() — e.g. TriangulateProcess on a malformed PLY face list (found by ply_fuzz). This
@@ -311,175 +312,6 @@ Scene import_mesh_file(const fs::path& path) { return import_assimp(path); }
 
 namespace {
 
-struct PlyProperty {
-  bool list;
-  int bytes;  // binary size of the scalar, or of the list's count
-};
-struct PlyElement {
-  std::string name;
-  uint64_t count;
-  std::vector<PlyProperty> properties;
-};
-
-// assimp's PLY reader allocates what the file declares before reading it: `new
-// aiVector3D[count]` per element count, and a list's entries per count read from the body
-// (an ASCII face list counting 3111…1 entries, wrapped to 3,340,530,119, in a 300-byte file: 26.7 GB;
-// found by ply_fuzz). So the declared counts must fit in the bytes after `end_header`
-// (ASCII: at least "0 " per value; binary: the scalar and list-count sizes), and every
-// ASCII list count in its line.
-void check_ply_body(const fs::path& path, const std::vector<PlyElement>& elements, bool ascii, size_t body_offset) {
-  const std::string file = path.string();
-  std::error_code ec;
-  const uintmax_t size = fs::file_size(path, ec);
-  const uint64_t body = ec || size < body_offset ? 0 : uint64_t(size - body_offset);
-  const uint64_t room = body + (ascii ? 1 : 0);  // the last ASCII line may lack its newline
-  uint64_t needed = 0;
-  for (const PlyElement& e : elements) {
-    uint64_t per = 0;
-    for (const PlyProperty& p : e.properties) per += ascii ? 2 : uint64_t(p.bytes);
-    per = std::max<uint64_t>(per, 1);
-    if (e.count > room / per || needed > room - e.count * per)
-      fail_input(file + ": PLY header declares " + std::to_string(e.count) + " '" + e.name + "' elements, more than the " +
-                 std::to_string(body) + " bytes after end_header can hold");
-    needed += e.count * per;
-  }
-  if (!ascii) return;
-  // One line per element instance, as assimp reads them: a line ends at '\n' and is cut at
-  // '\0', '\r' or '\f'; a last line without '\n' is never delivered, and once the body is
-  // used up every further instance re-reads the last line (ply_fuzz: a face list count in
-  // the last full line, re-read as each missing face, 19 GB). Each list count is checked
-  // against its line's length; lines that do not parse as the header says are left to
-  // assimp to reject.
-  std::ifstream in(path, std::ios::binary);
-  in.seekg(std::streamoff(body_offset));
-  std::string line;
-  uint64_t number = 0;
-  bool exhausted = false;
-  for (const PlyElement& e : elements) {
-    const bool has_list = std::any_of(e.properties.begin(), e.properties.end(), [](const PlyProperty& p) { return p.list; });
-    for (uint64_t i = 0; i < e.count; ++i) {
-      if (!exhausted) {
-        std::string next;
-        if (std::getline(in, next) && !in.eof()) {
-          line = next.substr(0, next.find_first_of(std::string("\0\r\f", 3)));
-          ++number;
-        } else {
-          exhausted = true;
-        }
-      }
-      if (!has_list) continue;
-      if (exhausted && i > 0) break;  // the same last line again: checked once per element
-      size_t at = 0;  // a plain tokenizer: this runs over every face line of large files
-      auto next_word = [&](std::string_view& word) {
-        at = line.find_first_not_of(" \t\r", at);
-        if (at == std::string::npos) return false;
-        const size_t end = std::min(line.find_first_of(" \t\r", at), line.size());
-        word = std::string_view(line).substr(at, end - at);
-        at = end;
-        return true;
-      };
-      std::string_view word;
-      for (const PlyProperty& p : e.properties) {
-        if (!next_word(word)) break;
-        if (!p.list) continue;
-        uint64_t n = 0;
-        const auto [end, err] = std::from_chars(word.data(), word.data() + word.size(), n);
-        if (err == std::errc::result_out_of_range || (err == std::errc() && n > line.size()))
-          fail_input(file + ": PLY body line " + std::to_string(number) + " has a list of " +
-                     std::string(word.substr(0, 20)) + " entries, longer than the line");
-        if (err != std::errc()) break;
-        for (uint64_t k = 0; k < n && next_word(word); ++k) {
-        }
-      }
-    }
-  }
-}
-
-// assimp 5.2's PLY reader loops forever on some malformed headers (no `end_header`, NUL
-// bytes in a line; found by ply_fuzz), so a PLY file (recognized by its magic in any case,
-// as assimp does) must have a well-formed header before assimp sees it: printable ASCII lines, each
-// starting with a PLY keyword, ending at `end_header` within the first 64 KiB.
-void check_ply_header(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string head(64 * 1024, '\0');
-  in.read(head.data(), std::streamsize(head.size()));
-  head.resize(size_t(in.gcount()));
-  std::string magic = head.substr(0, 3);
-  for (char& c : magic) c = char(std::tolower(static_cast<unsigned char>(c)));  // assimp ignores case
-  std::string ext = path.extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (magic != "ply" && ext != ".ply") return;
-  auto fail = [&](const std::string& why) { fail_input(path.string() + ": PLY header " + why); };
-  // A `.ply` must start with the magic line (assimp looped forever reading a file that
-  // began with an empty line and a garbled format; found by ply_fuzz), and name one of
-  // the three formats.
-  if (magic != "ply" || (head.size() > 3 && head[3] != '\n' && head[3] != '\r'))
-    fail("does not start with the line 'ply'");
-  bool format = false, ascii = false;
-  std::vector<PlyElement> elements;
-  size_t pos = 0;
-  for (int number = 1;; ++number) {
-    const size_t eol = head.find('\n', pos);
-    if (eol == std::string::npos) fail("has no end_header in its first 64 KiB");
-    std::string line = head.substr(pos, eol - pos);
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    for (char c : line)
-      if (!(c == '\t' || (c >= ' ' && c <= '~'))) fail("line " + std::to_string(number) + " is not ASCII text");
-    if (number == 1) {  // the magic, checked above (assimp accepts it in any case)
-      pos = eol + 1;
-      continue;
-    }
-    // Keywords are matched exactly, as assimp's parser does: it missed `end_headeR`, read
-    // the binary body as header and crashed (SEGV; found by ply_fuzz).
-    const std::string keyword = line.substr(0, line.find_first_of(" \t"));
-    if (keyword == "end_header") {
-      if (!format) fail("has no valid format line (ascii, binary_little_endian or binary_big_endian 1.0)");
-      check_ply_body(path, elements, ascii, eol + 1);
-      return;
-    }
-    if (keyword == "format") {
-      std::istringstream words(line);
-      std::string kw, kind, version, extra;
-      words >> kw >> kind >> version;
-      if (!(kind == "ascii" || kind == "binary_little_endian" || kind == "binary_big_endian") || version != "1.0" ||
-          (words >> extra))
-        fail("has an unknown format line '" + line.substr(0, 40) + "'");
-      format = true;
-      ascii = kind == "ascii";
-    }
-    if (keyword == "property") {
-      // `property TYPE NAME` or `property list TYPE TYPE NAME`: assimp took `property float(y`
-      // and crashed in post-processing (BUS; found by ply_fuzz).
-      static const std::map<std::string, int> kTypes = {
-          {"char", 1},   {"uchar", 1},  {"int8", 1},   {"uint8", 1},   {"short", 2},   {"ushort", 2},
-          {"int16", 2},  {"uint16", 2}, {"int", 4},    {"uint", 4},    {"int32", 4},   {"uint32", 4},
-          {"float", 4},  {"float32", 4}, {"double", 8}, {"float64", 8}};
-      std::istringstream words(line);
-      std::vector<std::string> w;
-      for (std::string x; words >> x;) w.push_back(x);
-      const bool scalar = w.size() == 3 && kTypes.count(w[1]);
-      const bool list = w.size() == 5 && w[1] == "list" && kTypes.count(w[2]) && kTypes.count(w[3]);
-      if (!scalar && !list) fail("has a malformed property line '" + line.substr(0, 40) + "'");
-      if (elements.empty()) fail("has a property line before any element line");
-      // Binary: a scalar's size, or a list's count size (its entries come on top).
-      elements.back().properties.push_back({list, kTypes.at(list ? w[2] : w[1])});
-    }
-    if (keyword == "element") {
-      std::istringstream words(line);
-      std::string kw, name, count, extra;
-      words >> kw >> name >> count;
-      uint64_t n = 0;
-      const auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), n);
-      if (name.empty() || ec != std::errc() || end != count.data() + count.size() || (words >> extra))
-        fail("has a malformed element line '" + line.substr(0, 40) + "'");
-      elements.push_back({name, n, {}});
-    }
-    static const std::set<std::string> kKeywords = {"ply", "format", "element", "property", "comment", "obj_info"};
-    if (!kKeywords.count(keyword)) fail("has an unknown line '" + line.substr(0, 40) + "'");
-    pos = eol + 1;
-  }
-}
-
 // The importers proxima is tested and fuzzed with (OBJ, PLY, glTF 2.0); assimp's other ~45
 // (FBX, Collada, 3DS, …) would be reached by content sniffing even for a `.obj` file that
 // OBJ's reader declines, and are neither tested nor fuzzed here.
@@ -622,6 +454,9 @@ void check_imported_meshes(const std::string& file, const aiScene& ai) {
       const aiFace& face = mesh->mFaces[f];
       if (face.mNumIndices == 0 || face.mIndices == nullptr)
         fail_input(where + ": face " + std::to_string(f) + " has no vertex indices");
+      if (face.mNumIndices > unsigned(kMaxFaceVertices))  // before Triangulate's ear clipping
+        fail_input(where + ": face " + std::to_string(f) + " has " + std::to_string(face.mNumIndices) +
+                   " vertices, more than " + std::to_string(kMaxFaceVertices));
       for (unsigned k = 0; k < face.mNumIndices; ++k)
         if (face.mIndices[k] >= mesh->mNumVertices)
           fail_input(where + ": face " + std::to_string(f) + " refers to vertex " + std::to_string(face.mIndices[k]) +
@@ -640,7 +475,7 @@ Scene import_assimp(const fs::path& path) {
   if (!fs::is_regular_file(path, ec)) fail_input(file + ": not a regular file");
 
   check_extension(path);
-  check_ply_header(path);
+  check_ply_file(path);
   check_json_nesting(path);
   Assimp::Importer importer;
   keep_tested_importers(importer);

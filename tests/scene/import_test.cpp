@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
 #include <fstream>
+#include <vector>
 #include <string>
 
 #include "proxima/core/error.h"
@@ -370,7 +373,8 @@ TEST(ImportTest, PlyTrippingAnAssimpAssertionIsAnError) {
              "element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
              "3 0 1 2\nat x\nproperty float y\np3 0 2 3\n");
   const std::string msg = error_of([&] { import_mesh_file(dir.path / "garbled.ply"); });
-  EXPECT_NE(msg.find("garbled.ply: mesh 0: face 1 has no vertex indices"), std::string::npos) << msg;
+  // robust4: the body is now checked against the header before assimp reads it.
+  EXPECT_NE(msg.find("garbled.ply: PLY body line 6 has 'at' where an integer"), std::string::npos) << msg;
 }
 
 // Regression (ply_fuzz, issue 13, robust2): assimp's PLY reader looped forever (fread in a
@@ -430,12 +434,19 @@ TEST(ImportTest, PlyCountsLargerThanTheFileAreRefusedBeforeAllocating) {
   write_file(dir.path / "list.ply",
              header + "0 0 0\n1 0 0\n1  10\n0 1 0\n3" + std::string(67, '1') + " 0 1 2\n3 0 1 2\n");
   std::string msg = error_of([&] { import_mesh_file(dir.path / "list.ply"); });
-  EXPECT_NE(msg.find("list.ply: PLY body line 5 has a list of 31111111111111111111 entries, longer than the line"),
+  // robust4: the body walk stops at the first line that does not match the header.
+  EXPECT_NE(msg.find("list.ply: PLY body line 3 has fewer values than its 'vertex' element declares"), std::string::npos)
+      << msg;
+  write_file(dir.path / "list5.ply", header + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3" + std::string(67, '1') + " 0 1 2\n3 0 1 2\n");
+  msg = error_of([&] { import_mesh_file(dir.path / "list5.ply"); });
+  EXPECT_NE(msg.find("list5.ply: PLY body line 5 has '31111111111111111111' where an integer in the range of its type"),
             std::string::npos)
       << msg;
   write_file(dir.path / "long.ply", header + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4000000000 0 1 2\n3 0 1 2\n");
   msg = error_of([&] { import_mesh_file(dir.path / "long.ply"); });
-  EXPECT_NE(msg.find("long.ply: PLY body line 5 has a list of 4000000000 entries"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("long.ply: PLY body line 5 has '4000000000' where an integer in the range of its type"),
+            std::string::npos)
+      << msg;
   // assimp re-reads the last full line for every instance the body lacks (the last line has
   // no newline, so it is not delivered): the faces all read the `2222…` line (ply_fuzz: 19 GB).
   write_file(dir.path / "reread.ply",
@@ -443,7 +454,8 @@ TEST(ImportTest, PlyCountsLargerThanTheFileAreRefusedBeforeAllocating) {
              "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 mw1St5ctypeIcE3 0 1 2\n" +
                  std::string(120, '2') + " 0 2 3\n" + std::string(56, ' '));
   msg = error_of([&] { import_mesh_file(dir.path / "reread.ply"); });
-  EXPECT_NE(msg.find("reread.ply: PLY body line 3 has a list of 22222222222222222222 entries"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("reread.ply: PLY body line 1 has more values than its 'vertex' element declares"), std::string::npos)
+      << msg;
   // Element counts against the file size, ASCII and binary (12 bytes per float vertex).
   std::string many = header;
   many.replace(many.find("vertex 4"), 8, "vertex 2000000000");
@@ -480,7 +492,173 @@ TEST(ImportTest, PlyFacesWithoutIndicesAreAnErrorNotAPostProcessingCrash) {
                  quad_ply_header(4).substr(quad_ply_header(4).find("element face")) +
                  "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n2 0 0 2 3\n");
   const std::string msg = error_of([&] { import_mesh_file(dir.path / "empty_faces.ply"); });
-  EXPECT_NE(msg.find("empty_faces.ply: mesh 0: face 2 has no vertex indices"), std::string::npos) << msg;
+  // robust4: now refused by the body walk, before assimp reads the file; the check after
+  // assimp's read stays as a net.
+  EXPECT_NE(msg.find("empty_faces.ply: PLY body line 4 has more values than its 'vertex' element declares"),
+            std::string::npos)
+      << msg;
+}
+
+// A binary PLY of `vertices` float vertices (0, 0, 0), (1, 0, 0), … and faces given as
+// raw bytes (each a count and indices, in the header's list types).
+std::string binary_ply(const std::string& format, int vertices, int faces, const std::string& list_types,
+                       const std::string& face_bytes) {
+  std::string ply = "ply\nformat " + format + " 1.0\nelement vertex " + std::to_string(vertices) +
+                    "\nproperty float x\nproperty float y\nproperty float z\nelement face " + std::to_string(faces) +
+                    "\nproperty list " + list_types + " vertex_indices\nend_header\n";
+  const bool big = format == "binary_big_endian";
+  for (int v = 0; v < vertices; ++v)
+    for (int axis = 0; axis < 3; ++axis) {
+      const float f = axis == 0 ? float(v % 2) : axis == 1 ? float(v / 2) : 0.0f;
+      uint32_t u = 0;
+      std::memcpy(&u, &f, 4);
+      for (int b = 0; b < 4; ++b) ply += char(uint8_t(u >> (big ? 8 * (3 - b) : 8 * b)));
+    }
+  return ply + face_bytes;
+}
+std::string le32(int32_t v) {
+  std::string s;
+  for (int b = 0; b < 4; ++b) s += char(uint8_t(uint32_t(v) >> (8 * b)));
+  return s;
+}
+
+// Regression (ply_fuzz, issue 13, robust3 → robust4: fuzz/open/ply-oom-8250f791.ply): out
+// of memory in assimp's PLY reader (1.3 GB, then 2.6 GB). assimp parses the count of an
+// element it does not know (`element ~ertex 4`) from the name itself, i.e. 0, so the
+// first vertex line `777…770 0 0` became the first face and its first number the face's
+// list count, 164,043,882 after wrapping; assimp reserved that many 8-byte values, then
+// doubled them. proxima's count walk had read the lines as the header declares them.
+// Now elements assimp does not read must come after the ones it reads, and the body is
+// checked value by value against the header before assimp opens the file.
+TEST(ImportTest, PlyUnknownElementBeforeTheGeometryIsRefusedNotMisreadAsAHugeList) {
+  TempDir dir;
+  // The input as found (294 bytes).
+  const std::string found =
+      std::string("ply\nformat ascii 1.0\nelement ~ertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                  "element face 8\nproperty list uchar int vertex_indice:\nend_header\n777777777777777777777777770 0 0\n"
+                  "1 0 0\n1 1 0\n0 1 0\n3 0 element face 8\nproper") +
+      std::string(10, '\0') + " 3\n" + std::string(15, '\x99') + "_indice:\nend_" + std::string(11, '\0') + "0\n1" +
+      "\x89\x99\x89" + std::string(7, '\x99');
+  ASSERT_EQ(found.size(), 294u);
+  write_file(dir.path / "ply-oom-8250f791.ply", found);
+  std::string msg = error_of([&] { import_mesh_file(dir.path / "ply-oom-8250f791.ply"); });
+  EXPECT_NE(msg.find("ply-oom-8250f791.ply: PLY header has '~ertex' elements before the 'face' ones"), std::string::npos)
+      << msg;
+  // A well-formed file with an extra element: refused before the geometry (assimp would
+  // take the camera line for vertex 0), loaded after it.
+  const std::string camera = "element camera 1\nproperty float fov\n";
+  std::string before = quad_ply_header(2);
+  before.insert(before.find("element vertex"), camera);
+  write_file(dir.path / "before.ply", before + "45\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+  msg = error_of([&] { import_mesh_file(dir.path / "before.ply"); });
+  EXPECT_NE(msg.find("before.ply: PLY header has 'camera' elements before the 'vertex' ones"), std::string::npos) << msg;
+  std::string after = quad_ply_header(2);
+  after.insert(after.find("end_header"), camera);
+  write_file(dir.path / "after.ply", after + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n45\n");
+  EXPECT_EQ(import_mesh_file(dir.path / "after.ply").triangles.size(), 2u);
+  // A name starting with digits: assimp would read them as its count.
+  std::string digits = quad_ply_header(2);
+  digits.insert(digits.find("end_header"), "element 4294967295x 0\nproperty float a\n");
+  write_file(dir.path / "digits.ply", digits + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+  msg = error_of([&] { import_mesh_file(dir.path / "digits.ply"); });
+  EXPECT_NE(msg.find("digits.ply: PLY header has an element name starting with a digit"), std::string::npos) << msg;
+}
+
+// Review (issue 13, robust4): the ASCII body is read value by value as the header declares
+// it, so what assimp reads is what proxima checked (counts, list lengths, indices).
+TEST(ImportTest, PlyAsciiBodyNotMatchingItsHeaderIsRefused) {
+  TempDir dir;
+  const std::string header = quad_ply_header(2);
+  const std::string vertices = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {vertices + "3 0 1 2 7\n3 0 2 3\n", "PLY body line 5 has more values than its 'face' element declares"},
+      {vertices + "3 0 1\n3 0 2 3\n", "PLY body line 5 has fewer values than its 'face' element declares"},
+      {"0 0 0\n1 0 x\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n", "PLY body line 2 has 'x' where a number"},
+      {vertices + "300 0 1 2\n3 0 2 3\n", "PLY body line 5 has '300' where an integer in the range of its type"},
+      {vertices + "3 0 1 4\n3 0 2 3\n", "PLY body line 5 has vertex index 4 out of range (4 vertices)"},
+      {vertices + "3 0 -1 2\n3 0 2 3\n", "PLY body line 5 has vertex index -1 out of range"},
+      {vertices + "0\n3 0 2 3\n", "PLY body line 5 has a 'face' without vertex indices"},
+      {vertices + "3 0 1 2\n", "PLY body line 6 is missing: the header declares 2 'face' elements"},
+      {vertices + "3 0 1 2\n3 0 2 3\n0 0 0\n", "PLY body line 7 follows the last element"},
+      {vertices + "3 0 1 2\n\n3 0 2 3\n", "PLY body line 6 is empty"},
+      {vertices + "3 0 1 2\n3 0 2 3" + std::string(1, '\0') + "\n", "PLY body line 6 is not ASCII text"},
+  };
+  for (const auto& [body, expected] : cases) {
+    write_file(dir.path / "bad.ply", header + body);
+    const std::string msg = error_of([&] { import_mesh_file(dir.path / "bad.ply"); });
+    EXPECT_NE(msg.find("bad.ply: " + expected), std::string::npos) << msg;
+  }
+  // Signs, exponents, tabs, CR LF and trailing blank lines are fine.
+  write_file(dir.path / "good.ply", header + "-0.0 +0 0\n1e0 0 0\r\n1 1.0 0\n\t0 1 0E+0 \n3 0 1 2\n3 0 2 3\n\n \n");
+  EXPECT_EQ(import_mesh_file(dir.path / "good.ply").triangles.size(), 2u);
+}
+
+// Review (issue 13, robust4): binary list counts were read by assimp unchecked (a face
+// count of 2·10^9 int entries would reserve 16 GB). Each count is now read before assimp
+// runs: non-negative, within the bytes left, a face at most kMaxFaceVertices long, and
+// its indices in range.
+TEST(ImportTest, PlyBinaryListCountsAreCheckedBeforeAssimpReads) {
+  TempDir dir;
+  auto face = [](int n, std::vector<int> indices) {
+    std::string s = le32(n);
+    for (int i : indices) s += le32(i);
+    return s;
+  };
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {binary_ply("binary_little_endian", 4, 1, "int int", face(2000000000, {0, 1, 2})),
+       "PLY body, 'face' 0: a 'face' of 2000000000 vertices, more than 1024"},
+      {binary_ply("binary_little_endian", 4, 1, "int int", face(-5, {0, 1, 2})), "PLY body, 'face' 0: a list count of -5"},
+      {binary_ply("binary_little_endian", 4, 2, "int int", face(3, {0, 1, 2}) + face(4, {0, 1, 2})),
+       "PLY body, 'face' 1: a list of 4 entries, more than the 12 bytes left hold"},
+      {binary_ply("binary_little_endian", 4, 1, "int int", face(3, {0, 1, 9})),
+       "PLY body, 'face' 0: vertex index 9 out of range (4 vertices)"},
+      {binary_ply("binary_little_endian", 4, 2, "int int", face(3, {0, 1, 2}) + face(0, {})),
+       "PLY body, 'face' 1: a 'face' without vertex indices"},
+      {binary_ply("binary_little_endian", 4, 1, "int int", "").substr(0, 200),
+       "PLY header declares 4 'vertex' elements, more than the"},
+  };
+  for (const auto& [ply, expected] : cases) {
+    write_file(dir.path / "bad.ply", ply);
+    const std::string msg = error_of([&] { import_mesh_file(dir.path / "bad.ply"); });
+    EXPECT_NE(msg.find("bad.ply: " + expected), std::string::npos) << msg;
+  }
+  // A list that is not a face's: its count checked against the bytes left too.
+  std::string texcoords = binary_ply("binary_little_endian", 4, 1, "uchar int", std::string("\x03", 1) + le32(0) + le32(1) + le32(2));
+  texcoords.insert(texcoords.find("end_header"), "element edge 1\nproperty list int float weights\n");
+  write_file(dir.path / "weights.ply", texcoords + le32(1 << 30) + le32(0));
+  const std::string msg = error_of([&] { import_mesh_file(dir.path / "weights.ply"); });
+  EXPECT_NE(msg.find("weights.ply: PLY body, 'edge' 0: a list of 1073741824 entries, more than the 4 bytes left hold"),
+            std::string::npos)
+      << msg;
+  // Honest files load, in either byte order.
+  write_file(dir.path / "le.ply", binary_ply("binary_little_endian", 4, 2, "int int", face(3, {0, 1, 2}) + face(3, {1, 3, 2})));
+  EXPECT_EQ(import_mesh_file(dir.path / "le.ply").triangles.size(), 2u);
+  write_file(dir.path / "be.ply", binary_ply("binary_big_endian", 4, 1, "uchar ushort", std::string("\x04\0\0\0\x01\0\x03\0\x02", 9)));
+  EXPECT_EQ(import_mesh_file(dir.path / "be.ply").triangles.size(), 2u);
+}
+
+// Review (issue 13, robust4): assimp triangulates an n-gon by ear clipping, superlinear in
+// n (a 4096-gon took 1.4 s), so a few huge faces would hang an import. Faces above
+// kMaxFaceVertices are refused before triangulation, for every format.
+TEST(ImportTest, FaceWithMoreThanMaxFaceVerticesIsRefusedBeforeTriangulation) {
+  TempDir dir;
+  const int n = kMaxFaceVertices + 1;
+  std::string obj, f = "f";
+  for (int i = 0; i < n; ++i) {
+    obj += "v ";
+    obj += std::to_string(1000 * std::cos(6.2831853 * i / n));
+    obj += ' ';
+    obj += std::to_string(1000 * std::sin(6.2831853 * i / n));
+    obj += " 0\n";
+    f += ' ';
+    f += std::to_string(i + 1);
+  }
+  write_file(dir.path / "ngon.obj", obj + f + "\n");
+  const std::string msg = error_of([&] { import_mesh_file(dir.path / "ngon.obj"); });
+  EXPECT_NE(msg.find("ngon.obj: mesh 0: face 0 has 1025 vertices, more than 1024"), std::string::npos) << msg;
+  // One vertex fewer is a face like any other.
+  write_file(dir.path / "ok.obj", obj + f.substr(0, f.rfind(' ')) + "\n");
+  EXPECT_EQ(import_mesh_file(dir.path / "ok.obj").triangles.size(), size_t(kMaxFaceVertices - 2));
 }
 
 TEST(ImportTest, WriteObjIntoMissingDirectoryLeavesNothing) {

@@ -16,6 +16,11 @@ namespace proxima {
 inline constexpr int kMaxNodeDepth = 1000;
 inline constexpr int kMaxJsonNesting = 256;
 
+// Mesh files: the most vertices one polygon may have. assimp triangulates an n-gon by ear
+// clipping, superlinear in n (a 4096-gon took 1.4 s, a 1024-gon 0.1 s on the shared VM),
+// so a file of a few huge faces would hang the import; triangles and quads are the norm.
+inline constexpr int kMaxFaceVertices = 1024;
+
 struct Limits {
   uint64_t max_triangles = 50'000'000;  // per scene, after import, instancing and generation
   uint64_t max_memory_mb = 0;           // estimated peak for one scene or image; 0 = ¾ of RAM
