@@ -31,15 +31,10 @@ using namespace proxima::visibility;
 
 struct GibrFlags {
   CommonOptions common;
-  int photos = 100;
+  GibrModelOptions model;  // photographs, texel, period, supersample, mapping (phases 1–3)
   std::string views = "path";
   int frames = 10;
-  int photo_width = 320, photo_height = 240;
-  double texel = 0.0;  // 0 = the scene's default
   int k = 3;
-  int supersample = 2;
-  double period = 0.0;  // 0 = the scene's default
-  bool exclude_boundaries = false;
   bool photo_images = true;
   int fps_repeat = 3;
 };
@@ -78,18 +73,18 @@ Command register_gibr(CLI::App& root) {
   add_threads_flag(app, f.common);
   add_seed_flag(app, f.common);
   add_out_flag(app, f.common, true);
-  app->add_option("--photos", f.photos, "calibrated photographs rendered along the walk path")->capture_default_str();
+  app->add_option("--photos", f.model.photos, "calibrated photographs rendered along the walk path")->capture_default_str();
   app->add_option("--views", f.views, "novel views: 'path' (along the walk path) or 'photos' (at the first photo poses)")
       ->capture_default_str();
   app->add_option("--frames", f.frames, "novel views rendered and compared")->capture_default_str();
-  app->add_option("--photo-width", f.photo_width, "photograph width in pixels")->capture_default_str();
-  app->add_option("--photo-height", f.photo_height, "photograph height in pixels")->capture_default_str();
-  app->add_option("--texel", f.texel, "radiance-map texel size in meters (default: per scene, docs/gibr.md)");
-  app->add_option("--period", f.period, "texture repeat in meters (default: per scene)");
+  app->add_option("--photo-width", f.model.photo_width, "photograph width in pixels")->capture_default_str();
+  app->add_option("--photo-height", f.model.photo_height, "photograph height in pixels")->capture_default_str();
+  app->add_option("--texel", f.model.texel, "radiance-map texel size in meters (default: per scene, docs/gibr.md)");
+  app->add_option("--period", f.model.period, "texture repeat in meters (default: per scene)");
   app->add_option("--k", f.k, "photographs blended per pixel")->capture_default_str();
-  app->add_option("--supersample", f.supersample, "k×k samples per photograph / ground-truth pixel")
+  app->add_option("--supersample", f.model.supersample, "k×k samples per photograph / ground-truth pixel")
       ->capture_default_str();
-  app->add_flag("--exclude-boundaries", f.exclude_boundaries,
+  app->add_flag("--exclude-boundaries", f.model.exclude_boundaries,
                 "visibility-map mapping also drops pixels touching any edge between different polygons");
   app->add_option("--fps-repeat", f.fps_repeat, "timed renders of each novel view (median → novel_view_fps)")
       ->capture_default_str();
@@ -105,17 +100,9 @@ Command register_gibr(CLI::App& root) {
             const Scene model_scene = load_scene(f.common.scene);
             validate_camera(look_at({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 60, f.common.width, f.common.height), "--width/--height");
             // Phases 1–3 with both mappings; it checks the photograph flags before any work.
-            GibrModelOptions go;
-            go.photos = f.photos;
-            go.photo_width = f.photo_width;
-            go.photo_height = f.photo_height;
-            go.texel = f.texel;
-            go.period = f.period;
-            go.supersample = f.supersample;
-            go.exclude_boundaries = f.exclude_boundaries;
-            go.item_buffer = true;
-            go.seed = f.common.seed;
-            const GibrModel g = build_gibr_model(model_scene, go);
+            f.model.item_buffer = true;
+            f.model.seed = f.common.seed;
+            const GibrModel g = build_gibr_model(model_scene, f.model);
             const CameraPath& path = model_scene.camera_paths.front();
             const Scene& scene = g.scene;
             const ModelPolygons& model = g.model;
@@ -198,7 +185,7 @@ Command register_gibr(CLI::App& root) {
               }
               const NovelView ni = render_novel_view(scene, model, item_maps, cam, nvo);
               w.restart();
-              const ImageF truth = render_photo(scene, rays, cam, f.supersample, derive_seed(f.common.seed, i, 2));
+              const ImageF truth = render_photo(scene, rays, cam, f.model.supersample, derive_seed(f.common.seed, i, 2));
               truth_ms += w.elapsed_ms();
               const ImageU8 sil = silhouette_pixel_mask(trace_visibility_map(g.winged_pair, cam), 2.0);
               ImageU8 seen(cam.width, cam.height, 1, 0);
