@@ -31,7 +31,7 @@ TechniqueFrame placeholder(const Camera& camera, std::string note) {
 // Built on the first frame after the technique is first selected: that frame only shows
 // "building…" (so the window says what the next, blocking frame does), the next one builds
 // phases 1–3 with the quick settings (photographs along the scene's first path) and renders.
-Technique gibr_technique(std::shared_ptr<ViewerScene> vs, const TechniqueSettings& s) {
+Technique gibr_technique(std::shared_ptr<ViewerScene> vs, const TechniqueSettings& settings) {
   struct State {
     TechniqueSettings settings;
     std::optional<gibr::GibrModel> model;
@@ -39,7 +39,7 @@ Technique gibr_technique(std::shared_ptr<ViewerScene> vs, const TechniqueSetting
     std::string error;  // a failed build: shown instead of frames
   };
   auto st = std::make_shared<State>();
-  st->settings = s;
+  st->settings = settings;
 
   Technique t;
   t.name = "gibr";
