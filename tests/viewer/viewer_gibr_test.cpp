@@ -120,5 +120,22 @@ TEST(ViewerGibr, UnavailableWithTheReasonOffVisibilityModels) {
   EXPECT_EQ(s.frame(0.03f).width(), 32);  // still the reference, nothing broken
 }
 
+// A build that fails (here: bad settings) keeps showing placeholders with the reason.
+TEST(ViewerGibr, AFailedBuildIsReportedNotFatal) {
+  ViewerOptions o;
+  o.techniques.gibr_photos = 0;
+  Scene scene = make_builtin_scene("rooms");
+  const Camera start = scene.cameras.at(0).camera;
+  ViewerSession s(std::move(scene), start, 32, 24, o);
+  ASSERT_TRUE(s.select_technique(index_of(s, "gibr")));
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(s.frame(0.03f).width(), 32);
+  EXPECT_TRUE(s.status().pending);
+  EXPECT_FALSE(s.status().refined);
+  EXPECT_NE(s.status().note.find("GIBR build failed: --photos"), std::string::npos) << s.status().note;
+  EXPECT_TRUE(s.select_technique(0));  // and the other techniques still work
+  s.frame(0.03f);
+  EXPECT_TRUE(s.status().refined);
+}
+
 }  // namespace
 }  // namespace proxima
