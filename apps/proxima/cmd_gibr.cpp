@@ -15,6 +15,7 @@
 #include "proxima/core/rng.h"
 #include "proxima/core/timer.h"
 #include "proxima/eval/image_error.h"
+#include "proxima/gibr/gibr_model.h"
 #include "proxima/gibr/novel_view.h"
 #include "proxima/gibr/photo_set.h"
 #include "proxima/gibr/radiance_map.h"
@@ -30,33 +31,13 @@ using namespace proxima::visibility;
 
 struct GibrFlags {
   CommonOptions common;
-  int photos = 100;
+  GibrModelOptions model;  // photographs, texel, period, supersample, mapping (phases 1–3)
   std::string views = "path";
   int frames = 10;
-  int photo_width = 320, photo_height = 240;
-  double texel = 0.0;  // 0 = the scene's default
   int k = 3;
-  int supersample = 2;
-  double period = 0.0;  // 0 = the scene's default
-  bool exclude_boundaries = false;
-  bool whole_pixels = false;
   bool photo_images = true;
   int fps_repeat = 3;
 };
-
-// Texel size and texture period per built-in model: texels about the size of a photograph
-// pixel's footprint at typical distances along the walk (docs/gibr.md).
-struct SceneDefaults {
-  double texel, period;
-};
-SceneDefaults defaults_for(const std::string& scene, double scale) {
-  if (scene == "rooms") return {0.02, 1.0};
-  if (scene == "floor" || scene == "building") return {0.03, 1.0};
-  if (scene == "vcity") return {0.15, 6.0};
-  if (scene == "maze") return {0.03, 1.0};
-  if (scene == "arena") return {0.05, 2.0};
-  return {scale / 500.0, scale / 10.0};
-}
 
 // Pooled error over frames: squared and absolute sums on the 0–255 display scale.
 struct Pool {
@@ -92,20 +73,20 @@ Command register_gibr(CLI::App& root) {
   add_threads_flag(app, f.common);
   add_seed_flag(app, f.common);
   add_out_flag(app, f.common, true);
-  app->add_option("--photos", f.photos, "calibrated photographs rendered along the walk path")->capture_default_str();
+  app->add_option("--photos", f.model.photos, "calibrated photographs rendered along the walk path")->capture_default_str();
   app->add_option("--views", f.views, "novel views: 'path' (along the walk path) or 'photos' (at the first photo poses)")
       ->capture_default_str();
   app->add_option("--frames", f.frames, "novel views rendered and compared")->capture_default_str();
-  app->add_option("--photo-width", f.photo_width, "photograph width in pixels")->capture_default_str();
-  app->add_option("--photo-height", f.photo_height, "photograph height in pixels")->capture_default_str();
-  app->add_option("--texel", f.texel, "radiance-map texel size in meters (default: per scene, docs/gibr.md)");
-  app->add_option("--period", f.period, "texture repeat in meters (default: per scene)");
+  app->add_option("--photo-width", f.model.photo_width, "photograph width in pixels")->capture_default_str();
+  app->add_option("--photo-height", f.model.photo_height, "photograph height in pixels")->capture_default_str();
+  app->add_option("--texel", f.model.texel, "radiance-map texel size in meters (default: per scene, docs/gibr.md)");
+  app->add_option("--period", f.model.period, "texture repeat in meters (default: per scene)");
   app->add_option("--k", f.k, "photographs blended per pixel")->capture_default_str();
-  app->add_option("--supersample", f.supersample, "k×k samples per photograph / ground-truth pixel")
+  app->add_option("--supersample", f.model.supersample, "k×k samples per photograph / ground-truth pixel")
       ->capture_default_str();
-  app->add_flag("--exclude-boundaries", f.exclude_boundaries,
+  app->add_flag("--exclude-boundaries", f.model.exclude_boundaries,
                 "visibility-map mapping also drops pixels touching any edge between different polygons");
-  app->add_flag("--whole-pixels", f.whole_pixels,
+  app->add_flag("--whole-pixels", f.model.whole_pixels,
                 "visibility-map mapping without the sub-pixel record: texels seen only in pixels touching a "
                 "silhouette get no sample");
   app->add_option("--fps-repeat", f.fps_repeat, "timed renders of each novel view (median → novel_view_fps)")
@@ -114,81 +95,44 @@ Command register_gibr(CLI::App& root) {
 
   return {app, [] {
             if (f.common.threads < 0) fail_input("--threads: must be ≥ 0");
-            if (f.photos < 1 || f.photos > 10000) fail_input("--photos: must be in 1..10000");
             if (f.frames < 1 || f.frames > 10000) fail_input("--frames: must be in 1..10000");
             if (f.views != "path" && f.views != "photos") fail_input("--views: must be 'path' or 'photos' (got '" + f.views + "')");
             if (f.fps_repeat < 1 || f.fps_repeat > 1000) fail_input("--fps-repeat: must be in 1..1000");
             if (f.k < 1 || f.k > 64) fail_input("--k: must be in 1..64");
-            if (f.supersample < 1 || f.supersample > 8) fail_input("--supersample: must be in 1..8");
-            if (f.texel < 0.0 || !std::isfinite(f.texel)) fail_input("--texel: must be a positive size in meters");
-            if (f.period < 0.0 || !std::isfinite(f.period)) fail_input("--period: must be a positive length in meters");
             ThreadLimit limit(f.common.threads);
             const Scene model_scene = load_scene(f.common.scene);
-            if (model_scene.camera_paths.empty()) fail_input("--scene: '" + model_scene.name + "' has no camera path");
-            const CameraPath& path = model_scene.camera_paths.front();
-            const ModelPolygons model = extract_polygons(model_scene);
-            const SceneDefaults def = defaults_for(model_scene.name, model.scale);
-            const double texel = f.texel > 0 ? f.texel : def.texel;
-            PhotoSceneOptions pso;
-            pso.period = f.period > 0 ? f.period : def.period;
-            pso.seed = f.common.seed;
-            const Scene scene = make_photo_scene(model_scene, pso);
-            const float far = std::max(10.0f, 4.0f * scene_bounds(scene).diagonal());
-            validate_camera(look_at({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 60, f.photo_width, f.photo_height), "--photo-width/--photo-height");
             validate_camera(look_at({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 60, f.common.width, f.common.height), "--width/--height");
-            (void)make_texel_grids(model, texel);  // rejects a texel too small for the model before anything is written
+            // Phases 1–3 with both mappings; it checks the photograph flags before any work.
+            f.model.item_buffer = true;
+            f.model.seed = f.common.seed;
+            const GibrModel g = build_gibr_model(model_scene, f.model);
+            const CameraPath& path = model_scene.camera_paths.front();
+            const Scene& scene = g.scene;
+            const ModelPolygons& model = g.model;
+            const RayScene& rays = *g.rays;
+            const std::vector<Camera>& cams = g.cameras;
+            const RadianceMaps& vis_maps = g.maps;
+            const RadianceMaps& item_maps = g.item_maps;
+            const double texel = g.texel, far = g.far;
 
             Results results;
             results.command = command_line();
             results.threads = active_threads();
             auto& m = results.metrics;
             Table phases{"time per phase (" + model_scene.name + ")", {"phase", "ms"}, {}};
-
-            RayScene rays(scene);
-            PhotoPoseOptions ppo;
-            ppo.count = f.photos;
-            ppo.width = f.photo_width;
-            ppo.height = f.photo_height;
-            ppo.seed = f.common.seed;
-            const std::vector<Camera> cams = photo_poses(rays, path, ppo, 0.01f, far);
-            Stopwatch w;
-            std::vector<ImageF> photos(cams.size());
-            for (size_t i = 0; i < cams.size(); ++i)
-              photos[i] = render_photo(scene, rays, cams[i], f.supersample, derive_seed(f.common.seed, i, 1));
-            phases.rows.push_back({std::string("photographs (reference renders)"), w.elapsed_ms()});
+            phases.rows.push_back({std::string("photographs (reference renders)"), g.stats.photos_ms});
             auto out = prepare_out_dir(f.common.out);
             std::vector<CalibratedPhoto> calibrated;
             std::filesystem::create_directories(out / "photos");
             for (size_t i = 0; i < cams.size(); ++i) {
               calibrated.push_back({numbered("photo", int(i), ".png"), cams[i]});
-              if (f.photo_images) write_png_linear(out / "photos" / calibrated.back().image, photos[i]);
+              if (f.photo_images) write_png_linear(out / "photos" / calibrated.back().image, g.photos[i]);
             }
             write_camera_file(out / "photos" / "cameras.json", calibrated);
-
-            // Phase 1: spatial subdivision.
-            BspStats bsp;
-            const WingedPair wp = build_winged_pair(model, {}, &bsp);
-            phases.rows.push_back({std::string("1 spatial subdivision (BSP → winged pair)"), bsp.build_ms});
-            // Phase 2: a visibility map per photograph; the baseline's item buffers.
-            w.restart();
-            std::vector<ImageU32> vis_labels(cams.size()), item_labels(cams.size());
-            std::vector<double> silhouettes(cams.size());
-            parallel_for(cams.size(), 1, [&](size_t b, size_t e) {
-              for (size_t i = b; i < e; ++i) {
-                const VisibilityMap map = trace_visibility_map(wp, cams[i]);
-                silhouettes[i] = double(map.stats.silhouette_edges);
-                vis_labels[i] = vismap_pixel_polygons(map, f.exclude_boundaries, !f.whole_pixels);
-              }
-            });
-            const double vis_ms = w.elapsed_ms();
-            phases.rows.push_back({std::string("2 visibility maps (all photographs)"), vis_ms});
-            w.restart();
-            for (size_t i = 0; i < cams.size(); ++i) item_labels[i] = itembuffer_pixel_polygons(scene, model, cams[i]);
-            phases.rows.push_back({std::string("2' item buffers (baseline, all photographs)"), w.elapsed_ms()});
-            // Phase 3: radiance maps, both mappings.
-            const RadianceMaps vis_maps = build_radiance_maps(model, texel, cams, photos, vis_labels);
+            phases.rows.push_back({std::string("1 spatial subdivision (BSP → winged pair)"), g.stats.bsp.build_ms});
+            phases.rows.push_back({std::string("2 visibility maps (all photographs)"), g.stats.vismap_ms});
+            phases.rows.push_back({std::string("2' item buffers (baseline, all photographs)"), g.stats.itembuffer_ms});
             phases.rows.push_back({std::string("3 radiance maps (visibility-map mapping)"), vis_maps.stats.ms});
-            const RadianceMaps item_maps = build_radiance_maps(model, texel, cams, photos, item_labels);
             phases.rows.push_back({std::string("3' radiance maps (item-buffer mapping)"), item_maps.stats.ms});
             Table stats{"radiance maps of " + model_scene.name + " (texel " + std::to_string(texel) + " m)",
                         {"mapping", "photos", "layers", "samples", "texels", "texels covered %", "pixels mapped", "MiB"},
@@ -224,6 +168,7 @@ Command register_gibr(CLI::App& root) {
             std::filesystem::create_directories(out / "views");
             NovelViewOptions nvo;
             nvo.k = f.k;
+            Stopwatch w;
             Pool all_v, all_i, sil_v, sil_i, seen_v, seen_i, silseen_v, silseen_i;
             std::vector<double> frame_ms, frame_cpu_ms;
             double truth_ms = 0.0, holes_v = 0.0, holes_i = 0.0, covered = 0.0;
@@ -243,9 +188,9 @@ Command register_gibr(CLI::App& root) {
               }
               const NovelView ni = render_novel_view(scene, model, item_maps, cam, nvo);
               w.restart();
-              const ImageF truth = render_photo(scene, rays, cam, f.supersample, derive_seed(f.common.seed, i, 2));
+              const ImageF truth = render_photo(scene, rays, cam, f.model.supersample, derive_seed(f.common.seed, i, 2));
               truth_ms += w.elapsed_ms();
-              const ImageU8 sil = silhouette_pixel_mask(trace_visibility_map(wp, cam), 2.0);
+              const ImageU8 sil = silhouette_pixel_mask(trace_visibility_map(g.winged_pair, cam), 2.0);
               ImageU8 seen(cam.width, cam.height, 1, 0);
               for (int y = 0; y < cam.height; ++y)
                 for (int x = 0; x < cam.width; ++x) seen.at(x, y) = !nv.unseen.at(x, y) && !ni.unseen.at(x, y);
@@ -303,13 +248,9 @@ Command register_gibr(CLI::App& root) {
             m["unseen_pct_itembuffer"] = 100.0 * holes_i / std::max(1.0, covered);
             m["novel_view_ms"] = med;
             m["novel_view_fps"] = med > 0 ? 1000.0 / med : 0.0;
-            m["bsp_ms"] = bsp.build_ms;
-            m["vismap_ms_avg"] = vis_ms / double(cams.size());
-            m["silhouette_edges_avg"] = [&] {
-              double s = 0;
-              for (double v : silhouettes) s += v;
-              return s / double(silhouettes.size());
-            }();
+            m["bsp_ms"] = g.stats.bsp.build_ms;
+            m["vismap_ms_avg"] = g.stats.vismap_ms / double(cams.size());
+            m["silhouette_edges_avg"] = g.stats.silhouette_edges_avg;
             Table summary{"novel views vs ground truth (" + model_scene.name + ", " + std::to_string(views.size()) +
                               " views, " + std::to_string(cams.size()) + " photos)",
                           {"mapping", "PSNR dB", "MAE", "PSNR ≤2px silhouettes", "MAE ≤2px silhouettes", "PSNR seen",

@@ -86,7 +86,7 @@ Command register_view(CLI::App& root) {
                                           "(SDL2 window; scripted with --script for tests)");
   add_view_flags(app, f.setup, "while moving render at 1/N of the window per side (0 = adapt N to 15 frames/s)");
   app->add_option("--technique", f.technique,
-                  "initial technique: reference, envmap, rectified, cluster, temporal, shadows (keys 1-6)")
+                  "initial technique: reference, envmap, rectified, cluster, temporal, shadows, gibr (keys 1-7)")
       ->capture_default_str();
   app->add_option("--script", f.script,
                   "scripted input, comma-separated: hold:KEY:N press:KEY mouse:DX:DY scroll:N resize:W:H idle:N "

@@ -89,13 +89,17 @@ std::vector<Camera> photo_poses(const RayScene& rays, const CameraPath& path, co
   return out;
 }
 
-ImageF render_photo(const Scene& scene, const RayScene& rays, const Camera& camera, int supersample, uint64_t seed) {
+ReferenceOptions photo_render_options(int supersample, uint64_t seed) {
   ReferenceOptions ro;
   ro.supersample = supersample;
   ro.area_light_samples = 1;
   ro.max_bounces = 0;
   ro.seed = seed;
-  return render_reference(scene, rays, camera, ro);
+  return ro;
+}
+
+ImageF render_photo(const Scene& scene, const RayScene& rays, const Camera& camera, int supersample, uint64_t seed) {
+  return render_reference(scene, rays, camera, photo_render_options(supersample, seed));
 }
 
 void write_camera_file(const std::filesystem::path& path, const std::vector<CalibratedPhoto>& photos) {

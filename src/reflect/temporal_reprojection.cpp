@@ -13,13 +13,13 @@ namespace {
 constexpr size_t kSampleGrain = 1024;
 }  // namespace
 
-Reprojection reproject_reflections(const ReflectionFrame& frame, const ReflectionDepthImage& key,
-                                   const ImageF& radiance, const ImageU8* state, const ReprojectOptions& options,
-                                   const WarpedMesh* mesh) {
+ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const ReflectionDepthImage& key,
+                                             const ImageF& radiance, const ImageU8* state,
+                                             const ReprojectOptions& options, const WarpedMesh* mesh) {
   if (frame.supersample != 1) throw std::logic_error("reprojection: frame must have supersample 1");
   const size_t n = frame.sample_count();
   const int kw = key.object.width(), kh = key.object.height();
-  Reprojection out;
+  ReflectionReprojection out;
   out.radiance.assign(n, vec3(0.0f));
   out.flag.assign(n, kReuseOk);
   auto same_surface = [&](int x, int y, uint32_t object, float depth) {

@@ -14,7 +14,7 @@ namespace {
 constexpr float kEscapeDistanceScale = 100.0f;
 
 // Traces the flagged samples and fills their radiance in.
-void recompute(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame, Reprojection& r) {
+void recompute(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame, ReflectionReprojection& r) {
   std::vector<uint32_t> todo;
   for (size_t i = 0; i < r.flag.size(); ++i)
     if (r.flag[i] != kReuseOk) todo.push_back(uint32_t(i));
@@ -81,7 +81,8 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
     st.warp_ms = watch.elapsed_ms();
     watch.restart();
     const WarpedMesh mesh{&state.key, &offsets, &mid};
-    Reprojection r = reproject_reflections(frame, state.key, mid.radiance, &mid.state, options.reproject, &mesh);
+    ReflectionReprojection r =
+        reproject_reflections(frame, state.key, mid.radiance, &mid.state, options.reproject, &mesh);
     st.reproject_ms = watch.elapsed_ms();
     st.disoccluded = r.disoccluded;
     st.unreliable = r.unreliable;
@@ -104,7 +105,7 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
 std::vector<vec3> direct_reprojection(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
                                       const ReflectionDepthImage& key, const ReprojectOptions& options,
                                       uint64_t* recomputed) {
-  Reprojection r = reproject_reflections(frame, key, key.radiance, nullptr, options);
+  ReflectionReprojection r = reproject_reflections(frame, key, key.radiance, nullptr, options);
   if (recomputed) *recomputed = r.recompute();
   recompute(scene, rays, frame, r);
   return std::move(r.radiance);

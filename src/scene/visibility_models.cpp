@@ -432,4 +432,10 @@ Scene make_vis_building(int floors) {
   return s;
 }
 
+bool is_visibility_model(const std::string& name) {
+  for (const char* m : {"rooms", "maze", "arena", "vcity", "floor", "building"})
+    if (name == m) return true;
+  return name.rfind("building:", 0) == 0;
+}
+
 }  // namespace proxima

@@ -1,5 +1,4 @@
-// The viewer's soft-shadow technique, in its own file: shadows/ and reflect/ both define a
-// proxima::Reprojection, so no file may include both modules' headers.
+// The viewer's soft-shadow technique, in its own file (only this entry needs shadows/).
 #include "shadow_technique.h"
 
 #include <optional>

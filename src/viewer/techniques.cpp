@@ -11,6 +11,7 @@
 #include "proxima/reflect/envmap_reflection.h"
 #include "proxima/reflect/temporal_reuse.h"
 #include "proxima/trace/reference_renderer.h"
+#include "gibr_technique.h"
 #include "shadow_technique.h"
 
 namespace proxima {
@@ -199,13 +200,7 @@ std::vector<Technique> make_techniques(std::shared_ptr<ViewerScene> vs, const Te
       if (t.name != "reference") t.unavailable = "the scene has no reflective object";
   list.push_back(shadow_technique(vs, s));
 
-  // SLOT: GIBR novel view (being built in another branch). Fill in `render` with the GIBR
-  // pipeline's frame for `camera` and clear `unavailable`; the reference is the shaded one.
-  Technique gibr;
-  gibr.name = "gibr";
-  gibr.label = "GIBR novel view";
-  gibr.unavailable = "not built yet (GIBR is a separate issue)";
-  list.push_back(gibr);
+  list.push_back(gibr_technique(vs, s));
 
   for (size_t i = 0; i < list.size(); ++i) {
     list[i].key = char('1' + i);

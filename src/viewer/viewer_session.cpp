@@ -169,11 +169,15 @@ const ImageU8& ViewerSession::frame(float dt_s) {
     const Camera camera = fly_to_camera(fly_, std::max(1, width_ / scale), std::max(1, height_ / scale));
     TechniqueFrame f = t.render(camera);
     status_.steps = std::move(f.steps);
+    status_.note = std::move(f.note);
+    status_.pending = f.pending;
     status_.scale = scale;
     status_.render_width = camera.width;
     status_.render_height = camera.height;
     present(f.color);
-    if (!moved) {
+    if (f.pending) {
+      // Nothing to refine or adapt to yet: the next frame renders again.
+    } else if (!moved) {
       refined_ = std::move(f.color);
       status_.refined = true;
     } else if (options_.move_scale == 0) {
@@ -241,6 +245,7 @@ void ViewerSession::draw_overlay() {
                      std::to_string(status_.render_width) + "x" + std::to_string(status_.render_height) +
                      (status_.moving ? " moving (1/" + std::to_string(status_.scale) + ")" : " still") + "\n";
   for (const StepTime& s : status_.steps) info += "  " + s.name + format(" %.1f ms", s.ms) + "\n";
+  if (!status_.note.empty()) info += "  " + status_.note + "\n";
   if (status_.moving)
     info += "error: when the camera stops\n";
   else if (status_.error_mae >= 0.0)

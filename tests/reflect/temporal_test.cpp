@@ -140,8 +140,8 @@ TEST(TemporalReflections, DirectReprojectionIsWrongWhereTemporalReuseIsRight) {
   const OffsetBuffer offsets = best_match_search(key, frame1.camera.position, nullptr, {});
   const IntermediateReflection mid = warp_reflections(key, offsets, {});
   const WarpedMesh mesh{&key, &offsets, &mid};
-  const Reprojection temporal = reproject_reflections(frame1, key, mid.radiance, &mid.state, {}, &mesh);
-  const Reprojection direct = reproject_reflections(frame1, key, key.radiance, nullptr, {});
+  const ReflectionReprojection temporal = reproject_reflections(frame1, key, mid.radiance, &mid.state, {}, &mesh);
+  const ReflectionReprojection direct = reproject_reflections(frame1, key, key.radiance, nullptr, {});
   const TracedReflections truth = trace_reflections(scene, rays, frame1);
   // Compare on the samples both methods reuse (recomputed ones would be exact).
   std::vector<uint8_t> both(frame1.sample_count());
@@ -171,7 +171,7 @@ TEST(TemporalReflections, DisoccludedPixelsAreFlaggedForRecomputation) {
   const ReflectionFrame frame1 = frame_at(scene, kKeyEye + vec3(0.3f, 0.0f, 0.0f));
   const OffsetBuffer offsets = best_match_search(key, frame1.camera.position, nullptr, {});
   const IntermediateReflection mid = warp_reflections(key, offsets, {});
-  const Reprojection r = reproject_reflections(frame1, key, mid.radiance, &mid.state, {});
+  const ReflectionReprojection r = reproject_reflections(frame1, key, mid.radiance, &mid.state, {});
   // Ground truth: the segment from the key eye to the sample's point is blocked.
   size_t hidden = 0, flagged = 0;
   const float eps = 1e-3f;

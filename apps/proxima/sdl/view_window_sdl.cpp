@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <string>
 
 #include "../view_window.h"
 #include "proxima/core/error.h"
@@ -88,6 +89,7 @@ int run_view_window(ViewerSession& session, const ViewWindowOptions& o) {
   size_t script_frames = o.script.size();
   if (o.play) script_frames = std::max(script_frames, size_t(o.play->frames));
   size_t frame = 0;
+  std::string last_message;
   for (;; ++frame) {
     SDL_Event e;
     while (SDL_PollEvent(&e)) {
@@ -140,8 +142,11 @@ int run_view_window(ViewerSession& session, const ViewWindowOptions& o) {
       for (const ViewEvent& ev : step->after) apply_event(session, ev);
     }
     if (session.quit_requested()) break;
-    // Nothing left to refine: wait for input instead of spinning.
+    // Messages (e.g. why a key did nothing) also on the terminal, once each.
     const ViewerStatus& st = session.status();
+    if (st.message != last_message && !st.message.empty()) std::fprintf(stderr, "view: %s\n", st.message.c_str());
+    last_message = st.message;
+    // Nothing left to refine: wait for input instead of spinning.
     if (!ends && !st.moving && st.refined && st.error_mae >= 0.0) SDL_WaitEventTimeout(nullptr, 50);
   }
   std::fprintf(stderr, "view: %zu frames\n", frame);

@@ -14,6 +14,7 @@
 #include "proxima/core/image.h"
 #include "proxima/scene/scene.h"
 #include "proxima/trace/ray_scene.h"
+#include "proxima/trace/reference_renderer.h"
 
 namespace proxima::gibr {
 
@@ -49,6 +50,8 @@ std::vector<Camera> photo_poses(const RayScene& rays, const CameraPath& path, co
 // mix the surfaces they cover, as a real photograph's do), n² area-light samples, no
 // reflections. Linear RGB, 3 channels.
 ImageF render_photo(const Scene& scene, const RayScene& rays, const Camera& camera, int supersample, uint64_t seed);
+// Its renderer settings (e.g. to render a ground truth a band of rows at a time).
+ReferenceOptions photo_render_options(int supersample, uint64_t seed);
 
 struct CalibratedPhoto {
   std::string image;  // file name, relative to the camera file's directory

@@ -31,7 +31,7 @@ struct ReprojectOptions {
   float depth_tolerance = 0.02f;  // relative depth difference accepted as the same surface
 };
 
-struct Reprojection {
+struct ReflectionReprojection {
   std::vector<vec3> radiance;  // per sample of the frame; 0 where flagged
   std::vector<uint8_t> flag;   // ReuseFlag bits
   uint64_t disoccluded = 0, unreliable = 0, curved = 0;  // curved ⊂ unreliable
@@ -42,8 +42,8 @@ struct Reprojection {
 // key's pixel grid. With `mesh` (the warp that made them) a reused sample reads the warped
 // mesh at its exact projected position (warped_radiance_at), the bilinear mix of the image
 // only where that fails. `frame` at supersample 1.
-Reprojection reproject_reflections(const ReflectionFrame& frame, const ReflectionDepthImage& key,
-                                   const ImageF& radiance, const ImageU8* state, const ReprojectOptions& options,
-                                   const WarpedMesh* mesh = nullptr);
+ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const ReflectionDepthImage& key,
+                                             const ImageF& radiance, const ImageU8* state,
+                                             const ReprojectOptions& options, const WarpedMesh* mesh = nullptr);
 
 }  // namespace proxima

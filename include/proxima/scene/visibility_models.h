@@ -16,6 +16,8 @@
 //   path = the floor-1 (ground floor) walk.
 #pragma once
 
+#include <string>
+
 #include "proxima/scene/scene.h"
 
 namespace proxima {
@@ -27,5 +29,9 @@ Scene make_vis_vcity();
 Scene make_vis_floor();
 // floors in [1, 64]; throws InputError otherwise.
 Scene make_vis_building(int floors = 5);
+
+// True for the names of the models above (rooms, maze, arena, vcity, floor, building,
+// building:N): the scenes the exact-visibility pipeline (and GIBR) is made for.
+bool is_visibility_model(const std::string& scene_name);
 
 }  // namespace proxima

@@ -1,7 +1,8 @@
 // The viewer's technique registry (issue 12): every rendering technique the viewer can
 // switch to, each a thin wrapper around the library code its `proxima` command runs
 // (reference ray tracing, env maps, cluster and temporal reflections, soft shadows from
-// reconstructed depth images), with a frame time per step. Platform independent.
+// reconstructed depth images, GIBR novel views), with a frame time per step. Platform
+// independent.
 #pragma once
 
 #include <cstdint>
@@ -32,6 +33,10 @@ struct StepTime {
 struct TechniqueFrame {
   ImageF color;                 // linear RGB, camera.width × camera.height
   std::vector<StepTime> steps;  // in order; one-off builds are named "... (once)"
+  std::string note;             // one line for the overlay (e.g. "building the GIBR model...")
+  // Not a frame of the view yet (a one-off build is announced, or failed): shown, but never
+  // kept as the refined frame, so the next frame renders again.
+  bool pending = false;
 };
 
 // Quality knobs of the live techniques (the viewer trades quality for frame rate) and of
@@ -53,6 +58,12 @@ struct TechniqueSettings {
   int shadow_light_samples = 2;
   int occluder_resolution = 512;
   int shadow_map_resolution = 512;
+  // GIBR novel views: the model built once (`proxima demo`'s quick settings: photographs
+  // along the scene's first path), k photographs blended per pixel.
+  int gibr_photos = 16;
+  int gibr_photo_width = 160, gibr_photo_height = 120;
+  int gibr_supersample = 2;
+  int gibr_k = 3;
   uint64_t seed = 1;
 };
 
@@ -76,7 +87,8 @@ struct Technique {
 };
 
 // The registry in key order. Techniques needing a reflective object are unavailable
-// (with the reason) in scenes without one. `scene` must outlive the techniques.
+// (with the reason) in scenes without one, GIBR in scenes that are not visibility models.
+// `scene` must outlive the techniques.
 std::vector<Technique> make_techniques(std::shared_ptr<ViewerScene> scene, const TechniqueSettings& settings);
 
 }  // namespace proxima

@@ -43,6 +43,8 @@ struct ViewerStatus {
   double error_mae = -1.0;       // MAE (0–255) vs the reference; < 0 until known
   double frame_ms = 0.0;         // the whole frame() call
   std::vector<StepTime> steps;   // of the technique's last render
+  std::string note;              // its note (e.g. "building the GIBR model...")
+  bool pending = false;          // its last frame was a placeholder (TechniqueFrame::pending)
   std::string message;           // e.g. why a key did nothing
 };
 

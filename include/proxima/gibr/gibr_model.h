@@ -1,0 +1,73 @@
+// Phases 1–3 of hybrid geometry- and image-based rendering in one call (Funkhouser,
+// section 2): from a polygonal scene with a walkthrough path to a model ready for novel
+// views — synthetic calibrated photographs of its textured, lit copy, the spatial
+// subdivision (BSP → winged pair), a visibility map per photograph, and the radiance maps
+// (optionally also the item-buffer baseline's). `proxima gibr` and the viewer's GIBR
+// technique both build through it. docs/gibr.md.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "proxima/core/camera.h"
+#include "proxima/core/image.h"
+#include "proxima/gibr/radiance_map.h"
+#include "proxima/scene/scene.h"
+#include "proxima/trace/ray_scene.h"
+#include "proxima/visibility/bsp_build.h"
+#include "proxima/visibility/polygons.h"
+#include "proxima/visibility/winged_pair.h"
+
+namespace proxima::gibr {
+
+// Texel size and texture period per built-in visibility model: texels about the size of a
+// photograph pixel's footprint at typical distances along the walk (docs/gibr.md); other
+// scenes: scale / 500 and scale / 10 (scale = the polygons' bounding-box diagonal).
+struct GibrSceneDefaults {
+  double texel = 0.02, period = 1.0;
+};
+GibrSceneDefaults gibr_scene_defaults(const std::string& scene_name, double scale);
+
+struct GibrModelOptions {
+  int photos = 100;                     // along the scene's first camera path, ≥ 1
+  int photo_width = 320, photo_height = 240;
+  double texel = 0.0;                   // meters; 0 = gibr_scene_defaults
+  double period = 0.0;                  // texture repeat, meters; 0 = gibr_scene_defaults
+  int supersample = 2;                  // k×k samples per photograph pixel
+  bool exclude_boundaries = false;      // vismap_pixel_polygons' option
+  bool whole_pixels = false;            // vismap_pixel_polygons without the sub-pixel record
+  bool item_buffer = false;             // also map through item buffers (the baseline)
+  uint64_t seed = 1;
+};
+
+struct GibrModelStats {
+  double photos_ms = 0.0;       // reference renders of the photographs
+  visibility::BspStats bsp;     // phase 1 (build_ms)
+  double vismap_ms = 0.0;       // phase 2, all photographs
+  double itembuffer_ms = 0.0;   // phase 2', all photographs (item_buffer only)
+  double silhouette_edges_avg = 0.0;  // per visibility map
+  double total_ms = 0.0;
+};
+
+struct GibrModel {
+  Scene scene;                          // the textured, lit photo scene (same geometry)
+  std::unique_ptr<RayScene> rays;       // of `scene`: photographs and ground truth
+  visibility::ModelPolygons model;      // extract_polygons of the input scene
+  visibility::WingedPair winged_pair;   // phase 1
+  double texel = 0.0, far = 0.0;        // texel size used; far plane of every camera
+  std::vector<Camera> cameras;          // per photograph
+  std::vector<ImageF> photos;           // linear RGB
+  RadianceMaps maps;                    // visibility-map mapping (phase 3)
+  RadianceMaps item_maps;               // item-buffer mapping; empty unless options.item_buffer
+  GibrModelStats stats;
+};
+
+// Builds the model. Invalid options (photos outside 1..10000, supersample outside 1..8, a
+// negative texel or period, a bad photograph size, a texel too small for the model) or a
+// scene without a camera path throw InputError naming the `proxima gibr` flag, before any
+// work. Deterministic for a seed, at any thread count.
+GibrModel build_gibr_model(const Scene& scene, const GibrModelOptions& options = {});
+
+}  // namespace proxima::gibr

@@ -1,0 +1,104 @@
+#include "proxima/gibr/gibr_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "proxima/core/error.h"
+#include "proxima/core/parallel.h"
+#include "proxima/core/rng.h"
+#include "proxima/core/timer.h"
+#include "proxima/gibr/photo_set.h"
+
+namespace proxima::gibr {
+
+using namespace proxima::visibility;
+
+GibrSceneDefaults gibr_scene_defaults(const std::string& scene, double scale) {
+  if (scene == "rooms") return {0.02, 1.0};
+  if (scene == "floor" || scene == "building") return {0.03, 1.0};
+  if (scene == "vcity") return {0.15, 6.0};
+  if (scene == "maze") return {0.03, 1.0};
+  if (scene == "arena") return {0.05, 2.0};
+  return {scale / 500.0, scale / 10.0};
+}
+
+namespace {
+
+// The texel and period the options resolve to for this model.
+GibrSceneDefaults resolved(const Scene& scene, const ModelPolygons& model, const GibrModelOptions& o) {
+  const GibrSceneDefaults def = gibr_scene_defaults(scene.name, model.scale);
+  return {o.texel > 0 ? o.texel : def.texel, o.period > 0 ? o.period : def.period};
+}
+
+void check_options(const Scene& scene, const GibrModelOptions& o) {
+  if (o.photos < 1 || o.photos > 10000) fail_input("--photos: must be in 1..10000");
+  if (o.supersample < 1 || o.supersample > 8) fail_input("--supersample: must be in 1..8");
+  if (o.texel < 0.0 || !std::isfinite(o.texel)) fail_input("--texel: must be a positive size in meters");
+  if (o.period < 0.0 || !std::isfinite(o.period)) fail_input("--period: must be a positive length in meters");
+  if (scene.camera_paths.empty()) fail_input("--scene: '" + scene.name + "' has no camera path");
+  validate_camera(look_at({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 60, o.photo_width, o.photo_height),
+                  "--photo-width/--photo-height");
+}
+
+}  // namespace
+
+GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) {
+  Stopwatch total;
+  check_options(model_scene, o);
+  GibrModel g;
+  g.model = extract_polygons(model_scene);
+  const GibrSceneDefaults r = resolved(model_scene, g.model, o);
+  g.texel = r.texel;
+  (void)make_texel_grids(g.model, g.texel);  // rejects a texel too small before the photographs
+  PhotoSceneOptions pso;
+  pso.period = r.period;
+  pso.seed = o.seed;
+  g.scene = make_photo_scene(model_scene, pso);
+  g.far = std::max(10.0f, 4.0f * scene_bounds(g.scene).diagonal());
+  g.rays = std::make_unique<RayScene>(g.scene);
+
+  PhotoPoseOptions ppo;
+  ppo.count = o.photos;
+  ppo.width = o.photo_width;
+  ppo.height = o.photo_height;
+  ppo.seed = o.seed;
+  g.cameras = photo_poses(*g.rays, model_scene.camera_paths.front(), ppo, 0.01f, g.far);
+  Stopwatch w;
+  g.photos.resize(g.cameras.size());
+  for (size_t i = 0; i < g.cameras.size(); ++i)
+    g.photos[i] = render_photo(g.scene, *g.rays, g.cameras[i], o.supersample, derive_seed(o.seed, i, 1));
+  g.stats.photos_ms = w.elapsed_ms();
+
+  // Phase 1: spatial subdivision.
+  g.winged_pair = build_winged_pair(g.model, {}, &g.stats.bsp);
+  // Phase 2: a visibility map per photograph (and the baseline's item buffers).
+  w.restart();
+  const size_t n = g.cameras.size();
+  std::vector<ImageU32> labels(n);
+  std::vector<double> silhouettes(n);
+  parallel_for(n, 1, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      const VisibilityMap map = trace_visibility_map(g.winged_pair, g.cameras[i]);
+      silhouettes[i] = double(map.stats.silhouette_edges);
+      labels[i] = vismap_pixel_polygons(map, o.exclude_boundaries, !o.whole_pixels);
+    }
+  });
+  g.stats.vismap_ms = w.elapsed_ms();
+  double sum = 0.0;
+  for (double s : silhouettes) sum += s;
+  g.stats.silhouette_edges_avg = sum / double(n);
+  std::vector<ImageU32> item_labels;
+  if (o.item_buffer) {
+    w.restart();
+    item_labels.resize(n);
+    for (size_t i = 0; i < n; ++i) item_labels[i] = itembuffer_pixel_polygons(g.scene, g.model, g.cameras[i]);
+    g.stats.itembuffer_ms = w.elapsed_ms();
+  }
+  // Phase 3: radiance maps.
+  g.maps = build_radiance_maps(g.model, g.texel, g.cameras, g.photos, labels);
+  if (o.item_buffer) g.item_maps = build_radiance_maps(g.model, g.texel, g.cameras, g.photos, item_labels);
+  g.stats.total_ms = total.elapsed_ms();
+  return g;
+}
+
+}  // namespace proxima::gibr
