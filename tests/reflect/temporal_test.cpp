@@ -264,7 +264,7 @@ TEST(TemporalReflections, CurvedMirrorPixelsAreUnreliablePlanarOnesAreNot) {
   const IntermediateReflection mid = warp_reflections(key, offsets, on);
   EXPECT_GT(mid.curved, 0u);
   const WarpedMesh mesh{&key, &offsets, &mid};
-  const Reprojection r = reproject_reflections(frame1, key, mid.radiance, &mid.state, {}, &mesh);
+  const ReflectionReprojection r = reproject_reflections(frame1, key, mid.radiance, &mid.state, {}, &mesh);
   size_t ball1 = 0, ball_ok = 0, plane1 = 0, plane_unreliable = 0;
   for (size_t i = 0; i < frame1.sample_count(); ++i) {
     if (frame1.reflector[i] == ball_id) {
@@ -286,7 +286,7 @@ TEST(TemporalReflections, CurvedMirrorPixelsAreUnreliablePlanarOnesAreNot) {
   const IntermediateReflection mid_off = warp_reflections(key, offsets, off);
   EXPECT_EQ(mid_off.curved, 0u);
   const WarpedMesh mesh_off{&key, &offsets, &mid_off};
-  const Reprojection r_off = reproject_reflections(frame1, key, mid_off.radiance, &mid_off.state, {}, &mesh_off);
+  const ReflectionReprojection r_off = reproject_reflections(frame1, key, mid_off.radiance, &mid_off.state, {}, &mesh_off);
   size_t ball_ok_off = 0;
   for (size_t i = 0; i < frame1.sample_count(); ++i) ball_ok_off += frame1.reflector[i] == ball_id && r_off.flag[i] == kReuseOk;
   EXPECT_GT(ball_ok_off, ball1 / 4);
