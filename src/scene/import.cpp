@@ -39,6 +39,7 @@
 #include "proxima/core/error.h"
 #include "proxima/core/image_io.h"
 #include "proxima/core/limits.h"
+#include "proxima/scene/obj_check.h"
 #include "proxima/scene/ply_check.h"
 
 // Debian's assimp 5.2 is built with its internal assertions on, and a failed one calls
@@ -476,6 +477,7 @@ Scene import_assimp(const fs::path& path) {
 
   check_extension(path);
   check_ply_file(path);
+  check_obj_indices(path);
   check_json_nesting(path);
   Assimp::Importer importer;
   keep_tested_importers(importer);

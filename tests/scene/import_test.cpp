@@ -673,4 +673,48 @@ TEST(ImportTest, WriteObjIntoMissingDirectoryLeavesNothing) {
 }
 
 }  // namespace
+
+// obj_fuzz finding obj-leak-01497ee4 (input in fuzz/regressions/obj/): `f 07` refers to
+// vertex 7 where assimp reads 6 (it drops `v 0 1\x1f0`, two components). assimp checks
+// face indices only while building the mesh, and its "OBJ: vertex index out of range"
+// exception leaked that mesh (1,392 bytes). proxima now checks OBJ indices before assimp
+// opens the file.
+TEST(ImportTest, ObjFaceIndexOutOfRangeIsRefusedBeforeAssimpCanLeakItsMesh) {
+  TempDir dir;
+  static const char kFound[] =
+      "g a\nv 5 0 0\nv 1 0 0\nv 0 1\x1f"
+      "0\nv 0 0 1\nf 1 2 3\no qf -\x14 -2 -1\ng b\x01\x00\x00\x00\n]g 2 3 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 07\nl 1 2\n";
+  const std::string found(kFound, sizeof(kFound) - 1);
+  ASSERT_EQ(found.size(), 110u);
+  write_file(dir.path / "obj-leak-01497ee4.obj", found);
+  std::string msg = error_of([&] { import_mesh_file(dir.path / "obj-leak-01497ee4.obj"); });
+  EXPECT_NE(msg.find("obj-leak-01497ee4.obj: line 13: OBJ vertex index 7 out of range (the file has 6)"),
+            std::string::npos)
+      << msg;
+
+  const std::string quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\n";
+  const struct {
+    std::string body, message;  // message empty: loads
+  } cases[] = {
+      {quad + "f 1 2 3\nf -4 -2 -1\n", ""},                    // relative indices
+      {quad + "f 1//1 2//1 3//1 4//1\n", ""},                  // normals in range
+      {quad + "f 1/9 2/9 3/9\n", ""},                          // no `vt`: assimp ignores them
+      {quad + "f 1 2 5\n", "line 6: OBJ vertex index 5 out of range (the file has 4)"},
+      {quad + "f 0 1 2\n", "line 6: OBJ vertex index 0"},
+      {quad + "f -5 1 2\n", "line 6: OBJ vertex index refers before the first vertex"},
+      {quad + "f 1//2 2//1 3//1\n", "line 6: OBJ normal index 2 out of range (the file has 1)"},
+      {quad + "f 1 2 3\nl 1 9\n", "line 7: OBJ vertex index 9 out of range"},
+  };
+  for (size_t i = 0; i < std::size(cases); ++i) {
+    const fs::path file = dir.path / ("case" + std::to_string(i) + ".obj");
+    write_file(file, cases[i].body);
+    if (cases[i].message.empty()) {
+      EXPECT_GE(import_mesh_file(file).triangles.size(), 1u) << cases[i].body;
+    } else {
+      msg = error_of([&] { import_mesh_file(file); });
+      EXPECT_NE(msg.find(file.string() + ": " + cases[i].message), std::string::npos) << cases[i].body << "\n" << msg;
+    }
+  }
+}
+
 }  // namespace proxima
