@@ -37,6 +37,7 @@
 
 #include "proxima/core/atomic_file.h"
 #include "proxima/core/error.h"
+#include "proxima/core/file_extension.h"
 #include "proxima/core/image_io.h"
 #include "proxima/core/limits.h"
 #include "proxima/scene/obj_check.h"
@@ -430,8 +431,7 @@ void check_json_nesting(const fs::path& path) {
 }
 
 void check_extension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lowercase_extension(path);
   if (std::none_of(std::begin(kExtensions), std::end(kExtensions), [&](const char* k) { return ext == k; }))
     fail_input(path.string() + ": unsupported mesh format '" + ext +
                "' (mesh files are .obj, .ply, .gltf or .glb; convert others to glTF)");

@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "proxima/core/error.h"
+#include "proxima/core/file_extension.h"
 #include "proxima/core/limits.h"
 #include "proxima/scene/builtin_scenes.h"
 #include "proxima/scene/import.h"
@@ -29,9 +30,7 @@ Scene load_unsanitized(const std::string& name_or_path) {
       names += (names.empty() ? "" : ", ") + b.name;
     fail_input("no such scene or file: " + name_or_path + " (built-in scenes: " + names + ")");
   }
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string ext = lowercase_extension(path);
   return ext == ".json" ? load_scene_file(path) : import_mesh_file(path);
 }
 

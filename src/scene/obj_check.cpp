@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "proxima/core/error.h"
+#include "proxima/core/file_extension.h"
 
 namespace proxima {
 namespace fs = std::filesystem;
@@ -36,6 +37,13 @@ struct IndexedKind {
 // assimp's OBJ tokens are separated by spaces and tabs only.
 bool is_space(char c) { return c == ' ' || c == '\t'; }
 
+bool starts_case_blind(std::string_view s, std::string_view lower) {
+  if (s.size() < lower.size()) return false;
+  for (size_t i = 0; i < lower.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(s[i])) != lower[i]) return false;
+  return true;
+}
+
 // Numeric components of a `v` line after the keyword, counted as assimp 5.2 does
 // (ObjFileParser::getNumComponentsInDataDefinition): whitespace-separated tokens starting
 // with a digit, sign or point, or with nan / inf. assimp adds a vertex only for 3, 4 or 6.
@@ -46,10 +54,8 @@ int vertex_components(std::string_view rest) {
     while (i < rest.size() && is_space(rest[i])) ++i;
     if (i >= rest.size()) break;
     const char c = rest[i];
-    std::string three(rest.substr(i, 3));
-    for (char& ch : three) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-    if (std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.' || three == "nan" ||
-        three == "inf")
+    if (std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.' ||
+        starts_case_blind(rest.substr(i), "nan") || starts_case_blind(rest.substr(i), "inf"))
       ++n;
     while (i < rest.size() && !is_space(rest[i])) ++i;
   }
@@ -102,9 +108,7 @@ void check_line(std::string_view line, int64_t line_no, IndexedKind (&kinds)[3],
 }  // namespace
 
 void check_obj_indices(const fs::path& path) {
-  std::string ext = path.extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (ext != ".obj") return;
+  if (lowercase_extension(path) != ".obj") return;
   std::ifstream in(path, std::ios::binary);
   IndexedKind kinds[3] = {{"vertex"}, {"texture coordinate"}, {"normal"}};
   std::string text;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "proxima/core/error.h"
+#include "proxima/core/file_extension.h"
 #include "proxima/core/limits.h"
 
 namespace proxima {
@@ -392,8 +393,7 @@ void check_ply_file(const fs::path& path) {
   head.resize(size_t(in.gcount()));
   std::string magic = head.substr(0, 3);
   for (char& c : magic) c = char(std::tolower(static_cast<unsigned char>(c)));  // assimp ignores case
-  std::string ext = path.extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lowercase_extension(path);
   if (magic != "ply" && ext != ".ply") return;
   if (magic != "ply") fail_input(path.string() + ": PLY header does not start with the line 'ply'");
   const Header h = parse_header(path, head);

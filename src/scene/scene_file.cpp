@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "proxima/core/error.h"
+#include "proxima/core/file_extension.h"
 #include "proxima/core/image_io.h"
 #include "proxima/core/limits.h"
 #include "proxima/scene/builtin_scenes.h"
@@ -576,9 +577,7 @@ class SceneReader {
   ImageF read_face(const Node& n) const {
     const fs::path p = resolve(n.string());
     try {
-      std::string ext = p.extension().string();
-      for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-      if (ext != ".exr") return read_image_linear(p, 3);
+      if (lowercase_extension(p) != ".exr") return read_image_linear(p, 3);
       const ImageF exr = read_exr(p);
       ImageF rgb(exr.width(), exr.height(), 3);
       for (int y = 0; y < exr.height(); ++y)
