@@ -21,6 +21,9 @@ struct TemporalReflectFlags {
   float spread_limit = kInf;    // off; e.g. 8: warp triangles on reflectors bending directions more are unreliable
   float curved_contrast = 0.05f;  // ... where s·Lr varies by more than this between neighbours
   int image_frame = -1;         // frame whose images are written; −1 = the first non-key frame
+  float lobe_seed_cell = 0.0f;  // > 0: glossy lobe rays seeded per world cell of this size × diagonal
+  bool breakdown = false;       // with --compare: temporal error by pixel class, key-frame age, seed noise
+  int reference_rays = 0;       // > 0, with --compare: also errors against a reference with this many lobe rays
 };
 
 // What a temporal run reads: the shared `reflect` flags and the temporal ones.
