@@ -53,6 +53,8 @@ void validate(const TemporalReflectRun& r) {
   if (!(t.spread_limit >= 1.0f)) fail_input("--spread-limit: must be ≥ 1 (inf = off)");
   if (!(t.curved_contrast >= 0.0f)) fail_input("--curved-contrast: must be ≥ 0");
   if (t.image_frame < -1) fail_input("--image-frame: must be ≥ -1");
+  if (!(t.depth_discontinuity > 0.0f) || !std::isfinite(t.depth_discontinuity))
+    fail_input("--depth-discontinuity: must be > 0");
   if (!(t.lobe_seed_cell >= 0.0f && t.lobe_seed_cell <= 1.0f)) fail_input("--lobe-seed-cell: must be in [0, 1]");
   if (t.reference_rays < 0 || t.reference_rays > 1024) fail_input("--reference-rays: must be in 0..1024");
   if ((t.breakdown || t.reference_rays > 0) && !r.compare) fail_input("--breakdown / --reference-rays need --compare");
@@ -175,6 +177,10 @@ void add_temporal_reflect_flags(CLI::App* app, TemporalReflectFlags& f) {
   app->add_option("--curved-contrast", f.curved_contrast,
                   "temporal: ... only where s*Lr differs between neighbouring key pixels by more than this (linear)")
       ->capture_default_str();
+  app->add_option("--depth-discontinuity", f.depth_discontinuity,
+                  "temporal: warp grid corners whose s.d or s.d + s.r differ by more than this fraction are not "
+                  "connected (their gap is recomputed)")
+      ->capture_default_str();
   app->add_option("--lobe-seed-cell", f.lobe_seed_cell,
                   "temporal: > 0 seeds glossy lobe rays by the surface point (world cell of this edge x the scene "
                   "diagonal) instead of the pixel, in the temporal method and the reference alike; 0 = per pixel")
@@ -216,6 +222,7 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   to.warp.stretch_limit = tf.stretch_limit;
   to.warp.spread_limit = tf.spread_limit;
   to.warp.curved_contrast = tf.curved_contrast;
+  to.warp.depth_discontinuity = tf.depth_discontinuity;
 
   Scene scene = animated ? pose_scene(rest, t_first) : rest;
   RayScene rays(scene);
@@ -375,6 +382,7 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   m["spread_limit"] = tf.spread_limit;
   m["curved_contrast"] = tf.curved_contrast;
   m["lobe_seed_cell"] = tf.lobe_seed_cell;
+  m["depth_discontinuity"] = tf.depth_discontinuity;
   m["reflective_pct_avg"] = reflective_pct.avg();
   m["reflective_pct_max"] = reflective_pct.max();
   m["recompute_pct_avg"] = recompute_pct.avg();  // non-key frames

@@ -45,7 +45,7 @@ void validate(const ReflectionOptions& o) {
 
 // Seed of the world-space cell (edge `cell`) that holds `p`: the same in every frame.
 uint64_t surface_cell_seed(uint64_t seed, vec3 p, float cell) {
-  auto q = [&](float v) { return uint64_t(int64_t(std::floor(v / cell))); };
+  auto q = [&](float v) { return uint64_t(int64_t(std::clamp(std::floor(double(v) / double(cell)), -9e18, 9e18))); };
   return derive_seed(seed ^ 0x5EEDCE11ull, q(p.x), q(p.y), q(p.z));
 }
 
