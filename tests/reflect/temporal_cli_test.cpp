@@ -47,6 +47,7 @@ TEST(TemporalCli, BadInputIsExitCodeTwoAndWritesNothing) {
                                   base + "--camera 0 --out " + out.string(),
                                   base + "--path 0 --frame 3 --out " + out.string(),
                                   base + "--path 0 --lobe-seed-cell -1 --out " + out.string(),
+                                  base + "--path 0 --depth-discontinuity 0 --out " + out.string(),
                                   base + "--path 0 --compare --reference-rays -1 --out " + out.string(),
                                   base + "--path 0 --breakdown --out " + out.string()}) {
     const RunResult r = run_cli(args);
