@@ -53,6 +53,11 @@ void validate(const TemporalReflectRun& r) {
   if (!(t.spread_limit >= 1.0f)) fail_input("--spread-limit: must be ≥ 1 (inf = off)");
   if (!(t.curved_contrast >= 0.0f)) fail_input("--curved-contrast: must be ≥ 0");
   if (t.image_frame < -1) fail_input("--image-frame: must be ≥ -1");
+  if (!(t.depth_discontinuity > 0.0f) || !std::isfinite(t.depth_discontinuity))
+    fail_input("--depth-discontinuity: must be > 0");
+  if (!(t.lobe_seed_cell >= 0.0f && t.lobe_seed_cell <= 1.0f)) fail_input("--lobe-seed-cell: must be in [0, 1]");
+  if (t.reference_rays < 0 || t.reference_rays > 1024) fail_input("--reference-rays: must be in 0..1024");
+  if ((t.breakdown || t.reference_rays > 0) && !r.compare) fail_input("--breakdown / --reference-rays need --compare");
 }
 
 // The frame dimmed, recomputed samples red (disoccluded) and orange (unreliable warp).
@@ -69,6 +74,93 @@ ImageF recompute_image(const ReflectionFrame& frame, const std::vector<uint8_t>&
   return out;
 }
 
+
+// --breakdown: where the temporal error sits. A reused pixel's class is its surface
+// (curved or planar here × mirror or glossy) and where it lies: on the reflector's
+// silhouette, next to a recomputed pixel (disocclusion / unreliable borders) or inside.
+// Contributions are Σ error / reflective pixels per frame, averaged over all frames, so
+// they add up to temporal_mae_avg.
+constexpr int kSurfaces = 4, kPlaces = 3;
+constexpr const char* kSurfaceNames[kSurfaces] = {"curved mirror", "curved glossy", "planar mirror", "planar glossy"};
+constexpr const char* kPlaceNames[kPlaces] = {"inside", "reflector edge", "next to recomputed"};
+constexpr int kClassKey = kSurfaces * kPlaces, kClassRecomputed = kClassKey + 1, kClassCount = kClassKey + 2;
+std::string class_name(int c) {
+  if (c == kClassKey) return "key frame";
+  if (c == kClassRecomputed) return "recomputed";
+  return std::string(kSurfaceNames[c / kPlaces]) + ", " + kPlaceNames[c % kPlaces];
+}
+// Neighbouring unit normals further apart than this (chord length) count as curved.
+constexpr float kCurvedNormalChord = 1e-3f;
+
+std::vector<uint8_t> error_classes(const ReflectionFrame& frame, bool key, const std::vector<uint8_t>& flags) {
+  const size_t n = frame.sample_count();
+  std::vector<uint8_t> cls(n, uint8_t(kClassKey));
+  if (key) return cls;
+  const int w = frame.camera.width, h = frame.camera.height;
+  std::vector<int32_t> at(size_t(w) * size_t(h), -1);
+  for (size_t i = 0; i < n; ++i) at[frame.pixel[i]] = int32_t(i);
+  for (size_t i = 0; i < n; ++i) {
+    if (flags[i] != kReuseOk) {
+      cls[i] = uint8_t(kClassRecomputed);
+      continue;
+    }
+    const int x = int(frame.pixel[i] % uint32_t(w)), y = int(frame.pixel[i] / uint32_t(w));
+    bool edge = false, near = false, curved = false;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int nx = x + dx, ny = y + dy;
+        if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+        const int32_t j = at[size_t(ny) * size_t(w) + size_t(nx)];
+        const bool four = dx == 0 || dy == 0;
+        if (j < 0 || frame.reflector[size_t(j)] != frame.reflector[i]) {
+          edge = edge || four;
+          continue;
+        }
+        near = near || flags[size_t(j)] != kReuseOk;
+        if (four && glm::length(frame.normal[size_t(j)] - frame.normal[i]) > kCurvedNormalChord) curved = true;
+      }
+    const int surface = (curved ? 0 : 2) + (frame.gloss[i] > 0.0f ? 1 : 0);
+    const int place = edge ? 1 : near ? 2 : 0;
+    cls[i] = uint8_t(surface * kPlaces + place);
+  }
+  return cls;
+}
+
+// Per-class sums over the frames of a run.
+struct ErrorBreakdown {
+  double pixels[kClassCount] = {};      // Σ pixels
+  double error[kClassCount] = {};       // Σ temporal error (0–255)
+  double seed_error[kClassCount] = {};  // Σ error of the reference traced with another seed
+  Series contribution[kClassCount];     // per frame Σ error / reflective pixels
+  Series seed_contribution[kClassCount];
+
+  void add(const ReflectionFrame& frame, const std::vector<uint8_t>& cls, const ImageF& per_pixel,
+           const ImageF* seed_error_image) {
+    double e[kClassCount] = {}, se[kClassCount] = {};
+    for (size_t i = 0; i < frame.sample_count(); ++i) {
+      const int c = cls[i];
+      pixels[c] += 1.0;
+      e[c] += per_pixel.data()[frame.pixel[i]];
+      if (seed_error_image) se[c] += seed_error_image->data()[frame.pixel[i]];
+    }
+    const double n = std::max<double>(1.0, double(frame.sample_count()));
+    for (int c = 0; c < kClassCount; ++c) {
+      error[c] += e[c];
+      seed_error[c] += se[c];
+      contribution[c].add(e[c] / n);
+      if (seed_error_image) seed_contribution[c].add(se[c] / n);
+    }
+  }
+};
+
+// Key-frame age (frames since the key frame) bins of the breakdown's second table.
+constexpr int kAgeBins = 5;
+constexpr int kAgeBinStart[kAgeBins] = {1, 3, 6, 11, 21};
+int age_bin(int age) {
+  int b = 0;
+  while (b + 1 < kAgeBins && age >= kAgeBinStart[b + 1]) ++b;
+  return b;
+}
 }  // namespace
 
 void add_temporal_reflect_flags(CLI::App* app, TemporalReflectFlags& f) {
@@ -84,6 +176,21 @@ void add_temporal_reflect_flags(CLI::App* app, TemporalReflectFlags& f) {
       ->capture_default_str();
   app->add_option("--curved-contrast", f.curved_contrast,
                   "temporal: ... only where s*Lr differs between neighbouring key pixels by more than this (linear)")
+      ->capture_default_str();
+  app->add_option("--depth-discontinuity", f.depth_discontinuity,
+                  "temporal: warp grid corners whose s.d or s.d + s.r differ by more than this fraction are not "
+                  "connected (their gap is recomputed)")
+      ->capture_default_str();
+  app->add_option("--lobe-seed-cell", f.lobe_seed_cell,
+                  "temporal: > 0 seeds glossy lobe rays by the surface point (world cell of this edge x the scene "
+                  "diagonal) instead of the pixel, in the temporal method and the reference alike; 0 = per pixel")
+      ->capture_default_str();
+  app->add_flag("--breakdown", f.breakdown,
+                "temporal, with --compare: error by pixel class and key-frame age, and the reference's own "
+                "noise against itself traced with seed+1 (one more G-buffer and trace per frame)");
+  app->add_option("--reference-rays", f.reference_rays,
+                  "temporal, with --compare: also errors against a reference with this many glossy lobe rays "
+                  "(0 = off)")
       ->capture_default_str();
 }
 
@@ -109,11 +216,13 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   ro.glossy_rays = run.glossy_rays;
   ro.area_light_samples = run.light_samples;
   ro.seed = run.common.seed;
+  ro.lobe_seed_cell = tf.lobe_seed_cell;
   TemporalOptions to;
   to.keyframe_threshold = tf.threshold;
   to.warp.stretch_limit = tf.stretch_limit;
   to.warp.spread_limit = tf.spread_limit;
   to.warp.curved_contrast = tf.curved_contrast;
+  to.warp.depth_discontinuity = tf.depth_discontinuity;
 
   Scene scene = animated ? pose_scene(rest, t_first) : rest;
   RayScene rays(scene);
@@ -130,6 +239,9 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   results.threads = active_threads();
   bool wrote_images = false;
   int keyframes = 0, since_key = 0;
+  ErrorBreakdown breakdown;
+  Series age_mae[kAgeBins];
+  Series hq_temporal_mae, hq_reference_mae, hq_direct_mae;
   for (int frame_index = 0; frame_index < frames; frame_index += tf.frame_step) {
     const float t = frames > 1 ? t_first + float(frame_index) * (t_last - t_first) / float(frames - 1) : t_first;
     if (animated) {
@@ -203,6 +315,28 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
           mirror_direct_mae.add(compare_images(direct_color, reference, &mirror).mae_avg);
         }
         direct_recompute_pct.add(100.0 * double(direct_recomputed) / n);
+        if (!st.key) age_mae[age_bin(state.frames_since_key)].add(t_mae);
+        if (tf.breakdown) {
+          // The reference against itself with another seed: the glossy lobe noise floor.
+          ReflectionOptions other = ro;
+          other.seed = ro.seed + 1;
+          const ReflectionFrame f2 = prepare_reflection_frame(scene, camera, other);
+          const ImageF ref2 = compose_reflections(f2, trace_reflections(scene, rays, f2).radiance);
+          const ImageF seed_error = error_image(ref2, reference, &mask);
+          breakdown.add(frame, error_classes(frame, st.key, flags), error_image(color, reference, &mask),
+                        &seed_error);
+        }
+        if (tf.reference_rays > 0) {
+          ReflectionOptions hq = ro;
+          hq.glossy_rays = tf.reference_rays;
+          hq.seed = ro.seed + 2;    // noise independent of the compared images' ...
+          hq.lobe_seed_cell = 0.0f;  // ... and of their lobe seeding
+          const ReflectionFrame fh = prepare_reflection_frame(scene, camera, hq);
+          const ImageF ref_hq = compose_reflections(fh, trace_reflections(scene, rays, fh).radiance);
+          hq_temporal_mae.add(compare_images(color, ref_hq, &mask).mae_avg);
+          hq_reference_mae.add(compare_images(reference, ref_hq, &mask).mae_avg);
+          hq_direct_mae.add(compare_images(direct_color, ref_hq, &mask).mae_avg);
+        }
       }
     }
     per_frame.rows.push_back({double(frame_index), st.key ? 1.0 : 0.0, reflective_pct.values.back(),
@@ -247,6 +381,8 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   m["threshold"] = tf.threshold;
   m["spread_limit"] = tf.spread_limit;
   m["curved_contrast"] = tf.curved_contrast;
+  m["lobe_seed_cell"] = tf.lobe_seed_cell;
+  m["depth_discontinuity"] = tf.depth_discontinuity;
   m["reflective_pct_avg"] = reflective_pct.avg();
   m["reflective_pct_max"] = reflective_pct.max();
   m["recompute_pct_avg"] = recompute_pct.avg();  // non-key frames
@@ -293,6 +429,46 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
                               {{temporal_mae.avg(), temporal_mae.max(), direct_mae.avg(), direct_mae.max(),
                                 mirror_temporal_mae.avg(), mirror_direct_mae.avg(), temporal_ms.avg(), reference_ms.avg(), m["speedup_vs_reference"],
                                 m["frame_speedup_vs_reference"]}}});
+  }
+  if (run.compare) {
+    Table ages{"Temporal MAE by key-frame age (reuse frames), " + where, {"frames_since_key", "frames", "temporal_mae_avg"}, {}};
+    for (int b = 0; b < kAgeBins; ++b) {
+      const std::string label = b + 1 < kAgeBins ? std::to_string(kAgeBinStart[b]) + "-" + std::to_string(kAgeBinStart[b + 1] - 1)
+                                                 : std::to_string(kAgeBinStart[b]) + "+";
+      ages.rows.push_back({label, double(age_mae[b].values.size()), age_mae[b].avg()});
+    }
+    results.tables.push_back(ages);
+  }
+  if (tf.breakdown) {
+    Table by_class{"Temporal error by pixel class, " + where,
+                   {"class", "pixel_pct", "mae_in_class", "mae_contribution", "seed_noise_mae_in_class",
+                    "seed_noise_contribution"},
+                   {}};
+    double all = 0.0;
+    for (double p : breakdown.pixels) all += p;
+    for (int c = 0; c < kClassCount; ++c) {
+      const double p = std::max(1.0, breakdown.pixels[c]);
+      by_class.rows.push_back({class_name(c), 100.0 * breakdown.pixels[c] / std::max(1.0, all),
+                               breakdown.error[c] / p, breakdown.contribution[c].avg(), breakdown.seed_error[c] / p,
+                               breakdown.seed_contribution[c].avg()});
+      std::string key = class_name(c);
+      key.erase(std::remove(key.begin(), key.end(), ','), key.end());
+      std::replace(key.begin(), key.end(), ' ', '_');
+      m["breakdown_" + key + "_mae_contribution"] = breakdown.contribution[c].avg();
+    }
+    double seed_total = 0.0;
+    for (const Series& s : breakdown.seed_contribution) seed_total += s.avg();
+    m["seed_noise_mae_avg"] = seed_total;
+    results.tables.push_back(by_class);
+  }
+  if (tf.reference_rays > 0) {
+    m["hq_temporal_mae_avg"] = hq_temporal_mae.avg();
+    m["hq_reference_mae_avg"] = hq_reference_mae.avg();
+    m["hq_direct_mae_avg"] = hq_direct_mae.avg();
+    results.tables.push_back({"MAE against a reference with " + std::to_string(tf.reference_rays) +
+                                  " glossy lobe rays, " + where,
+                              {"temporal", "reference", "direct"},
+                              {{hq_temporal_mae.avg(), hq_reference_mae.avg(), hq_direct_mae.avg()}}});
   }
   // Thesis Table 23: mean ms per step over all frames, and its share of the frame.
   const double total = frame_temporal_ms.avg() > 0.0 ? frame_temporal_ms.avg() : 1.0;

@@ -19,8 +19,12 @@ struct TemporalReflectFlags {
   float threshold = 0.3f;       // key-frame threshold on the recomputed fraction
   float stretch_limit = 16.0f;  // warp triangles stretched more than this in area are unreliable
   float spread_limit = kInf;    // off; e.g. 8: warp triangles on reflectors bending directions more are unreliable
+  float depth_discontinuity = 0.1f;  // warp corners whose s.d or s.d + s.r differ more (relative) are not connected
   float curved_contrast = 0.05f;  // ... where s·Lr varies by more than this between neighbours
   int image_frame = -1;         // frame whose images are written; −1 = the first non-key frame
+  float lobe_seed_cell = 0.0f;  // > 0: glossy lobe rays seeded per world cell of this size × diagonal
+  bool breakdown = false;       // with --compare: temporal error by pixel class, key-frame age, seed noise
+  int reference_rays = 0;       // > 0, with --compare: also errors against a reference with this many lobe rays
 };
 
 // What a temporal run reads: the shared `reflect` flags and the temporal ones.

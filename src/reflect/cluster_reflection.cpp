@@ -39,6 +39,14 @@ void validate(const ReflectionOptions& o) {
   if (o.glossy_rays < 1 || o.glossy_rays > 1024) fail_input("reflections: glossy rays must be in 1..1024");
   if (o.area_light_samples < 1 || o.area_light_samples > 64)
     fail_input("reflections: area light samples must be in 1..64");
+  if (!(o.lobe_seed_cell >= 0.0f) || !std::isfinite(o.lobe_seed_cell))
+    fail_input("reflections: lobe seed cell must be finite and >= 0");
+}
+
+// Seed of the world-space cell (edge `cell`) that holds `p`: the same in every frame.
+uint64_t surface_cell_seed(uint64_t seed, vec3 p, float cell) {
+  auto q = [&](float v) { return uint64_t(int64_t(std::clamp(std::floor(double(v) / double(cell)), -9e18, 9e18))); };
+  return derive_seed(seed ^ 0x5EEDCE11ull, q(p.x), q(p.y), q(p.z));
 }
 
 // Two-sided surface as seen from `toward_viewer` (as trace/'s surface_point).
@@ -197,6 +205,7 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
   frame.direction.resize(frame.first_ray[n]);
 
   // The rays of render_reference's first bounce, from the same random streams.
+  const float cell = options.lobe_seed_cell * frame.scene_diagonal;
   parallel_for(n, kSampleGrain, [&](size_t b, size_t e) {
     std::vector<vec2> lobe(size_t(options.glossy_rays));
     for (size_t i = b; i < e; ++i) {
@@ -209,7 +218,8 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
       frame.normal[i] = f.n;
       frame.origin[i] = frame.position[i] + epsilon * f.ng;
       const uint64_t out_pixel = uint64_t(y / k) * uint64_t(camera.width) + uint64_t(x / k);
-      Pcg32 rng(derive_seed(options.seed, out_pixel, uint64_t((y % k) * k + (x % k))));
+      Pcg32 rng(cell > 0.0f ? surface_cell_seed(options.seed, frame.position[i], cell)
+                            : derive_seed(options.seed, out_pixel, uint64_t((y % k) * k + (x % k))));
       // The reference draws its area-light jitter at this point before the lobe samples.
       if (frame.specular[i] < 1.0f && surface_diffuse(scene, t, u, v) != vec3(0.0f))
         for (size_t l = 0; l < scene.area_lights.size(); ++l)

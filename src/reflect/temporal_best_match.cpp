@@ -83,6 +83,9 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
         }
         float former = s.distance(cx, cy, r);
         bool converged = false;
+        // The last step's 3×3 distances: on convergence they are the end point's
+        // neighbours, which the sub-pixel fit reads again.
+        float around[3][3] = {};
         for (int step = 0; step < max_steps; ++step) {
           int bx = cx, by = cy;
           float best = kInf;
@@ -90,6 +93,7 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
             for (int dx = -1; dx <= 1; ++dx) {
               if (!dx && !dy) continue;
               const float d = s.distance_in(cx + dx, cy + dy, object, r);
+              around[dy + 1][dx + 1] = d;
               if (d < best) best = d, bx = cx + dx, by = cy + dy;
             }
           if (!(best < former)) {  // local minimum (ties stop too: no cycles)
@@ -125,12 +129,9 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
         }
         vec2 sub(0.0f);
         if (options.subpixel) {
-          auto sq = [&](int px, int py) {
-            const float d = s.distance_in(px, py, object, r);
-            return d * d;
-          };
+          auto sq = [&](int dx, int dy) { return around[dy + 1][dx + 1] * around[dy + 1][dx + 1]; };
           const float b = former * former;
-          const float l = sq(cx - 1, cy), rr = sq(cx + 1, cy), u = sq(cx, cy - 1), dn = sq(cx, cy + 1);
+          const float l = sq(-1, 0), rr = sq(1, 0), u = sq(0, -1), dn = sq(0, 1);
           // An (almost) exact match stays put: near a zero of the distance its square is
           // far from a parabola where the reflection is close (small s.r).
           auto exact = [&](float p, float q) { return b <= kExactMatch * std::min(p, q); };

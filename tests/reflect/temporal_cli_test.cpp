@@ -45,12 +45,39 @@ TEST(TemporalCli, BadInputIsExitCodeTwoAndWritesNothing) {
                                   base + "--path 0 --frame-step 0 --out " + out.string(),
                                   base + "--path 0 --glossy-rays 5000 --out " + out.string(),
                                   base + "--camera 0 --out " + out.string(),
-                                  base + "--path 0 --frame 3 --out " + out.string()}) {
+                                  base + "--path 0 --frame 3 --out " + out.string(),
+                                  base + "--path 0 --lobe-seed-cell -1 --out " + out.string(),
+                                  base + "--path 0 --depth-discontinuity 0 --out " + out.string(),
+                                  base + "--path 0 --compare --reference-rays -1 --out " + out.string(),
+                                  base + "--path 0 --breakdown --out " + out.string()}) {
     const RunResult r = run_cli(args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
     EXPECT_NE(r.output.find("--"), std::string::npos) << r.output;  // names the flag
   }
   EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// --breakdown splits the temporal error into classes whose contributions add up to the
+// MAE; --reference-rays and --lobe-seed-cell run alongside.
+TEST(TemporalCli, BreakdownContributionsAddUpToTheMae) {
+  TempDir dir;
+  const auto out = dir.path / "run";
+  const RunResult r = run_cli("reflect --method temporal --scene room-reflector --path 0 --frames 6 --width 48 "
+                              "--height 32 --compare --breakdown --reference-rays 16 --lobe-seed-cell 0.01 --out " +
+                              out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(out / "results.json");
+  const nlohmann::json m = nlohmann::json::parse(in)["metrics"];
+  double sum = 0.0;
+  int classes = 0;
+  for (const auto& [name, value] : m.items())
+    if (name.rfind("breakdown_", 0) == 0) sum += value.get<double>(), ++classes;
+  EXPECT_EQ(classes, 14);
+  EXPECT_GT(m["temporal_mae_avg"].get<double>(), 0.0);
+  EXPECT_NEAR(sum, m["temporal_mae_avg"].get<double>(), 1e-6 * (1.0 + sum));
+  EXPECT_TRUE(m.contains("seed_noise_mae_avg"));
+  EXPECT_TRUE(m.contains("hq_temporal_mae_avg"));
+  EXPECT_NEAR(m["lobe_seed_cell"].get<double>(), 0.01, 1e-6);  // stored as float
 }
 
 }  // namespace proxima

@@ -30,6 +30,12 @@ struct ReflectionOptions {
                                // the same way so lobe samples match; reflected and eye-visible
                                // points see area lights through the n×n stratum centres
   uint64_t seed = 1;
+  // > 0: glossy lobe samples are seeded by the surface point instead of the pixel — by the
+  // world-space cell of this edge length (× the scene diagonal) that holds it — so a point
+  // draws the same lobe rays in every frame and from every view (temporally stable glossy
+  // reflections; temporal reuse then carries no other pixel's noise). Pixels in one cell
+  // share their lobe directions. 0: per-pixel streams, as render_reference.
+  float lobe_seed_cell = 0.0f;
 };
 
 // Step 1 of Algorithm 6 for one frame. Reflective samples are stored structure-of-arrays.
@@ -60,7 +66,7 @@ struct ReflectionFrame {
 // Rasterizes the G-buffer (depth, triangle, barycentrics, normal, object) from `camera` at
 // k× resolution and builds every reflection ray exactly as render_reference does at its
 // first bounce: mirror r = reflect(d, n), lobe directions glossy_lobe_direction() from the
-// same stratified samples of the same per-sub-sample stream. `object_bounds` as in
+// same stratified samples of the same per-sub-sample stream (unless lobe_seed_cell > 0). `object_bounds` as in
 // RasterOptions (may be empty). Throws InputError for an invalid camera or options.
 ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camera, const ReflectionOptions& options,
                                          std::span<const Bounds3> object_bounds = {});
