@@ -16,12 +16,14 @@
 #include "proxima/depthimage/sampling.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cassert>
 #include <cmath>
 #include <numeric>
 #include <utility>
 
+#include "proxima/core/parallel.h"
 #include "proxima/raster/depth_peeling.h"
 
 namespace proxima {
@@ -35,7 +37,9 @@ const char* redundancy_name(Redundancy r) { return r == Redundancy::Pixel ? "pix
 RedundancyTest::RedundancyTest(Redundancy kind, const Scene& scene, const RayScene* rays, const Camera& from,
                                const DepthImage& against, float epsilon)
     : kind_(kind), scene_(&scene), rays_(rays), from_(&from), against_(&against),
-      reproject_(from, against.camera), epsilon_(epsilon * scene_bounds(scene).diagonal()) {
+      reproject_(from, against.camera),
+      // Only the visibility test uses ε; the bounds are a pass over every vertex.
+      epsilon_(kind == Redundancy::Visibility ? epsilon * scene_bounds(scene).diagonal() : 0.0f) {
   assert(kind != Redundancy::Visibility || rays != nullptr);
 }
 
@@ -186,20 +190,66 @@ uint32_t ordered_bits(float f) {
   return (b & 0x80000000u) ? ~b : b | 0x80000000u;
 }
 
-// Triangle ids sorted front to back by the view depth of their centroids, ties by id:
-// one sort of packed (order-preserving depth bits, id) keys.
-std::vector<uint32_t> front_to_back(const Scene& scene, const Camera& camera) {
+// The front-to-back draw order sorts clusters of consecutive triangles, not triangles:
+// consecutive triangles are one mesh strip, blade, box or leaf in practice (spatially
+// compact). The sort is 16× shorter and the rasterizer's setup reads the triangles and
+// their vertices in runs instead of scattered; early z is a little worse (1024², 3 views:
+// 0–3 % more fragments tested on city and tree, 10–17 % on grass and nest), and the
+// measured time no worse than with the per-triangle sort (docs/RESULTS.md, issue 4).
+constexpr size_t kClusterTriangles = 16;
+
+// Centroid of each cluster's triangle centroids.
+std::vector<vec3> cluster_centers(const Scene& scene) {
+  const size_t n = scene.triangles.size();
+  std::vector<vec3> centers((n + kClusterTriangles - 1) / kClusterTriangles);
+  parallel_for(centers.size(), 1024, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; ++c) {
+      const size_t t0 = c * kClusterTriangles, t1 = std::min(n, t0 + kClusterTriangles);
+      vec3 sum(0.0f);
+      for (size_t t = t0; t < t1; ++t) {
+        const uvec3 tri = scene.triangles[t];
+        sum += scene.positions[tri.x] + scene.positions[tri.y] + scene.positions[tri.z];
+      }
+      centers[c] = sum / float(3 * (t1 - t0));
+    }
+  });
+  return centers;
+}
+
+// Triangle ids, clusters sorted front to back by the view depth of their centers (ties
+// by cluster), each cluster's triangles in scene order. `order` is reused.
+void front_to_back(const Scene& scene, std::span<const vec3> centers, const Camera& camera,
+                   std::vector<uint32_t>& order) {
   const vec3 eye = camera.position, forward = camera_forward(camera);
-  std::vector<uint64_t> keys(scene.triangles.size());
-  for (size_t t = 0; t < keys.size(); ++t) {
-    const uvec3 tri = scene.triangles[t];
-    const vec3 c = (scene.positions[tri.x] + scene.positions[tri.y] + scene.positions[tri.z]) / 3.0f;
-    keys[t] = (uint64_t(ordered_bits(glm::dot(c - eye, forward))) << 32) | uint64_t(t);
-  }
+  std::vector<uint64_t> keys(centers.size());
+  for (size_t c = 0; c < keys.size(); ++c)
+    keys[c] = (uint64_t(ordered_bits(glm::dot(centers[c] - eye, forward))) << 32) | uint64_t(c);
   std::sort(keys.begin(), keys.end());
-  std::vector<uint32_t> order(keys.size());
-  for (size_t k = 0; k < keys.size(); ++k) order[k] = uint32_t(keys[k]);
-  return order;
+  const size_t n = scene.triangles.size();
+  order.resize(n);
+  size_t k = 0;
+  for (uint64_t key : keys) {
+    const size_t t0 = size_t(uint32_t(key)) * kClusterTriangles, t1 = std::min(n, t0 + kClusterTriangles);
+    for (size_t t = t0; t < t1; ++t) order[k++] = uint32_t(t);
+  }
+}
+
+// Sets `bit` in held[t] for every triangle t the image holds. In parallel over fixed
+// pixel chunks; a run of one triangle's pixels looks it up once, and a set bit is only
+// read, so the atomic OR is rare. The result (an OR) is the same for any thread count.
+void mark_held(const ImageU32& triangles, uint8_t bit, std::vector<uint8_t>& held) {
+  const uint32_t* ids = triangles.data().data();
+  uint8_t* mask = held.data();
+  parallel_for(triangles.data().size(), size_t(1) << 15, [ids, mask, bit](size_t begin, size_t end) {
+    uint32_t last = kNoTriangle;
+    for (size_t p = begin; p < end; ++p) {
+      const uint32_t t = ids[p];
+      if (t == kNoTriangle || t == last) continue;
+      last = t;
+      std::atomic_ref<uint8_t> h(mask[t]);
+      if (!(h.load(std::memory_order_relaxed) & bit)) h.fetch_or(bit, std::memory_order_relaxed);
+    }
+  });
 }
 
 }  // namespace
@@ -207,26 +257,33 @@ std::vector<uint32_t> front_to_back(const Scene& scene, const Camera& camera) {
 std::vector<DepthImage> sample_nrr(const Scene& scene, std::span<const Camera> cameras, Redundancy redundancy,
                                    const RayScene* rays, bool shade, float epsilon) {
   assert(redundancy != Redundancy::Visibility || rays != nullptr);
+  const bool pixel = redundancy == Redundancy::Pixel;
   std::vector<DepthImage> images;
   images.reserve(cameras.size());  // the tests below point into it
-  std::vector<uint8_t> held(redundancy == Redundancy::Pixel ? scene.triangles.size() : 0, 0);
+  std::vector<uint8_t> held(pixel ? scene.triangles.size() : 0, 0);
+  std::vector<vec3> centers;
+  std::vector<uint32_t> order;
   for (size_t i = 0; i < cameras.size(); ++i) {
-    std::vector<RedundancyTest> earlier;
-    for (size_t j = 0; j < i; ++j)
-      earlier.emplace_back(redundancy, scene, rays, cameras[i], images[j], epsilon);
-    // Front-to-back draw order (early z): once a pixel holds a non-redundant fragment,
-    // farther fragments fail the depth test before reaching the costly redundancy test.
-    // The result does not depend on the order (the depth test orders by (depth, id)).
     RasterOptions options = depth_image_raster_options(shade);
-    const std::vector<uint32_t> order = i == 0 ? std::vector<uint32_t>{} : front_to_back(scene, cameras[i]);
-    options.triangles = order;
     RasterImages out;
-    rasterize(scene, cameras[i], options, out,
-              NonRedundantTest{earlier, redundancy == Redundancy::Pixel ? held.data() : nullptr});
+    if (i == 0) {
+      // No earlier image: every fragment is kept, I_0 is the conventional image.
+      rasterize(scene, cameras[i], options, out, AcceptAllFragments{});
+    } else {
+      std::vector<RedundancyTest> earlier;
+      for (size_t j = 0; j < i; ++j)
+        earlier.emplace_back(redundancy, scene, rays, cameras[i], images[j], epsilon);
+      // Front-to-back draw order (early z): once a pixel holds a non-redundant fragment,
+      // farther fragments fail the depth test before reaching the costly redundancy test.
+      // The result does not depend on the order (the depth test orders by (depth, id)).
+      if (centers.empty()) centers = cluster_centers(scene);
+      front_to_back(scene, centers, cameras[i], order);
+      options.triangles = order;
+      rasterize(scene, cameras[i], options, out, NonRedundantTest{earlier, pixel ? held.data() : nullptr});
+    }
     images.push_back(to_depth_image(cameras[i], std::move(out)));
-    if (redundancy == Redundancy::Pixel)
-      for (uint32_t t : images.back().triangle.data())
-        if (t != kNoTriangle) held[t] |= uint8_t(1u << std::min<size_t>(i, 7));
+    if (pixel && i + 1 < cameras.size())
+      mark_held(images.back().triangle, uint8_t(1u << std::min<size_t>(i, 7)), held);
   }
   return images;
 }
