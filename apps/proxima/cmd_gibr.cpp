@@ -35,6 +35,8 @@ struct GibrFlags {
   std::string views = "path";
   int frames = 10;
   int k = 3;
+  int novel_ss = 0;         // 0 = the ground truth's (--supersample)
+  double offpath = 0.5;     // meters, --views offpath
   bool photo_images = true;
   int fps_repeat = 3;
 };
@@ -74,7 +76,9 @@ Command register_gibr(CLI::App& root) {
   add_seed_flag(app, f.common);
   add_out_flag(app, f.common, true);
   app->add_option("--photos", f.model.photos, "calibrated photographs rendered along the walk path")->capture_default_str();
-  app->add_option("--views", f.views, "novel views: 'path' (along the walk path) or 'photos' (at the first photo poses)")
+  app->add_option("--views", f.views,
+                  "novel views: 'path' (along the walk path), 'offpath' (the path's cameras moved sideways by "
+                  "--offpath) or 'photos' (at the first photo poses)")
       ->capture_default_str();
   app->add_option("--frames", f.frames, "novel views rendered and compared")->capture_default_str();
   app->add_option("--photo-width", f.model.photo_width, "photograph width in pixels")->capture_default_str();
@@ -82,6 +86,11 @@ Command register_gibr(CLI::App& root) {
   app->add_option("--texel", f.model.texel, "radiance-map texel size in meters (default: per scene, docs/gibr.md)");
   app->add_option("--period", f.model.period, "texture repeat in meters (default: per scene)");
   app->add_option("--k", f.k, "photographs blended per pixel")->capture_default_str();
+  app->add_option("--novel-ss", f.novel_ss,
+                  "s×s samples per novel-view pixel, both mappings (0 = the ground truth's --supersample)")
+      ->capture_default_str();
+  app->add_option("--offpath", f.offpath, "meters the 'offpath' views are moved off the walk path")
+      ->capture_default_str();
   app->add_option("--supersample", f.model.supersample, "k×k samples per photograph / ground-truth pixel")
       ->capture_default_str();
   app->add_flag("--exclude-boundaries", f.model.exclude_boundaries,
@@ -96,7 +105,10 @@ Command register_gibr(CLI::App& root) {
   return {app, [] {
             if (f.common.threads < 0) fail_input("--threads: must be ≥ 0");
             if (f.frames < 1 || f.frames > 10000) fail_input("--frames: must be in 1..10000");
-            if (f.views != "path" && f.views != "photos") fail_input("--views: must be 'path' or 'photos' (got '" + f.views + "')");
+            if (f.views != "path" && f.views != "photos" && f.views != "offpath")
+              fail_input("--views: must be 'path', 'offpath' or 'photos' (got '" + f.views + "')");
+            if (f.novel_ss < 0 || f.novel_ss > 8) fail_input("--novel-ss: must be in 0..8");
+            if (!(f.offpath >= 0.0 && f.offpath <= 1e3)) fail_input("--offpath: must be a distance in meters ≥ 0");
             if (f.fps_repeat < 1 || f.fps_repeat > 1000) fail_input("--fps-repeat: must be in 1..1000");
             if (f.k < 1 || f.k > 64) fail_input("--k: must be in 1..64");
             ThreadLimit limit(f.common.threads);
@@ -155,7 +167,9 @@ Command register_gibr(CLI::App& root) {
 
             // Phase 4: novel views, ground truth and errors.
             std::vector<Camera> views;
-            for (int i = 0; i < f.frames; ++i) {
+            if (f.views == "offpath")
+              views = offpath_poses(rays, path, f.frames, f.common.width, f.common.height, f.offpath, 0.01f, far);
+            for (int i = 0; f.views != "offpath" && i < f.frames; ++i) {
               if (f.views == "photos") {
                 views.push_back(cams[size_t(i) % cams.size()]);
               } else {
@@ -168,6 +182,11 @@ Command register_gibr(CLI::App& root) {
             std::filesystem::create_directories(out / "views");
             NovelViewOptions nvo;
             nvo.k = f.k;
+            // Both mappings through the same renderer, antialiased like the ground truth.
+            nvo.supersample = f.novel_ss > 0 ? f.novel_ss : f.model.supersample;
+            NovelViewOptions nvo1 = nvo;  // one sample per pixel: its cost, for comparison
+            nvo1.supersample = 1;
+            std::vector<double> frame_ms_1spp;
             Stopwatch w;
             Pool all_v, all_i, sil_v, sil_i, seen_v, seen_i, silseen_v, silseen_i;
             std::vector<double> frame_ms, frame_cpu_ms;
@@ -185,6 +204,10 @@ Command register_gibr(CLI::App& root) {
                 nv = render_novel_view(scene, model, vis_maps, cam, nvo);
                 frame_cpu_ms.push_back(1000.0 * double(std::clock() - c0) / CLOCKS_PER_SEC);
                 frame_ms.push_back(nv.raster_ms + nv.blend_ms);
+                if (nvo.supersample > 1) {
+                  const NovelView n1 = render_novel_view(scene, model, vis_maps, cam, nvo1);
+                  frame_ms_1spp.push_back(n1.raster_ms + n1.blend_ms);
+                }
               }
               const NovelView ni = render_novel_view(scene, model, item_maps, cam, nvo);
               w.restart();
@@ -248,6 +271,13 @@ Command register_gibr(CLI::App& root) {
             m["unseen_pct_itembuffer"] = 100.0 * holes_i / std::max(1.0, covered);
             m["novel_view_ms"] = med;
             m["novel_view_fps"] = med > 0 ? 1000.0 / med : 0.0;
+            m["novel_view_ss"] = double(nvo.supersample);
+            if (!frame_ms_1spp.empty()) {
+              const double med1 = median(frame_ms_1spp);
+              m["novel_view_ms_1spp"] = med1;
+              m["novel_view_fps_1spp"] = med1 > 0 ? 1000.0 / med1 : 0.0;
+              phases.rows.push_back({std::string("4 novel view at 1 sample per pixel (median per frame, for comparison)"), med1});
+            }
             m["bsp_ms"] = g.stats.bsp.build_ms;
             m["vismap_ms_avg"] = g.stats.vismap_ms / double(cams.size());
             m["silhouette_edges_avg"] = g.stats.silhouette_edges_avg;
