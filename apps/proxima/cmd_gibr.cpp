@@ -43,7 +43,7 @@ struct GibrFlags {
 
 // Pooled error over frames: squared and absolute sums on the 0–255 display scale.
 struct Pool {
-  double se = 0.0, ae = 0.0, values = 0.0;
+  double se = 0.0, ae = 0.0, values = 0.0, pixels = 0.0;
   void add(const ImageError& e) {
     if (e.pixels == 0) return;
     const double n = 3.0 * double(e.pixels);
@@ -51,6 +51,7 @@ struct Pool {
     se += mse * n;
     ae += e.mae_avg * n;
     values += n;
+    pixels += double(e.pixels);
   }
   double psnr() const { return values > 0 && se > 0 ? 10.0 * std::log10(255.0 * 255.0 / (se / values)) : INFINITY; }
   double mae() const { return values > 0 ? ae / values : 0.0; }
@@ -189,6 +190,10 @@ Command register_gibr(CLI::App& root) {
             std::vector<double> frame_ms_1spp;
             Stopwatch w;
             Pool all_v, all_i, sil_v, sil_i, seen_v, seen_i, silseen_v, silseen_i;
+            // Error by region: which mapping saw the pixel's surface (2 bits: vis-map hole,
+            // item-buffer hole) × all pixels / within 2 px of silhouettes; [mapping].
+            Pool region[4][2][2];
+            double region_total = 0.0;
             std::vector<double> frame_ms, frame_cpu_ms;
             double truth_ms = 0.0, holes_v = 0.0, holes_i = 0.0, covered = 0.0;
             Table per_view{"novel views of " + model_scene.name + " ('" + f.views + "')",
@@ -229,6 +234,17 @@ Command register_gibr(CLI::App& root) {
               for (size_t p = 0; p < sil_seen.data().size(); ++p) sil_seen.data()[p] = sil.data()[p] && seen.data()[p];
               silseen_v.add(compare_images(nv.color, truth, &sil_seen));
               silseen_i.add(compare_images(ni.color, truth, &sil_seen));
+              for (int rgn = 0; rgn < 4; ++rgn)
+                for (int band = 0; band < 2; ++band) {
+                  ImageU8 mask(cam.width, cam.height, 1, 0);
+                  for (int y = 0; y < cam.height; ++y)
+                    for (int x = 0; x < cam.width; ++x)
+                      mask.at(x, y) = (nv.unseen.at(x, y) ? 2 : 0) + (ni.unseen.at(x, y) ? 1 : 0) == rgn &&
+                                      (band == 0 || sil.at(x, y));
+                  region[rgn][band][0].add(compare_images(nv.color, truth, &mask));
+                  region[rgn][band][1].add(compare_images(ni.color, truth, &mask));
+                }
+              region_total += double(cam.width) * double(cam.height);
               holes_v += double(nv.holes);
               holes_i += double(ni.holes);
               covered += double(nv.covered);
@@ -291,7 +307,19 @@ Command register_gibr(CLI::App& root) {
                            {std::string("item buffer"), m["psnr_itembuffer"], m["mae_itembuffer"],
                             m["silhouette_psnr_itembuffer"], m["silhouette_mae_itembuffer"], m["psnr_seen_itembuffer"],
                             m["silhouette_mae_seen_itembuffer"], m["unseen_pct_itembuffer"]}}};
-            results.tables = {summary, stats, phases, per_view};
+            Table regions{"error by region (" + model_scene.name + ", pooled over views; % of all pixels)",
+                          {"region", "pixels %", "MAE vismap", "MAE itembuffer", "≤2px sil. pixels %",
+                           "≤2px sil. MAE vismap", "≤2px sil. MAE itembuffer"},
+                          {}};
+            const char* region_names[4] = {"both mappings saw", "vis-map saw, item-buffer hole",
+                                           "item-buffer saw, vis-map hole", "both holes"};
+            for (int rgn = 0; rgn < 4; ++rgn) {
+              const auto& r = region[rgn];
+              regions.rows.push_back({std::string(region_names[rgn]), 100.0 * r[0][0].pixels / std::max(1.0, region_total),
+                                      r[0][0].mae(), r[0][1].mae(), 100.0 * r[1][0].pixels / std::max(1.0, region_total),
+                                      r[1][0].mae(), r[1][1].mae()});
+            }
+            results.tables = {summary, regions, stats, phases, per_view};
             publish_results(out, results);
             return 0;
           }};
