@@ -35,13 +35,15 @@ struct GibrFlags {
   std::string views = "path";
   int frames = 10;
   int k = 3;
+  int novel_ss = 0;         // 0 = the ground truth's (--supersample)
+  double offpath = 0.5;     // meters, --views offpath
   bool photo_images = true;
   int fps_repeat = 3;
 };
 
 // Pooled error over frames: squared and absolute sums on the 0–255 display scale.
 struct Pool {
-  double se = 0.0, ae = 0.0, values = 0.0;
+  double se = 0.0, ae = 0.0, values = 0.0, pixels = 0.0;
   void add(const ImageError& e) {
     if (e.pixels == 0) return;
     const double n = 3.0 * double(e.pixels);
@@ -49,6 +51,7 @@ struct Pool {
     se += mse * n;
     ae += e.mae_avg * n;
     values += n;
+    pixels += double(e.pixels);
   }
   double psnr() const { return values > 0 && se > 0 ? 10.0 * std::log10(255.0 * 255.0 / (se / values)) : INFINITY; }
   double mae() const { return values > 0 ? ae / values : 0.0; }
@@ -74,7 +77,9 @@ Command register_gibr(CLI::App& root) {
   add_seed_flag(app, f.common);
   add_out_flag(app, f.common, true);
   app->add_option("--photos", f.model.photos, "calibrated photographs rendered along the walk path")->capture_default_str();
-  app->add_option("--views", f.views, "novel views: 'path' (along the walk path) or 'photos' (at the first photo poses)")
+  app->add_option("--views", f.views,
+                  "novel views: 'path' (along the walk path), 'offpath' (the path's cameras moved sideways by "
+                  "--offpath) or 'photos' (at the first photo poses)")
       ->capture_default_str();
   app->add_option("--frames", f.frames, "novel views rendered and compared")->capture_default_str();
   app->add_option("--photo-width", f.model.photo_width, "photograph width in pixels")->capture_default_str();
@@ -82,6 +87,11 @@ Command register_gibr(CLI::App& root) {
   app->add_option("--texel", f.model.texel, "radiance-map texel size in meters (default: per scene, docs/gibr.md)");
   app->add_option("--period", f.model.period, "texture repeat in meters (default: per scene)");
   app->add_option("--k", f.k, "photographs blended per pixel")->capture_default_str();
+  app->add_option("--novel-ss", f.novel_ss,
+                  "s×s samples per novel-view pixel, both mappings (0 = the ground truth's --supersample)")
+      ->capture_default_str();
+  app->add_option("--offpath", f.offpath, "meters the 'offpath' views are moved off the walk path")
+      ->capture_default_str();
   app->add_option("--supersample", f.model.supersample, "k×k samples per photograph / ground-truth pixel")
       ->capture_default_str();
   app->add_flag("--exclude-boundaries", f.model.exclude_boundaries,
@@ -96,7 +106,10 @@ Command register_gibr(CLI::App& root) {
   return {app, [] {
             if (f.common.threads < 0) fail_input("--threads: must be ≥ 0");
             if (f.frames < 1 || f.frames > 10000) fail_input("--frames: must be in 1..10000");
-            if (f.views != "path" && f.views != "photos") fail_input("--views: must be 'path' or 'photos' (got '" + f.views + "')");
+            if (f.views != "path" && f.views != "photos" && f.views != "offpath")
+              fail_input("--views: must be 'path', 'offpath' or 'photos' (got '" + f.views + "')");
+            if (f.novel_ss < 0 || f.novel_ss > 8) fail_input("--novel-ss: must be in 0..8");
+            if (!(f.offpath >= 0.0 && f.offpath <= 1e3)) fail_input("--offpath: must be a distance in meters ≥ 0");
             if (f.fps_repeat < 1 || f.fps_repeat > 1000) fail_input("--fps-repeat: must be in 1..1000");
             if (f.k < 1 || f.k > 64) fail_input("--k: must be in 1..64");
             ThreadLimit limit(f.common.threads);
@@ -155,7 +168,9 @@ Command register_gibr(CLI::App& root) {
 
             // Phase 4: novel views, ground truth and errors.
             std::vector<Camera> views;
-            for (int i = 0; i < f.frames; ++i) {
+            if (f.views == "offpath")
+              views = offpath_poses(rays, path, f.frames, f.common.width, f.common.height, f.offpath, 0.01f, far);
+            for (int i = 0; f.views != "offpath" && i < f.frames; ++i) {
               if (f.views == "photos") {
                 views.push_back(cams[size_t(i) % cams.size()]);
               } else {
@@ -168,8 +183,17 @@ Command register_gibr(CLI::App& root) {
             std::filesystem::create_directories(out / "views");
             NovelViewOptions nvo;
             nvo.k = f.k;
+            // Both mappings through the same renderer, antialiased like the ground truth.
+            nvo.supersample = f.novel_ss > 0 ? f.novel_ss : f.model.supersample;
+            NovelViewOptions nvo1 = nvo;  // one sample per pixel: its cost, for comparison
+            nvo1.supersample = 1;
+            std::vector<double> frame_ms_1spp;
             Stopwatch w;
             Pool all_v, all_i, sil_v, sil_i, seen_v, seen_i, silseen_v, silseen_i;
+            // Error by region: which mapping saw the pixel's surface (2 bits: vis-map hole,
+            // item-buffer hole) × all pixels / within 2 px of silhouettes; [mapping].
+            Pool region[4][2][2];
+            double region_total = 0.0;
             std::vector<double> frame_ms, frame_cpu_ms;
             double truth_ms = 0.0, holes_v = 0.0, holes_i = 0.0, covered = 0.0;
             Table per_view{"novel views of " + model_scene.name + " ('" + f.views + "')",
@@ -185,6 +209,10 @@ Command register_gibr(CLI::App& root) {
                 nv = render_novel_view(scene, model, vis_maps, cam, nvo);
                 frame_cpu_ms.push_back(1000.0 * double(std::clock() - c0) / CLOCKS_PER_SEC);
                 frame_ms.push_back(nv.raster_ms + nv.blend_ms);
+                if (nvo.supersample > 1) {
+                  const NovelView n1 = render_novel_view(scene, model, vis_maps, cam, nvo1);
+                  frame_ms_1spp.push_back(n1.raster_ms + n1.blend_ms);
+                }
               }
               const NovelView ni = render_novel_view(scene, model, item_maps, cam, nvo);
               w.restart();
@@ -206,6 +234,17 @@ Command register_gibr(CLI::App& root) {
               for (size_t p = 0; p < sil_seen.data().size(); ++p) sil_seen.data()[p] = sil.data()[p] && seen.data()[p];
               silseen_v.add(compare_images(nv.color, truth, &sil_seen));
               silseen_i.add(compare_images(ni.color, truth, &sil_seen));
+              for (int rgn = 0; rgn < 4; ++rgn)
+                for (int band = 0; band < 2; ++band) {
+                  ImageU8 mask(cam.width, cam.height, 1, 0);
+                  for (int y = 0; y < cam.height; ++y)
+                    for (int x = 0; x < cam.width; ++x)
+                      mask.at(x, y) = (nv.unseen.at(x, y) ? 2 : 0) + (ni.unseen.at(x, y) ? 1 : 0) == rgn &&
+                                      (band == 0 || sil.at(x, y));
+                  region[rgn][band][0].add(compare_images(nv.color, truth, &mask));
+                  region[rgn][band][1].add(compare_images(ni.color, truth, &mask));
+                }
+              region_total += double(cam.width) * double(cam.height);
               holes_v += double(nv.holes);
               holes_i += double(ni.holes);
               covered += double(nv.covered);
@@ -248,6 +287,13 @@ Command register_gibr(CLI::App& root) {
             m["unseen_pct_itembuffer"] = 100.0 * holes_i / std::max(1.0, covered);
             m["novel_view_ms"] = med;
             m["novel_view_fps"] = med > 0 ? 1000.0 / med : 0.0;
+            m["novel_view_ss"] = double(nvo.supersample);
+            if (!frame_ms_1spp.empty()) {
+              const double med1 = median(frame_ms_1spp);
+              m["novel_view_ms_1spp"] = med1;
+              m["novel_view_fps_1spp"] = med1 > 0 ? 1000.0 / med1 : 0.0;
+              phases.rows.push_back({std::string("4 novel view at 1 sample per pixel (median per frame, for comparison)"), med1});
+            }
             m["bsp_ms"] = g.stats.bsp.build_ms;
             m["vismap_ms_avg"] = g.stats.vismap_ms / double(cams.size());
             m["silhouette_edges_avg"] = g.stats.silhouette_edges_avg;
@@ -261,7 +307,19 @@ Command register_gibr(CLI::App& root) {
                            {std::string("item buffer"), m["psnr_itembuffer"], m["mae_itembuffer"],
                             m["silhouette_psnr_itembuffer"], m["silhouette_mae_itembuffer"], m["psnr_seen_itembuffer"],
                             m["silhouette_mae_seen_itembuffer"], m["unseen_pct_itembuffer"]}}};
-            results.tables = {summary, stats, phases, per_view};
+            Table regions{"error by region (" + model_scene.name + ", pooled over views; % of all pixels)",
+                          {"region", "pixels %", "MAE vismap", "MAE itembuffer", "≤2px sil. pixels %",
+                           "≤2px sil. MAE vismap", "≤2px sil. MAE itembuffer"},
+                          {}};
+            const char* region_names[4] = {"both mappings saw", "vis-map saw, item-buffer hole",
+                                           "item-buffer saw, vis-map hole", "both holes"};
+            for (int rgn = 0; rgn < 4; ++rgn) {
+              const auto& r = region[rgn];
+              regions.rows.push_back({std::string(region_names[rgn]), 100.0 * r[0][0].pixels / std::max(1.0, region_total),
+                                      r[0][0].mae(), r[0][1].mae(), 100.0 * r[1][0].pixels / std::max(1.0, region_total),
+                                      r[1][0].mae(), r[1][1].mae()});
+            }
+            results.tables = {summary, regions, stats, phases, per_view};
             publish_results(out, results);
             return 0;
           }};

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
 #include "proxima/core/timer.h"
 #include "proxima/raster/rasterizer.h"
@@ -67,10 +68,17 @@ bool nearest_sample(const SampleLayer& L, int ci, int cj, int radius, uint32_t m
 NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, const RadianceMaps& maps,
                             const Camera& camera, const NovelViewOptions& options) {
   NovelView nv;
+  const int ss = options.supersample;
+  if (ss < 1 || ss > 8) fail_input("--novel-ss: must be in 1..8");
   Stopwatch watch;
   RasterOptions ro;
   ro.outputs = kRasterDepthId;
-  RasterImages img = rasterize(scene, camera, ro);
+  // Supersampled: the same camera at ss× the resolution puts its pixel centers at the cell
+  // centers of a regular ss × ss grid in each pixel, as render_reference's supersampling.
+  Camera fine = camera;
+  fine.width = camera.width * ss;
+  fine.height = camera.height * ss;
+  RasterImages img = rasterize(scene, fine, ro);
   nv.raster_ms = watch.elapsed_ms();
   watch.restart();
 
@@ -99,71 +107,118 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
     for (const auto& kv : keyed) order.push_back(kv.second);
   }
 
+  const int k = std::max(1, options.k);
+  // Polygon seen by sample (x, y) of the fine raster, kNone for none.
+  auto polygon_at = [&](int x, int y) {
+    const uint32_t tri = img.triangle.at(x, y);
+    return tri == kNoTriangle ? kNone : model.triangle_polygon[tri];
+  };
+  // The color of surface point w on polygon p: `hole` when no photograph's sample covers it,
+  // `filled` when the hole fill found one.
+  auto shade = [&](uint32_t p, const vec3& w, vec3& color, bool& hole, bool& filled) {
+    const GridF& g = grids[p];
+    const vec3 d = w - g.origin;
+    const vec2 tc(glm::dot(d, g.u) * g.inv_texel, glm::dot(d, g.v) * g.inv_texel);
+    const vec3 view = glm::normalize(eye - w);
+    const auto& layers = maps.layers[p];
+    vec3 sum(0.0f);
+    float wsum = 0.0f;
+    int found = 0;
+    // Direct samples first; exact-visible (extrapolated) ones only where no photograph
+    // has a direct sample (mixed last-resort samples never: holes only).
+    for (int pass = 0; pass < 2 && found == 0; ++pass)
+      for (uint32_t o = offset[p]; o < offset[p + 1] && found < k; ++o) {
+        const SampleLayer& L = layers[order[o]];
+        vec3 c;
+        if (!sample_layer(L, tc, pass == 0 ? 0xFFu : kExtrapolated, c)) continue;
+        const float cosv = glm::dot(glm::normalize(maps.cameras[L.photo].position - w), view);
+        const float wt = 1.0f / (1.0f - cosv + 1e-7f);
+        sum += wt * c;
+        wsum += wt;
+        ++found;
+      }
+    color = vec3(0.0f);
+    hole = found == 0;
+    filled = false;
+    if (!hole) {
+      color = sum / wsum;
+      return;
+    }
+    // The nearest photograph (eye distance) that saw the polygon.
+    const SampleLayer* best = nullptr;
+    float best_d = INFINITY;
+    for (const SampleLayer& L : layers) {
+      const float dd = glm::length(maps.cameras[L.photo].position - w);
+      if (dd < best_d) best_d = dd, best = &L;
+    }
+    const int ci = int(std::floor(tc.x)), cj = int(std::floor(tc.y));
+    bool got = best && nearest_sample(*best, ci, cj, options.hole_radius, kExtrapolated, color);
+    // Then the other photographs that saw P, closest direction first; last, the
+    // mixed samples of texels no photograph saw in a pixel wholly on P.
+    for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
+      got = nearest_sample(layers[order[o]], ci, cj, options.hole_radius, kExtrapolated, color);
+    for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
+      got = layers[order[o]].mixed > 0 && nearest_sample(layers[order[o]], ci, cj, options.hole_radius, kMixed, color);
+    filled = got;
+  };
+
   const int W = camera.width, H = camera.height;
   nv.color = ImageF(W, H, 3, 0.0f);
   nv.unseen = ImageU8(W, H, 1, 0);
-  const int k = std::max(1, options.k);
   std::vector<size_t> tile_holes, tile_filled, tile_covered;
   const int tile = 32;
   const int tiles = ((W + tile - 1) / tile) * ((H + tile - 1) / tile);
   tile_holes.assign(size_t(tiles), 0);
   tile_filled.assign(size_t(tiles), 0);
   tile_covered.assign(size_t(tiles), 0);
+  const float inv_samples = 1.0f / float(ss * ss);
   parallel_for_tiles(W, H, tile, [&](const Tile& t) {
     size_t holes = 0, filled = 0, covered = 0;
     for (int y = t.y0; y < t.y1; ++y)
       for (int x = t.x0; x < t.x1; ++x) {
-        const uint32_t tri = img.triangle.at(x, y);
-        if (tri == kNoTriangle) continue;
-        const uint32_t p = model.triangle_polygon[tri];
-        if (p == kNone) continue;
-        ++covered;
-        const vec3 w = unproject(camera, vec2(float(x) + 0.5f, float(y) + 0.5f), img.depth.at(x, y));
-        const GridF& g = grids[p];
-        const vec3 d = w - g.origin;
-        const vec2 tc(glm::dot(d, g.u) * g.inv_texel, glm::dot(d, g.v) * g.inv_texel);
-        const vec3 view = glm::normalize(eye - w);
-        const auto& layers = maps.layers[p];
-        vec3 sum(0.0f);
-        float wsum = 0.0f;
-        int found = 0;
-        // Direct samples first; exact-visible (extrapolated) ones only where no photograph
-        // has a direct sample (mixed last-resort samples never: holes only).
-        for (int pass = 0; pass < 2 && found == 0; ++pass)
-        for (uint32_t o = offset[p]; o < offset[p + 1] && found < k; ++o) {
-          const SampleLayer& L = layers[order[o]];
-          vec3 c;
-          if (!sample_layer(L, tc, pass == 0 ? 0xFFu : kExtrapolated, c)) continue;
-          const float cosv = glm::dot(glm::normalize(maps.cameras[L.photo].position - w), view);
-          const float wt = 1.0f / (1.0f - cosv + 1e-7f);
-          sum += wt * c;
-          wsum += wt;
-          ++found;
-        }
-        vec3 color(0.0f);
-        if (found > 0) {
-          color = sum / wsum;
-        } else {
-          ++holes;
-          nv.unseen.at(x, y) = 1;
-          // The nearest photograph (eye distance) that saw the polygon.
-          const SampleLayer* best = nullptr;
-          float best_d = INFINITY;
-          for (const SampleLayer& L : layers) {
-            const float dd = glm::length(maps.cameras[L.photo].position - w);
-            if (dd < best_d) best_d = dd, best = &L;
+        // Multisampling: where all ss × ss samples see one polygon, shade once at the pixel
+        // center (1/depth is affine on a plane, so its mean over the symmetric sample grid is
+        // its value at the center); elsewhere shade every sample and box-average them
+        // (background samples black, as the truth's black environment). The pixel is unseen
+        // when any of its shaded points is a hole.
+        const uint32_t p0 = polygon_at(x * ss, y * ss);
+        bool uniform = p0 != kNone;
+        float inv_depth = 0.0f;
+        for (int sj = 0; sj < ss && uniform; ++sj)
+          for (int si = 0; si < ss && uniform; ++si) {
+            uniform = polygon_at(x * ss + si, y * ss + sj) == p0;
+            inv_depth += 1.0f / img.depth.at(x * ss + si, y * ss + sj);
           }
-          const int ci = int(std::floor(tc.x)), cj = int(std::floor(tc.y));
-          bool got = best && nearest_sample(*best, ci, cj, options.hole_radius, kExtrapolated, color);
-          // Then the other photographs that saw P, closest direction first; last, the
-          // mixed samples of texels no photograph saw in a pixel wholly on P.
-          for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
-            got = nearest_sample(layers[order[o]], ci, cj, options.hole_radius, kExtrapolated, color);
-          for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
-            got = layers[order[o]].mixed > 0 && nearest_sample(layers[order[o]], ci, cj, options.hole_radius, kMixed, color);
-          filled += got;
+        vec3 sum(0.0f);
+        bool any = false, any_hole = false, all_filled = true;
+        auto add = [&](uint32_t p, const vec3& w, float weight) {
+          vec3 c;
+          bool hole = false, got = false;
+          shade(p, w, c, hole, got);
+          any = true;
+          sum += weight * c;
+          if (hole) any_hole = true, all_filled = all_filled && got;
+        };
+        if (uniform) {
+          const float depth = ss == 1 ? img.depth.at(x, y) : float(ss * ss) / inv_depth;
+          add(p0, unproject(camera, vec2(float(x) + 0.5f, float(y) + 0.5f), depth), 1.0f);
+        } else {
+          for (int sj = 0; sj < ss; ++sj)
+            for (int si = 0; si < ss; ++si) {
+              const int fx = x * ss + si, fy = y * ss + sj;
+              const uint32_t p = polygon_at(fx, fy);
+              if (p != kNone)
+                add(p, unproject(fine, vec2(float(fx) + 0.5f, float(fy) + 0.5f), img.depth.at(fx, fy)), inv_samples);
+            }
         }
-        for (int c = 0; c < 3; ++c) nv.color.at(x, y, c) = color[c];
+        if (!any) continue;
+        ++covered;
+        if (any_hole) {
+          ++holes;
+          filled += all_filled;
+          nv.unseen.at(x, y) = 1;
+        }
+        for (int c = 0; c < 3; ++c) nv.color.at(x, y, c) = sum[c];
       }
     tile_holes[size_t(t.index)] = holes;
     tile_filled[size_t(t.index)] = filled;

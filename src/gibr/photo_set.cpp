@@ -89,6 +89,25 @@ std::vector<Camera> photo_poses(const RayScene& rays, const CameraPath& path, co
   return out;
 }
 
+std::vector<Camera> offpath_poses(const RayScene& rays, const CameraPath& path, int count, int width, int height,
+                                  double offset, float near, float far) {
+  std::vector<Camera> out;
+  const float t0 = path.keys.front().time, t1 = path.keys.back().time;
+  for (int i = 0; i < count; ++i) {
+    const float t = count == 1 ? t0 : t0 + (t1 - t0) * float(i) / float(count - 1);
+    Camera c = camera_at_time(path, t, width, height, near, far);
+    const float sx = (i % 2 == 0) ? 1.0f : -1.0f, sy = ((i / 2) % 2 == 0) ? 1.0f : -1.0f;
+    const vec3 dir = glm::normalize(sx * camera_right(c) + 0.5f * sy * camera_up(c));
+    float len = float(offset) * std::sqrt(1.25f);
+    // Stay in the path's free space: shorten the step until it crosses no surface.
+    for (int halved = 0; len > 0.0f && rays.occluded(Ray{c.position, dir, 0.0f, len + 0.05f}); ++halved)
+      len = halved < 4 ? 0.5f * len : 0.0f;
+    c.position += len * dir;
+    out.push_back(c);
+  }
+  return out;
+}
+
 ReferenceOptions photo_render_options(int supersample, uint64_t seed) {
   ReferenceOptions ro;
   ro.supersample = supersample;

@@ -26,11 +26,25 @@ TEST(GibrCli, TinyRunWritesTheComparisonMetrics) {
   EXPECT_TRUE(std::filesystem::exists(out / "views" / "truth_001.png"));
 }
 
+TEST(GibrCli, OffpathViewsAreAntialiasedLikeTheTruthByDefault) {
+  TempDir dir;
+  const auto out = dir.path / "gibr";
+  RunResult r = run_cli("gibr --scene rooms --photos 4 --frames 2 --width 32 --height 24 --photo-width 32 "
+                        "--photo-height 24 --supersample 2 --views offpath --fps-repeat 1 --threads 2 "
+                        "--no-photo-images --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Results res = read_results_json(out / "results.json");
+  ASSERT_TRUE(res.metrics.count("novel_view_ss"));
+  EXPECT_EQ(res.metrics.at("novel_view_ss"), 2.0);
+  EXPECT_TRUE(res.metrics.count("novel_view_fps_1spp"));
+  EXPECT_TRUE(std::filesystem::exists(out / "views" / "vismap_001.png"));
+}
+
 TEST(GibrCli, BadFlagsExitTwoNamingTheFlagAndWriteNothing) {
   TempDir dir;
   const auto out = dir.path / "never";
   for (const char* args : {"--photos 0", "--views sideways", "--texel -1", "--texel 1e-6", "--k 0", "--supersample 9",
-                           "--frames 0", "--scene no-such-scene", "--photo-width 0", "--threads -1"}) {
+                           "--frames 0", "--novel-ss 9", "--offpath -1", "--scene no-such-scene", "--photo-width 0", "--threads -1"}) {
     RunResult r = run_cli(std::string("gibr ") + args + " --out " + out.string());
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
     const std::string flag = std::string(args).substr(0, std::string(args).find(' '));

@@ -5,9 +5,39 @@
 #include <gtest/gtest.h>
 
 #include "../test_util.h"
+#include "proxima/scene/visibility_models.h"
+#include "proxima/trace/ray_scene.h"
 
 namespace proxima::gibr {
 namespace {
+
+// Off-path novel views: deterministic, the path's orientation, moved off the path by at most
+// the offset's step and never through a surface.
+TEST(GibrOffpathPoses, DeterministicOffThePathAndInFreeSpace) {
+  const Scene scene = make_vis_rooms();
+  const RayScene rays(scene);
+  const CameraPath& path = scene.camera_paths.front();
+  const double offset = 0.5;
+  const std::vector<Camera> a = offpath_poses(rays, path, 8, 64, 48, offset, 0.01f, 100.0f);
+  const std::vector<Camera> b = offpath_poses(rays, path, 8, 64, 48, offset, 0.01f, 100.0f);
+  ASSERT_EQ(a.size(), 8u);
+  int moved = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].position, b[i].position) << i;
+    EXPECT_EQ(a[i].orientation, b[i].orientation) << i;
+    const float t = path.keys.front().time + (path.keys.back().time - path.keys.front().time) * float(i) / 7.0f;
+    const Camera on = camera_at_time(path, t, 64, 48, 0.01f, 100.0f);
+    EXPECT_EQ(a[i].orientation, on.orientation) << i;
+    const vec3 d = a[i].position - on.position;
+    const float len = glm::length(d);
+    EXPECT_LE(len, float(offset) * std::sqrt(1.25f) + 1e-4f) << i;
+    if (len > 1e-4f) {
+      ++moved;
+      EXPECT_FALSE(rays.occluded(Ray{on.position, d / len, 0.0f, len})) << i;
+    }
+  }
+  EXPECT_GE(moved, 4);
+}
 
 TEST(GibrCameraFile, RoundTripsIntrinsicsAndPose) {
   TempDir dir;

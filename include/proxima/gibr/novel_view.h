@@ -16,6 +16,13 @@
 // saw P), else of the other layers in ranked order, else — last resort — the nearest kMixed
 // sample in ranked order; the pixel is flagged in the unseen mask either way, and stays
 // black when nothing is found.
+// Antialiasing (`supersample` = s > 1), multisample-style: the model is rasterized at s× the
+// resolution, i.e. at the cell centers of a regular s × s grid in each pixel — the sample
+// positions of render_reference's supersampling. A pixel whose samples all see one polygon is
+// shaded once, at its center (the radiance maps already hold pixel-filtered photograph colors;
+// shading every sample would filter them twice); any other pixel (silhouettes, polygon
+// boundaries, background) shades each sample and takes their box average (background samples
+// black). A pixel is unseen when any point shaded for it is a hole.
 #pragma once
 
 #include <cstdint>
@@ -32,12 +39,15 @@ namespace proxima::gibr {
 struct NovelViewOptions {
   int k = 3;             // photographs blended per pixel, ≥ 1
   int hole_radius = 8;   // texels searched around a hole
+  int supersample = 1;   // s×s samples per pixel (antialiasing), 1..8 (InputError otherwise)
 };
 
 struct NovelView {
   ImageF color;   // linear RGB, 3 channels; background (nothing rasterized) black
   ImageU8 unseen; // 1 where no photograph's sample covers the pixel's surface point (hole)
-  size_t holes = 0, holes_filled = 0, covered = 0;  // pixels with surface: holes, filled holes, total
+  // Pixels with surface (≥ 1 sample on a polygon): total, unseen, unseen whose every hole
+  // sample the fill found a color for.
+  size_t holes = 0, holes_filled = 0, covered = 0;
   double raster_ms = 0.0, blend_ms = 0.0;
 };
 

@@ -46,6 +46,15 @@ struct PhotoPoseOptions {
 std::vector<Camera> photo_poses(const RayScene& rays, const CameraPath& path, const PhotoPoseOptions& options,
                                 float near, float far);
 
+// `count` novel-view cameras off the walk path (none of them on the photographs' path): at
+// evenly spaced times along `path` (the first and last key for count ≥ 2), the path's camera
+// translated by `offset` meters along its right vector, alternately +/− per view, plus
+// offset / 2 along its up vector, alternately +/+/−/− — orientation unchanged. An offset
+// whose segment from the path point is blocked is halved (up to 4 times, else 0 — the
+// view stays on the path). Deterministic; no random numbers.
+std::vector<Camera> offpath_poses(const RayScene& rays, const CameraPath& path, int count, int width, int height,
+                                  double offset, float near, float far);
+
 // The photograph: render_reference with k×k supersampling (pixels straddling silhouettes
 // mix the surfaces they cover, as a real photograph's do), n² area-light samples, no
 // reflections. Linear RGB, 3 channels.
