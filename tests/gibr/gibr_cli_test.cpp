@@ -26,12 +26,12 @@ TEST(GibrCli, TinyRunWritesTheComparisonMetrics) {
   EXPECT_TRUE(std::filesystem::exists(out / "views" / "truth_001.png"));
 }
 
-TEST(GibrCli, OffpathViewsAreAntialiasedLikeTheTruthByDefault) {
+TEST(GibrCli, OffpathViewsAntialiasedLikeTheTruthWithNovelSsZero) {
   TempDir dir;
   const auto out = dir.path / "gibr";
   RunResult r = run_cli("gibr --scene rooms --photos 4 --frames 2 --width 32 --height 24 --photo-width 32 "
                         "--photo-height 24 --supersample 2 --views offpath --fps-repeat 1 --threads 2 "
-                        "--no-photo-images --out " + out.string());
+                        "--novel-ss 0 --no-photo-images --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const Results res = read_results_json(out / "results.json");
   ASSERT_TRUE(res.metrics.count("novel_view_ss"));
