@@ -69,7 +69,7 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
                             const Camera& camera, const NovelViewOptions& options) {
   NovelView nv;
   const int ss = options.supersample;
-  if (ss < 1 || ss > 8) fail_input("--novel-ss: must be in 1..8");
+  if (ss < 1 || ss > 8) fail_input("novel view: supersample must be in 1..8");  // the CLI names its flag itself
   Stopwatch watch;
   RasterOptions ro;
   ro.outputs = kRasterDepthId;
