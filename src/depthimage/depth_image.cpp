@@ -4,12 +4,6 @@
 
 #include <utility>
 
-// SSE lanes give map()'s bits only if the scalar map() is not contracted into FMAs.
-#if defined(__SSE2__) && !defined(__FMA__)
-#define PROXIMA_MAP4_SSE 1
-#include <emmintrin.h>
-#endif
-
 namespace proxima {
 
 RasterOptions depth_image_raster_options(bool shade) {
@@ -83,34 +77,6 @@ Reprojection::Reprojection(const Camera& from, const Camera& to) {
   row_x_ = row(0);
   row_y_ = row(1);
   row_w_ = row(2);
-}
-
-unsigned Reprojection::map4(const int x[4], int y, const float d[4], float px[4], float py[4]) const {
-#ifdef PROXIMA_MAP4_SSE
-  // u = ((x + 0.5)·d, (y + 0.5)·d, d, 1); glm::dot(r, u) = (r.x·u.x + r.y·u.y) + (r.z·u.z + r.w).
-  const __m128 dv = _mm_loadu_ps(d);
-  const __m128 xc = _mm_add_ps(_mm_cvtepi32_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(x))), _mm_set1_ps(0.5f));
-  const __m128 ux = _mm_mul_ps(xc, dv);
-  const __m128 uy = _mm_mul_ps(_mm_set1_ps(float(y) + 0.5f), dv);
-  const auto dot = [&](const vec4& r) {
-    return _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(r.x), ux), _mm_mul_ps(_mm_set1_ps(r.y), uy)),
-                      _mm_add_ps(_mm_mul_ps(_mm_set1_ps(r.z), dv), _mm_set1_ps(r.w)));
-  };
-  const __m128 w = dot(row_w_);
-  _mm_storeu_ps(px, _mm_div_ps(dot(row_x_), w));
-  _mm_storeu_ps(py, _mm_div_ps(dot(row_y_), w));
-  return unsigned(_mm_movemask_ps(_mm_cmpgt_ps(w, _mm_setzero_ps())));
-#else
-  unsigned ok = 0;
-  for (int k = 0; k < 4; ++k) {
-    vec2 p(0.0f);
-    float depth;
-    if (map(x[k], y, d[k], p, depth)) ok |= 1u << k;
-    px[k] = p.x;
-    py[k] = p.y;
-  }
-  return ok;
-#endif
 }
 
 }  // namespace proxima

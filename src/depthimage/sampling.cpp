@@ -77,6 +77,19 @@ bool RedundancyTest::operator()(int x, int y, float depth, uint32_t triangle) co
   return false;  // more back faces than we walk past: call it occluded
 }
 
+namespace {
+
+// x and depth of fragments k … k+3 of a run of n (past n: copies of the last, ignored).
+inline void gather4(const Fragment* fragments, int k, int n, int x[4], float d[4]) {
+  for (int l = 0; l < 4; ++l) {
+    const Fragment& f = fragments[std::min(k + l, n - 1)];
+    x[l] = f.x;
+    d[l] = f.depth;
+  }
+}
+
+}  // namespace
+
 uint64_t RedundancyTest::redundant_run(const Fragment* fragments, int n, uint64_t candidates) const {
   assert(n >= 0 && n <= 64);
   uint64_t redundant = 0;
@@ -87,36 +100,14 @@ uint64_t RedundancyTest::redundant_run(const Fragment* fragments, int n, uint64_
     }
     return redundant;
   }
-  const Camera& to = against_->camera;
-  const float width = float(to.width), height = float(to.height);  // pixel_in()'s bounds
-  const uint32_t* ids = against_->triangle.data().data();
-  const size_t stride = size_t(against_->triangle.width());
-  const int rows = against_->triangle.height();
+  const uint32_t triangle = fragments[0].triangle;  // one triangle's run
   for (int k = 0; k < n; k += 4) {
     const unsigned lanes = unsigned(candidates >> k) & 0xFu;
     if (lanes == 0) continue;
     int x[4];
     float d[4];
-    for (int l = 0; l < 4; ++l) {
-      const Fragment& f = fragments[std::min(k + l, n - 1)];  // past n: a copy, ignored
-      x[l] = f.x;
-      d[l] = f.depth;
-    }
-    float px[4], py[4];
-    const unsigned ok = reproject_.map4(x, fragments[k].y, d, px, py) & lanes;
-    // pixel_in() and the id compare without branches: the outcome is data-dependent
-    // (mispredicted often), and the id loads of the four lanes can then overlap.
-    for (int l = 0; l < 4 && k + l < n; ++l) {
-      const bool inside =
-          (((ok >> l) & 1u) != 0) & (px[l] >= 0.0f) & (py[l] >= 0.0f) & (px[l] < width) & (py[l] < height);
-      const int ry = int(inside ? py[l] : 0.0f);
-      const size_t at = size_t(ry) * stride + size_t(int(inside ? px[l] : 0.0f));
-      const bool same = inside & (ids[at] == fragments[k + l].triangle);
-      redundant |= uint64_t(same) << (k + l);
-      // The triangle's next row run (the rasterizer's next call) lands about one row
-      // down in I_j: fetch that line now (a hint only; any address is harmless).
-      if (k == 0 && l == 0 && ry + 1 < rows) __builtin_prefetch(ids + at + stride);
-    }
+    gather4(fragments, k, n, x, d);
+    redundant |= uint64_t(redundant4(x, fragments[k].y, d, triangle, lanes)) << k;
   }
   return redundant;
 }
@@ -174,12 +165,28 @@ struct NonRedundantTest {
     return false;
   }
   // The rasterizer's run form (one triangle, one row): the same answers, with the
-  // presence mask read once per run and four reprojections at a time.
+  // presence mask read once per run and four fragments at a time, each four tested
+  // against every earlier image holding the triangle before the next four (pixel
+  // redundancy; the x, depth gather and the run stay in registers / L1).
   uint64_t keep_run(const Fragment* f, int n) const {
     uint64_t keep = n == 64 ? ~uint64_t(0) : (uint64_t(1) << n) - 1;
-    const uint8_t mask = held ? held[f[0].triangle] : uint8_t(0xFFu);
-    for (size_t j = 0; j < earlier.size() && keep != 0; ++j)
-      if ((mask >> std::min<size_t>(j, 7)) & 1u) keep &= ~earlier[j].redundant_run(f, n, keep);
+    if (!held) {
+      for (size_t j = 0; j < earlier.size() && keep != 0; ++j) keep &= ~earlier[j].redundant_run(f, n, keep);
+      return keep;
+    }
+    const uint8_t mask = held[f[0].triangle];
+    if (mask == 0) return keep;
+    const uint32_t triangle = f[0].triangle;
+    const int y = f[0].y;
+    for (int k = 0; k < n; k += 4) {
+      int x[4];
+      float d[4];
+      gather4(f, k, n, x, d);
+      unsigned lanes = unsigned(keep >> k) & 0xFu;
+      for (size_t j = 0; j < earlier.size() && lanes != 0; ++j)
+        if ((mask >> std::min<size_t>(j, 7)) & 1u) lanes &= ~earlier[j].redundant4(x, y, d, triangle, lanes);
+      keep = (keep & ~(uint64_t(0xFu) << k)) | (uint64_t(lanes) << k);
+    }
     return keep;
   }
 };

@@ -45,6 +45,23 @@ class RedundancyTest {
   // result set iff redundant), four reprojections at a time for Pixel. The fragments are
   // one row's, as the rasterizer's keep_run gives them (rasterizer.h).
   uint64_t redundant_run(const Fragment* fragments, int n, uint64_t candidates) const;
+  // Pixel redundancy only: four fragments (x[k], y) at depths d[k] of one triangle; bit k
+  // of the result set iff bit k of `lanes` is and fragment k is redundant. Inline for
+  // NRR's run test.
+  unsigned redundant4(const int x[4], int y, const float d[4], uint32_t triangle, unsigned lanes) const {
+    const Image<uint32_t>& ids = against_->triangle;
+    uint32_t at[4];
+    lanes &= reproject_.pixel4(x, y, d, ids.width(), ids.height(), at);
+    const uint32_t* id = ids.data().data();
+    // The compares without branches (the outcome is data-dependent, mispredicted often)
+    // so the four loads overlap.
+    unsigned same = 0;
+    for (int k = 0; k < 4; ++k) same |= unsigned(id[at[k]] == triangle) << k;
+    // The triangle's next row run lands about one row down in I_j: fetch that line now
+    // (a hint only; any address is harmless).
+    __builtin_prefetch(id + at[0] + ids.width());
+    return same & lanes;
+  }
 
  private:
   Redundancy kind_;
