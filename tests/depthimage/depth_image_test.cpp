@@ -47,16 +47,16 @@ TEST(DepthImage, ReprojectionMatchesUnprojectThenProject) {
   }
 }
 
-// map4 (the redundancy test's four-lane form) must give map()'s bits: the pixel
+// map4 and pixel4 (the redundancy test's four-lane forms) must give map()'s bits: the pixel
 // redundancy test compares the truncated pixel, so any last-bit difference could flip a
 // sample. Random pixels and depths, target cameras in front, beside and behind.
-TEST(DepthImage, MapFourIsBitIdenticalToMap) {
+TEST(DepthImage, MapFourAndPixelFourAreBitIdenticalToMap) {
   const Camera a = look_at(vec3(1, 2, 5), vec3(0), vec3(0, 1, 0), 50.0f, 1024, 768);
   const Camera targets[] = {look_at(vec3(1.3f, 2.1f, 4.9f), vec3(0.1f, 0, 0), vec3(0, 1, 0), 50.0f, 1024, 1024),
                             look_at(vec3(-4, 1, 0), vec3(0), vec3(0, 1, 0), 35.0f, 200, 300),
                             look_at(vec3(0, 0, -5), vec3(0, 0, -10), vec3(0, 1, 0), 60.0f, 64, 64)};
   Pcg32 rng(17);
-  size_t mapped = 0, unmapped = 0;
+  size_t mapped = 0, unmapped = 0, inside = 0;
   for (const Camera& b : targets) {
     const Reprojection r(a, b);
     for (int trial = 0; trial < 20000; ++trial) {
@@ -69,11 +69,21 @@ TEST(DepthImage, MapFourIsBitIdenticalToMap) {
       }
       float px[4], py[4];
       const unsigned ok = r.map4(x, y, d, px, py);
+      uint32_t at[4];
+      const unsigned in = r.pixel4(x, y, d, b.width, b.height, at);
       for (int k = 0; k < 4; ++k) {
         vec2 p;
         float depth;
         const bool want = r.map(x[k], y, d[k], p, depth);
         ASSERT_EQ(((ok >> k) & 1u) != 0, want) << trial;
+        // pixel4 = map() then pixel_in(), as the scalar redundancy test does.
+        int rx = 0, ry = 0;
+        const bool want_in = want && pixel_in(b, p, rx, ry);
+        ASSERT_EQ(((in >> k) & 1u) != 0, want_in) << trial;
+        if (want_in) {
+          ++inside;
+          ASSERT_EQ(at[k], uint32_t(ry * b.width + rx)) << trial;
+        }
         if (!want) {
           ++unmapped;
           continue;
@@ -86,6 +96,8 @@ TEST(DepthImage, MapFourIsBitIdenticalToMap) {
   }
   EXPECT_GT(mapped, 100000u);
   EXPECT_GT(unmapped, 10000u);
+  EXPECT_GT(inside, 10000u);
+  EXPECT_GT(mapped - inside, 10000u);  // mapped but outside the target image
 }
 
 TEST(DepthImage, BehindTheTargetCameraIsNotMapped) {

@@ -102,9 +102,10 @@ class Reprojection {
   unsigned pixel4(const int x[4], int y, const float d[4], int width, int height, uint32_t at[4]) const {
 #ifdef PROXIMA_REPROJECT_SSE
     __m128 X = _mm_setzero_ps(), Y = X;  // set by lanes(); the init quiets -Wmaybe-uninitialized
+    const __m128 ok = lanes(x, y, d, X, Y);  // before X, Y are read (argument order is unspecified)
     const __m128 zero = _mm_setzero_ps();
     const __m128 in = _mm_and_ps(
-        _mm_and_ps(lanes(x, y, d, X, Y), _mm_and_ps(_mm_cmpge_ps(X, zero), _mm_cmpge_ps(Y, zero))),
+        _mm_and_ps(ok, _mm_and_ps(_mm_cmpge_ps(X, zero), _mm_cmpge_ps(Y, zero))),
         _mm_and_ps(_mm_cmplt_ps(X, _mm_set1_ps(float(width))), _mm_cmplt_ps(Y, _mm_set1_ps(float(height)))));
     // Truncation = int() of pixel_in(); outside lanes become pixel (0, 0). Both < 2^15,
     // so ry·width + rx is one 16-bit multiply-add per lane.
