@@ -233,7 +233,7 @@ void build_chunk(const Frame& frame, const ClipSpace& cs, bool cull_back, uint64
     while (pos >= runs[r].start + runs[r].count) ++r;
     const uint32_t item = runs[r].first + uint32_t(pos - runs[r].start);
     const uint32_t triangle = frame.id_list ? frame.id_list[item] : item;
-    if (frame.id_list && !scene.objects.empty() && !frame.object_visible[scene.triangle_object[triangle]])
+    if (frame.id_list && !scene.objects.empty() && frame.object_visible[scene.triangle_object[triangle]] != 1)
       continue;
     ++chunk.submitted;
     const uvec3 idx = scene.triangles[triangle];
@@ -358,6 +358,7 @@ FrameLease prepare_frame(const Scene& scene, const Camera& camera, const RasterO
   const uint32_t object_count = uint32_t(scene.objects.size());
   std::vector<uint32_t> drawn;
   f.object_visible.assign(std::max<size_t>(object_count, 1), 0);
+  // Each object once, however often the list names it (an id list names it per triangle).
   auto consider = [&](uint32_t o) {
     assert(o < object_count);
     if (f.object_visible[o]) return;
@@ -366,6 +367,7 @@ FrameLease prepare_frame(const Scene& scene, const Camera& camera, const RasterO
       f.object_visible[o] = 1;
       drawn.push_back(o);
     } else {
+      f.object_visible[o] = 2;
       ++f.objects_culled;
     }
   };

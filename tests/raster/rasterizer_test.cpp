@@ -320,6 +320,26 @@ TEST(Rasterizer, ObjectsOutsideTheFrustumAreCulled) {
   EXPECT_EQ(stats.triangles_submitted, 1u);
 }
 
+// With a triangle id list an object is culled (and counted) once, not once per triangle.
+TEST(Rasterizer, IdListCountsACulledObjectOnce) {
+  const Mesh behind = grid_mesh(4, 1.0f, 3.0f, 0.0f, 1);  // behind the camera, 32 triangles
+  const Mesh visible = grid_mesh(4, 1.0f, -3.0f, 0.0f, 1);
+  const Scene scene = scene_of({behind, visible});
+  const Camera camera = look_at(vec3(0), vec3(0, 0, -1), vec3(0, 1, 0), 60.0f, 64, 64);
+  std::vector<uint32_t> all(scene.triangles.size());
+  for (size_t t = 0; t < all.size(); ++t) all[t] = uint32_t(t);
+  RasterOptions options;
+  options.triangles = all;
+  RasterImages img;
+  const RasterStats stats = rasterize(scene, camera, options, img, AcceptAllFragments{});
+  EXPECT_EQ(stats.objects_culled, 1u);
+  EXPECT_EQ(stats.objects_drawn, 1u);
+  EXPECT_EQ(stats.triangles_submitted, all.size() / 2);
+  size_t covered = 0;
+  for (uint32_t t : img.triangle.data()) covered += t != kNoTriangle;
+  EXPECT_GT(covered, 0u);
+}
+
 TEST(Rasterizer, DegenerateAndEmptyInputsDrawNothing) {
   Mesh m;
   m.positions = {{0, 0, -2}, {1, 0, -2}, {2, 0, -2}, {0, 0, -2}};

@@ -75,7 +75,7 @@ struct Frame {
   std::vector<ClipVertex> vertices;  // by scene vertex index; only drawn objects' are set
   std::vector<DrawRun> runs;
   const uint32_t* id_list = nullptr;  // RasterOptions::triangles, or null
-  std::vector<uint8_t> object_visible;
+  std::vector<uint8_t> object_visible;  // per object: 0 not drawn, 1 drawn, 2 culled
   std::vector<Chunk> chunks;  // the first chunk_count are this frame's
   size_t chunk_count = 0;
   std::vector<TileCounts> tile_counts;
