@@ -164,6 +164,9 @@ struct NonRedundantTest {
       if (((mask >> std::min<size_t>(j, 7)) & 1u) && earlier[j](f.x, f.y, f.depth, f.triangle)) return true;
     return false;
   }
+  // A triangle that no earlier image holds cannot be pixel-redundant: the rasterizer
+  // then skips the test for its fragments (no run arrays).
+  bool keeps_all(uint32_t triangle) const { return held && held[triangle] == 0; }
   // The rasterizer's run form (one triangle, one row): the same answers, with the
   // presence mask read once per run and four fragments at a time, each four tested
   // against every earlier image holding the triangle before the next four (pixel

@@ -468,5 +468,59 @@ TEST(Rasterizer, RunTestGivesThePerFragmentResult) {
   }
 }
 
+// keeps_all(t) lets the rasterizer keep a triangle's fragments without the test: the same
+// images and counts as a test that answers true for them, and the test never sees them.
+struct OddKept {
+  static bool keep(const Fragment& f) { return (f.triangle & 1u) || HashedKeep::keep(f); }
+  bool operator()(const Fragment& f) const { return keep(f); }
+};
+struct OddKeptHooked : OddKept {
+  mutable uint64_t odd_seen = 0;
+  bool keeps_all(uint32_t triangle) const { return triangle & 1u; }
+  bool operator()(const Fragment& f) const {
+    odd_seen += f.triangle & 1u;
+    return keep(f);
+  }
+};
+struct OddKeptHookedRuns : OddKeptHooked {
+  uint64_t keep_run(const Fragment* f, int n) const {
+    uint64_t bits = 0;
+    for (int k = 0; k < n; ++k) {
+      odd_seen += f[k].triangle & 1u;
+      if (keep(f[k])) bits |= uint64_t(1) << k;
+    }
+    return bits;
+  }
+};
+
+TEST(Rasterizer, KeepsAllHookGivesTheTestedResult) {
+  std::vector<Mesh> meshes;
+  for (int i = 0; i < 4; ++i) meshes.push_back(sphere_mesh(vec3(float(i) * 0.4f - 0.6f, 0.0f, -float(i) * 0.3f), 0.8f, 48, 24));
+  meshes.push_back(grid_mesh(48, 5.0f, -2.0f, 0.5f, 7));
+  const Scene scene = scene_of(meshes);
+  const Camera camera = look_at(vec3(0.2f, 0.3f, 4.0f), vec3(0), vec3(0, 1, 0), 60.0f, 200, 150);
+  RasterOptions options;
+  options.outputs = kRasterGBuffer;
+  RasterImages tested, hooked, hooked_runs;
+  const RasterStats a = rasterize(scene, camera, options, tested, OddKept{});
+  OddKeptHooked hook;
+  const RasterStats b = rasterize(scene, camera, options, hooked, hook);
+  OddKeptHookedRuns hook_runs;
+  const RasterStats c = rasterize(scene, camera, options, hooked_runs, hook_runs);
+  EXPECT_EQ(hook.odd_seen, 0u);
+  EXPECT_EQ(hook_runs.odd_seen, 0u);
+  EXPECT_LT(a.fragments_written, a.fragments_tested);  // the test does discard
+  for (const RasterStats& s : {b, c}) {
+    EXPECT_EQ(s.fragments_tested, a.fragments_tested);
+    EXPECT_EQ(s.fragments_written, a.fragments_written);
+  }
+  for (const RasterImages* h : {&hooked, &hooked_runs}) {
+    EXPECT_TRUE(h->depth == tested.depth);
+    EXPECT_TRUE(h->triangle == tested.triangle);
+    EXPECT_TRUE(h->barycentric == tested.barycentric);
+    EXPECT_TRUE(h->diffuse == tested.diffuse);
+  }
+}
+
 }  // namespace
 }  // namespace proxima

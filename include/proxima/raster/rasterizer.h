@@ -113,7 +113,8 @@ std::vector<Bounds3> raster_object_bounds(const Scene& scene);
 // k): with the depth test on, the rasterizer calls it instead, once per row run of a
 // triangle with the run's depth-passing fragments (raster_frame.h, RunFragmentTest) —
 // the same fragments in the same per-pixel order, so it must answer as the per-fragment
-// test would.
+// test would. And it may have keeps_all(uint32_t triangle) → bool: where true, it would
+// keep every fragment of that triangle, and the rasterizer keeps them without calling it.
 // Throws InputError for an invalid camera (validate_camera).
 template <typename FragmentTest>
 RasterStats rasterize(const Scene& scene, const Camera& camera, const RasterOptions& options,

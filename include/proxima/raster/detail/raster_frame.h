@@ -139,9 +139,24 @@ concept RunFragmentTest = requires(Test& test, const Fragment* fragments, int n)
   { test.keep_run(fragments, n) } -> std::convertible_to<uint64_t>;
 };
 
+// A fragment test that can also say, per triangle, that it keeps every fragment of it:
+// keeps_all(triangle) → true; the rasterizer then skips the test for that triangle's
+// fragments (rasterizer.h, Fragment tests).
+template <typename Test>
+concept TriangleKeepsAllTest = requires(Test& test, uint32_t triangle) {
+  { test.keeps_all(triangle) } -> std::convertible_to<bool>;
+};
+
 // Coverage of one setup inside one tile.
 template <bool kDepthTest, bool kUV, typename Test>
 inline void raster_setup(const Setup& s, const Tile& tile, TileBuffer& buf, Test& test, TileCounts& counts) {
+  if constexpr (TriangleKeepsAllTest<Test>) {
+    if (test.keeps_all(s.triangle)) {
+      AcceptAllFragments all;
+      raster_setup<kDepthTest, kUV>(s, tile, buf, all, counts);
+      return;
+    }
+  }
   const int x0 = std::max(s.x0, tile.x0), x1 = std::min(s.x1, tile.x1 - 1);
   const int y0 = std::max(s.y0, tile.y0), y1 = std::min(s.y1, tile.y1 - 1);
   if (x0 > x1 || y0 > y1) return;
