@@ -418,6 +418,14 @@ TEST(Rasterizer, OneAndTwoThreadsAreBitIdentical) {
   EXPECT_TRUE(one.object == two.object);
 }
 
+// Four overlapping spheres over a jittered grid (seen from (0.2, 0.3, 4)).
+Scene spheres_over_grid() {
+  std::vector<Mesh> meshes;
+  for (int i = 0; i < 4; ++i) meshes.push_back(sphere_mesh(vec3(float(i) * 0.4f - 0.6f, 0.0f, -float(i) * 0.3f), 0.8f, 48, 24));
+  meshes.push_back(grid_mesh(48, 5.0f, -2.0f, 0.5f, 7));
+  return scene_of(meshes);
+}
+
 // A test with keep_run (one call per row run) must give what the per-fragment test gives:
 // the same fragments tested, the same ones written. A keep/discard pattern hashed from
 // the fragment, with and without UVs, over overlapping spheres and a jittered grid.
@@ -444,10 +452,7 @@ struct HashedKeepRuns : HashedKeep {
 };
 
 TEST(Rasterizer, RunTestGivesThePerFragmentResult) {
-  std::vector<Mesh> meshes;
-  for (int i = 0; i < 4; ++i) meshes.push_back(sphere_mesh(vec3(float(i) * 0.4f - 0.6f, 0.0f, -float(i) * 0.3f), 0.8f, 48, 24));
-  meshes.push_back(grid_mesh(48, 5.0f, -2.0f, 0.5f, 7));
-  const Scene scene = scene_of(meshes);
+  const Scene scene = spheres_over_grid();
   const Camera camera = look_at(vec3(0.2f, 0.3f, 4.0f), vec3(0), vec3(0, 1, 0), 60.0f, 200, 150);
   for (bool uv : {false, true}) {
     RasterOptions options;
@@ -494,10 +499,7 @@ struct OddKeptHookedRuns : OddKeptHooked {
 };
 
 TEST(Rasterizer, KeepsAllHookGivesTheTestedResult) {
-  std::vector<Mesh> meshes;
-  for (int i = 0; i < 4; ++i) meshes.push_back(sphere_mesh(vec3(float(i) * 0.4f - 0.6f, 0.0f, -float(i) * 0.3f), 0.8f, 48, 24));
-  meshes.push_back(grid_mesh(48, 5.0f, -2.0f, 0.5f, 7));
-  const Scene scene = scene_of(meshes);
+  const Scene scene = spheres_over_grid();
   const Camera camera = look_at(vec3(0.2f, 0.3f, 4.0f), vec3(0), vec3(0, 1, 0), 60.0f, 200, 150);
   RasterOptions options;
   options.outputs = kRasterGBuffer;
