@@ -35,7 +35,32 @@ Vertex warp_vertex(const ReflectionDepthImage& key, const OffsetBuffer& offsets,
                 vec3(key.radiance.at(x, y, 0), key.radiance.at(x, y, 1), key.radiance.at(x, y, 2))};
 }
 
+// Lr at barycentrics b (unnormalised, ≥ 0, not all 0): the blend, or on an edge triangle
+// the corner with the largest weight (ties: the first), so no value between the sides.
+vec3 reconstruct(const Vertex v[3], const float b[3], bool nearest) {
+  if (nearest) {
+    int k = 0;
+    for (int j = 1; j < 3; ++j)
+      if (b[j] > b[k]) k = j;
+    return v[k].lr;
+  }
+  return (b[0] * v[0].lr + b[1] * v[1].lr + b[2] * v[2].lr) / (b[0] + b[1] + b[2]);
+}
+
 }  // namespace
+
+bool edge_triangle(const ReflectionDepthImage& key, const int corner_x[3], const int corner_y[3], float contrast) {
+  if (!(contrast < kInf)) return false;
+  for (int c = 0; c < 3; ++c) {
+    float lo = kInf, hi = -kInf;
+    for (int k = 0; k < 3; ++k) {
+      const float v = key.specular.at(corner_x[k], corner_y[k]) * key.radiance.at(corner_x[k], corner_y[k], c);
+      lo = std::min(lo, v), hi = std::max(hi, v);
+    }
+    if (hi - lo > contrast) return true;
+  }
+  return false;
+}
 
 bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance) {
   const IntermediateReflection& image = *mesh.image;
@@ -54,7 +79,11 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance) {
       const uint32_t quad = id / 2u, half = id % 2u;
       const int qx = int(quad % uint32_t(w)), qy = int(quad / uint32_t(w));
       Vertex v[3];
-      for (int k = 0; k < 3; ++k) v[k] = warp_vertex(*mesh.key, *mesh.offsets, qx + kCorner[half][k][0], qy + kCorner[half][k][1]);
+      int cx3[3], cy3[3];
+      for (int k = 0; k < 3; ++k) {
+        cx3[k] = qx + kCorner[half][k][0], cy3[k] = qy + kCorner[half][k][1];
+        v[k] = warp_vertex(*mesh.key, *mesh.offsets, cx3[k], cy3[k]);
+      }
       const float area2 = cross2(v[1].p - v[0].p, v[2].p - v[0].p);
       if (std::abs(area2) < 1e-12f) continue;
       float e0 = cross2(v[2].p - v[1].p, q - v[1].p), e1 = cross2(v[0].p - v[2].p, q - v[2].p),
@@ -62,8 +91,8 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance) {
       if (area2 < 0.0f) e0 = -e0, e1 = -e1, e2 = -e2;
       const float slack = kEdgeSlack * std::sqrt(std::abs(area2));
       if (e0 < -slack || e1 < -slack || e2 < -slack) continue;
-      const float b0 = std::max(e0, 0.0f), b1 = std::max(e1, 0.0f), b2 = std::max(e2, 0.0f);
-      radiance = (b0 * v[0].lr + b1 * v[1].lr + b2 * v[2].lr) / (b0 + b1 + b2);
+      const float b[3] = {std::max(e0, 0.0f), std::max(e1, 0.0f), std::max(e2, 0.0f)};
+      radiance = reconstruct(v, b, edge_triangle(*mesh.key, cx3, cy3, mesh.edge_contrast));
       return true;
     }
   return false;
@@ -119,6 +148,7 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
   struct Tri {
     uint32_t id;
     uint8_t state;  // WarpState its pixels get
+    bool nearest;   // an edge triangle under ReflectedEdgeRule::kNearest
   };
   const int bands = (h + kBandRows - 1) / kBandRows;
   std::vector<std::vector<Tri>> band_tris(size_t(std::max(bands, 1)));
@@ -140,16 +170,22 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
         const float area = 0.5f * std::abs(cross2(b.p - a.p, c.p - a.p));
         const bool stretched = !(area <= options.stretch_limit * 0.5f);  // original area: ½ pixel²
         const bool curved = !flat(cx[0], cy[0]) || !flat(cx[1], cy[1]) || !flat(cx[2], cy[2]);
-        const uint8_t state = curved ? kWarpCurved : stretched ? kWarpUnreliable : kWarpReliable;
+        const bool edge = edge_triangle(key, cx, cy, options.edge_contrast);
+        const bool edge_recompute = edge && options.edge_rule == ReflectedEdgeRule::kRecompute;
+        const uint8_t state = curved            ? kWarpCurved
+                              : stretched       ? kWarpUnreliable
+                              : edge_recompute ? kWarpEdge
+                                                : kWarpReliable;
         out.stretched += stretched;
         out.curved += curved;
+        out.edges += edge;
         const float ymin = std::min({a.p.y, b.p.y, c.p.y}), ymax = std::max({a.p.y, b.p.y, c.p.y});
         const int r0 = std::max(0, int(std::ceil(ymin - 0.5f - kEdgeSlack)));
         const int r1 = std::min(h - 1, int(std::floor(ymax - 0.5f + kEdgeSlack)));
         if (r0 > r1) continue;
         const uint32_t id = 2u * (uint32_t(y) * uint32_t(w) + uint32_t(x)) + uint32_t(half);
         for (int band = r0 / kBandRows; band <= r1 / kBandRows; ++band)
-          band_tris[size_t(band)].push_back({id, state});
+          band_tris[size_t(band)].push_back({id, state, edge && !edge_recompute});
       }
 
   parallel_for(size_t(bands), 1, [&](size_t first, size_t last) {
@@ -183,12 +219,12 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
             if (area2 < 0.0f) e0 = -e0, e1 = -e1, e2 = -e2;
             if (e0 < -slack || e1 < -slack || e2 < -slack) continue;
             const float inv = 1.0f / std::abs(area2);
-            const float b0 = std::max(e0, 0.0f) * inv, b1 = std::max(e1, 0.0f) * inv, b2 = std::max(e2, 0.0f) * inv;
-            const float sum = b0 + b1 + b2;
-            const float z = (b0 * v[0].z + b1 * v[1].z + b2 * v[2].z) / sum;
+            const float b[3] = {std::max(e0, 0.0f) * inv, std::max(e1, 0.0f) * inv, std::max(e2, 0.0f) * inv};
+            const float sum = b[0] + b[1] + b[2];
+            const float z = (b[0] * v[0].z + b[1] * v[1].z + b[2] * v[2].z) / sum;
             if (!(z < out.depth.at(px, py))) continue;  // ties: the first triangle keeps the pixel
             out.depth.at(px, py) = z;
-            const vec3 lr = (b0 * v[0].lr + b1 * v[1].lr + b2 * v[2].lr) / sum;
+            const vec3 lr = reconstruct(v, b, t.nearest);
             for (int c = 0; c < 3; ++c) out.radiance.at(px, py, c) = lr[c];
             out.state.at(px, py) = t.state;
             out.triangle.at(px, py) = t.id;
