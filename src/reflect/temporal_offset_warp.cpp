@@ -18,11 +18,7 @@ constexpr int kBandRows = 16;
 // a pixel centre (offset 0) covers it despite rounding.
 constexpr float kEdgeSlack = 1e-3f;
 
-struct Vertex {
-  vec2 p;
-  float z;
-  vec3 lr;
-};
+using Vertex = WarpVertex;
 
 float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }
 
@@ -82,7 +78,7 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance) {
       int cx3[3], cy3[3];
       for (int k = 0; k < 3; ++k) {
         cx3[k] = qx + kCorner[half][k][0], cy3[k] = qy + kCorner[half][k][1];
-        v[k] = warp_vertex(*mesh.key, *mesh.offsets, cx3[k], cy3[k]);
+        v[k] = image.vertex[size_t(cy3[k]) * size_t(w) + size_t(cx3[k])];
       }
       const float area2 = cross2(v[1].p - v[0].p, v[2].p - v[0].p);
       if (std::abs(area2) < 1e-12f) continue;
@@ -107,7 +103,11 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
   out.state = ImageU8(w, h, 1, kWarpEmpty);
   out.triangle = ImageU32(w, h, 1, kNoWarpTriangle);
 
-  auto vertex = [&](int x, int y) { return warp_vertex(key, offsets, x, y); };
+  out.vertex.resize(size_t(w) * size_t(h));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (key.object.at(x, y) != kNoReflector) out.vertex[size_t(y) * size_t(w) + size_t(x)] = warp_vertex(key, offsets, x, y);
+  auto vertex = [&](int x, int y) -> const Vertex& { return out.vertex[size_t(y) * size_t(w) + size_t(x)]; };
   auto valid = [&](int x, int y) {
     return key.object.at(x, y) != kNoReflector && offsets.valid[size_t(y) * size_t(w) + size_t(x)];
   };

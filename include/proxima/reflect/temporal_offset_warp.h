@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "proxima/core/image.h"
 #include "proxima/reflect/temporal_best_match.h"
@@ -54,11 +55,20 @@ bool edge_triangle(const ReflectionDepthImage& key, const int corner_x[3], const
 
 inline constexpr uint32_t kNoWarpTriangle = 0xFFFFFFFFu;
 
+// A key pixel as a mesh vertex: its centre moved by its offset, depth s.d + s.r, s.Lr.
+struct WarpVertex {
+  vec2 p;
+  float z;
+  vec3 lr;
+};
+
 struct IntermediateReflection {
   ImageF radiance;    // 3 channels, interpolated s.Lr of the nearest warped triangle
   ImageF depth;       // its interpolated s.d + s.r, +inf where empty
   ImageU8 state;      // WarpState
   ImageU32 triangle;  // that triangle: 2·(y·width + x) + half of its grid quad, or kNoWarpTriangle
+  std::vector<WarpVertex> vertex;  // per key pixel (row-major), set on reflective pixels only:
+                                   // computed once, read by every triangle that uses it
   uint64_t triangles = 0, stretched = 0, curved = 0, discontinuous = 0, edges = 0;
 };
 
