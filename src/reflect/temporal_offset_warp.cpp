@@ -104,9 +104,16 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
   out.triangle = ImageU32(w, h, 1, kNoWarpTriangle);
 
   out.vertex.resize(size_t(w) * size_t(h));
+  // Per row the span [first, last] of reflective pixels (empty: first > last): the scans
+  // below skip the rest of the row, which holds no vertex.
+  std::vector<int> first(size_t(h), w), last(size_t(h), -1);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      if (key.object.at(x, y) != kNoReflector) out.vertex[size_t(y) * size_t(w) + size_t(x)] = warp_vertex(key, offsets, x, y);
+      if (key.object.at(x, y) != kNoReflector) {
+        out.vertex[size_t(y) * size_t(w) + size_t(x)] = warp_vertex(key, offsets, x, y);
+        first[size_t(y)] = std::min(first[size_t(y)], x);
+        last[size_t(y)] = x;
+      }
   auto vertex = [&](int x, int y) -> const Vertex& { return out.vertex[size_t(y) * size_t(w) + size_t(x)]; };
   auto valid = [&](int x, int y) {
     return key.object.at(x, y) != kNoReflector && offsets.valid[size_t(y) * size_t(w) + size_t(x)];
@@ -129,7 +136,7 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
   };
   std::vector<uint8_t> is_flat(size_t(w) * size_t(h), 1);
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
+    for (int x = first[size_t(y)]; x <= last[size_t(y)]; ++x) {
       if (key.object.at(x, y) == kNoReflector) continue;
       const float spread = key.spread.at(x, y);
       is_flat[size_t(y) * size_t(w) + size_t(x)] = spread <= options.spread_limit ||
@@ -153,7 +160,7 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
   const int bands = (h + kBandRows - 1) / kBandRows;
   std::vector<std::vector<Tri>> band_tris(size_t(std::max(bands, 1)));
   for (int y = 0; y + 1 < h; ++y)
-    for (int x = 0; x + 1 < w; ++x)
+    for (int x = first[size_t(y)]; x <= std::min(last[size_t(y)], w - 2); ++x)  // (x, y): both halves' corner
       for (int half = 0; half < 2; ++half) {
         int cx[3], cy[3];
         for (int k = 0; k < 3; ++k) cx[k] = x + kCorner[half][k][0], cy[k] = y + kCorner[half][k][1];
@@ -235,7 +242,7 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
   // Valid samples no triangle reached (one-pixel-wide parts of a reflector, corners next
   // to a dropped triangle) still land as points on the pixel nearest their warped position.
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
+    for (int x = first[size_t(y)]; x <= last[size_t(y)]; ++x) {
       if (!valid(x, y)) continue;
       const Vertex v = vertex(x, y);
       const int px = int(std::floor(v.p.x)), py = int(std::floor(v.p.y));
