@@ -187,6 +187,8 @@ void add_temporal_reflect_flags(CLI::App* app, TemporalReflectFlags& f) {
                   "temporal: on such an edge a reused pixel takes its nearest corner's Lr instead of a blend "
                   "(nearest) or is recomputed (recompute)")
       ->capture_default_str();
+  app->add_flag("--recompute-splats", f.recompute_splats,
+                "temporal: key samples no warp triangle reached (splatted as points) are unreliable, so recomputed");
   app->add_option("--depth-discontinuity", f.depth_discontinuity,
                   "temporal: warp grid corners whose s.d or s.d + s.r differ by more than this fraction are not "
                   "connected (their gap is recomputed)")
@@ -233,6 +235,7 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   to.warp.spread_limit = tf.spread_limit;
   to.warp.curved_contrast = tf.curved_contrast;
   to.warp.edge_contrast = tf.edge_contrast;
+  to.warp.recompute_splats = tf.recompute_splats;
   to.warp.edge_rule = tf.edge_rule == "recompute" ? ReflectedEdgeRule::kRecompute : ReflectedEdgeRule::kNearest;
   to.warp.depth_discontinuity = tf.depth_discontinuity;
 
@@ -406,6 +409,7 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   m["curved_pct_avg"] = curved_pct.avg();        // of those, on strongly curved reflectors
   m["edge_contrast"] = tf.edge_contrast;
   m["edge_rule_recompute"] = tf.edge_rule == "recompute" ? 1.0 : 0.0;
+  m["recompute_splats"] = tf.recompute_splats ? 1.0 : 0.0;
   m["edge_pct_avg"] = edge_pct.avg();            // of those, on reflected edges (--edge-rule recompute)
   m["traced_pct_avg"] = traced_pct.avg();        // every frame, key frames at 100%
   m["keyframe_interval_avg"] = intervals.avg();

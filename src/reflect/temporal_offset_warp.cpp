@@ -251,7 +251,7 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
         continue;
       out.depth.at(px, py) = v.z;
       for (int c = 0; c < 3; ++c) out.radiance.at(px, py, c) = v.lr[c];
-      out.state.at(px, py) = flat(x, y) ? kWarpReliable : kWarpCurved;
+      out.state.at(px, py) = !flat(x, y) ? kWarpCurved : options.recompute_splats ? kWarpUnreliable : kWarpReliable;
     }
   return out;
 }

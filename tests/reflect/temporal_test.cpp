@@ -402,4 +402,33 @@ TEST(TemporalReflections, EdgeRuleNeverReusesAcrossAReflectedEdge) {
   }
 }
 
+// Key samples no warp triangle reached are splatted as lone points; with recompute_splats
+// they are unreliable (recomputed) instead of reused through the bilinear fallback.
+TEST(TemporalReflections, RecomputeSplatsMarksSplattedPointsUnreliable) {
+  const Scene scene = floor_mirror(true);
+  RayScene rays(scene);
+  const ReflectionFrame frame0 = frame_at(scene, kKeyEye);
+  const ReflectionDepthImage key = make_reflection_depth_image(frame0, trace_reflections(scene, rays, frame0), 1e3f);
+  const OffsetBuffer offsets = best_match_search(key, kKeyEye + vec3(0.3f, 0.0f, 0.0f), nullptr, {});
+  auto splats = [&](const IntermediateReflection& mid, uint8_t state) {
+    size_t n = 0;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x)
+        n += mid.state.at(x, y) == state && mid.triangle.at(x, y) == kNoWarpTriangle;
+    return n;
+  };
+  const IntermediateReflection off = warp_reflections(key, offsets, {});
+  WarpOptions on;
+  on.recompute_splats = true;
+  const IntermediateReflection mid = warp_reflections(key, offsets, on);
+  const size_t reused_splats = splats(off, kWarpReliable);
+  ASSERT_GT(reused_splats, 0u);  // the case has splats (next to the box's dropped triangles)
+  EXPECT_EQ(splats(mid, kWarpReliable), 0u);
+  EXPECT_EQ(splats(mid, kWarpUnreliable), reused_splats);
+  // Everything the triangles drew is unchanged.
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x)
+      if (off.triangle.at(x, y) != kNoWarpTriangle) ASSERT_EQ(mid.state.at(x, y), off.state.at(x, y));
+}
+
 }  // namespace proxima

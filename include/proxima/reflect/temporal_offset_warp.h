@@ -48,6 +48,8 @@ struct WarpOptions {
                                       // than this (linear, any channel) span an edge of the
                                       // reflected image and follow edge_rule
   ReflectedEdgeRule edge_rule = ReflectedEdgeRule::kNearest;
+  bool recompute_splats = false;      // splatted points (no triangle reached them) are unreliable:
+                                      // their value is a lone sample read by the bilinear fallback
 };
 
 // True when the corners' s·Lr (s = key.specular) differ by more than `contrast` in a channel.
@@ -84,6 +86,8 @@ struct WarpedMesh {
   float edge_contrast = kInf;  // WarpOptions::edge_contrast of the warp: edge triangles give their
                                // nearest corner's Lr (under kRecompute they are not reliable)
   ReflectedEdgeRule edge_rule = ReflectedEdgeRule::kNearest;
+  bool recompute_splats = false;      // splatted points (no triangle reached them) are unreliable:
+                                      // their value is a lone sample read by the bilinear fallback
 };
 
 // s.Lr of the warped mesh at continuous key-grid position q: the reliable triangles stored
