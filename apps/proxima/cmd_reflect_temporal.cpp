@@ -52,6 +52,8 @@ void validate(const TemporalReflectRun& r) {
   if (!(t.stretch_limit >= 1.0f) || !std::isfinite(t.stretch_limit)) fail_input("--stretch-limit: must be ≥ 1");
   if (!(t.spread_limit >= 1.0f)) fail_input("--spread-limit: must be ≥ 1 (inf = off)");
   if (!(t.curved_contrast >= 0.0f)) fail_input("--curved-contrast: must be ≥ 0");
+  if (!(t.edge_contrast >= 0.0f)) fail_input("--edge-contrast: must be ≥ 0 (inf = off)");
+  if (t.edge_rule != "nearest" && t.edge_rule != "recompute") fail_input("--edge-rule: must be nearest or recompute");
   if (t.image_frame < -1) fail_input("--image-frame: must be ≥ -1");
   if (!(t.depth_discontinuity > 0.0f) || !std::isfinite(t.depth_discontinuity))
     fail_input("--depth-discontinuity: must be > 0");
@@ -177,6 +179,16 @@ void add_temporal_reflect_flags(CLI::App* app, TemporalReflectFlags& f) {
   app->add_option("--curved-contrast", f.curved_contrast,
                   "temporal: ... only where s*Lr differs between neighbouring key pixels by more than this (linear)")
       ->capture_default_str();
+  app->add_option("--edge-contrast", f.edge_contrast,
+                  "temporal: warped grid triangles whose corners' s*Lr differ by more than this (linear, any "
+                  "channel) span an edge of the reflected image and follow --edge-rule; inf = off")
+      ->capture_default_str();
+  app->add_option("--edge-rule", f.edge_rule,
+                  "temporal: on such an edge a reused pixel takes its nearest corner's Lr instead of a blend "
+                  "(nearest) or is recomputed (recompute)")
+      ->capture_default_str();
+  app->add_flag("--recompute-splats", f.recompute_splats,
+                "temporal: key samples no warp triangle reached (splatted as points) are unreliable, so recomputed");
   app->add_option("--depth-discontinuity", f.depth_discontinuity,
                   "temporal: warp grid corners whose s.d or s.d + s.r differ by more than this fraction are not "
                   "connected (their gap is recomputed)")
@@ -222,6 +234,9 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   to.warp.stretch_limit = tf.stretch_limit;
   to.warp.spread_limit = tf.spread_limit;
   to.warp.curved_contrast = tf.curved_contrast;
+  to.warp.edge_contrast = tf.edge_contrast;
+  to.warp.recompute_splats = tf.recompute_splats;
+  to.warp.edge_rule = tf.edge_rule == "recompute" ? ReflectedEdgeRule::kRecompute : ReflectedEdgeRule::kNearest;
   to.warp.depth_discontinuity = tf.depth_discontinuity;
 
   Scene scene = animated ? pose_scene(rest, t_first) : rest;
@@ -230,7 +245,7 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   Series mirror_temporal_mae, mirror_direct_mae;
   Series reflective_pct, recompute_pct, traced_pct, temporal_mae, direct_mae, direct_recompute_pct, temporal_ms,
       reference_ms, frame_temporal_ms, frame_reference_ms, diffuse_ms, key_ms, match_ms, warp_ms, reproject_ms,
-      recompute_ms, compose_ms, intervals, curved_pct;
+      recompute_ms, compose_ms, intervals, curved_pct, edge_pct, temporal_cpu_ms, reference_cpu_ms;
   Table per_frame{"Per frame", {"frame", "key", "reflective_pct", "recompute_pct", "disoccluded_pct", "unreliable_pct",
                                 "temporal_mae", "direct_mae", "diffuse_ms", "key_ms", "match_ms", "warp_ms",
                                 "reproject_ms", "recompute_ms", "compose_ms", "reference_trace_ms"}, {}};
@@ -257,7 +272,9 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
     const double diffuse = watch.elapsed_ms();
     TemporalFrameStats st;
     std::vector<uint8_t> flags;
+    double cpu = process_cpu_ms();
     const std::vector<vec3> reflected = temporal_reflections(scene, rays, frame, state, to, &st, &flags);
+    temporal_cpu_ms.add(process_cpu_ms() - cpu);
     watch.restart();
     const ImageF color = compose_reflections(frame, reflected);
     const double compose = watch.elapsed_ms();
@@ -273,6 +290,7 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
     } else {
       recompute_pct.add(100.0 * st.recompute_fraction());
       curved_pct.add(st.reflective ? 100.0 * double(st.curved) / double(st.reflective) : 0.0);
+      edge_pct.add(st.reflective ? 100.0 * double(st.edge) / double(st.reflective) : 0.0);
       traced_pct.add(100.0 * st.recompute_fraction());
     }
     ++since_key;
@@ -291,7 +309,9 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
     if (run.compare) {
       // Full reflection ray tracing of the same frame: every reflective sample's rays.
       watch.restart();
+      const double trace_cpu = process_cpu_ms();
       const TracedReflections traced = trace_reflections(scene, rays, frame);
+      reference_cpu_ms.add(process_cpu_ms() - trace_cpu);
       trace_ms = watch.elapsed_ms();
       reference = compose_reflections(frame, traced.radiance);
       reference_ms.add(trace_ms);
@@ -387,6 +407,10 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   m["reflective_pct_max"] = reflective_pct.max();
   m["recompute_pct_avg"] = recompute_pct.avg();  // non-key frames
   m["curved_pct_avg"] = curved_pct.avg();        // of those, on strongly curved reflectors
+  m["edge_contrast"] = tf.edge_contrast;
+  m["edge_rule_recompute"] = tf.edge_rule == "recompute" ? 1.0 : 0.0;
+  m["recompute_splats"] = tf.recompute_splats ? 1.0 : 0.0;
+  m["edge_pct_avg"] = edge_pct.avg();            // of those, on reflected edges (--edge-rule recompute)
   m["traced_pct_avg"] = traced_pct.avg();        // every frame, key frames at 100%
   m["keyframe_interval_avg"] = intervals.avg();
   m["keyframe_interval_max"] = intervals.max();
@@ -412,6 +436,13 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
     m["reference_ms_avg"] = reference_ms.avg();
     m["frame_reference_ms_avg"] = frame_reference_ms.avg();
     m["speedup_vs_reference"] = temporal_ms.avg() > 0.0 ? reference_ms.avg() / temporal_ms.avg() : 0.0;
+    // Process CPU time (both threads) of the two methods' reflection work: robust to load.
+    m["temporal_cpu_ms_avg"] = temporal_cpu_ms.avg();
+    m["reference_cpu_ms_avg"] = reference_cpu_ms.avg();
+    m["speedup_cpu_vs_reference"] =
+        temporal_cpu_ms.avg() > 0.0 ? reference_cpu_ms.avg() / temporal_cpu_ms.avg() : 0.0;
+    m["speedup_cpu_median_ratio"] =
+        median(temporal_cpu_ms.values) > 0.0 ? median(reference_cpu_ms.values) / median(temporal_cpu_ms.values) : 0.0;
     m["frame_speedup_vs_reference"] =
         frame_temporal_ms.avg() > 0.0 ? frame_reference_ms.avg() / frame_temporal_ms.avg() : 0.0;
     results.tables.push_back(

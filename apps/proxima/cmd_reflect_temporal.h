@@ -21,6 +21,9 @@ struct TemporalReflectFlags {
   float spread_limit = kInf;    // off; e.g. 8: warp triangles on reflectors bending directions more are unreliable
   float depth_discontinuity = 0.1f;  // warp corners whose s.d or s.d + s.r differ more (relative) are not connected
   float curved_contrast = 0.05f;  // ... where s·Lr varies by more than this between neighbours
+  float edge_contrast = kInf;   // off; warp triangles whose corners' s·Lr differ more span a reflected edge
+  std::string edge_rule = "nearest";  // there: "nearest" corner's Lr, or "recompute"
+  bool recompute_splats = false;  // samples no warp triangle reached are recomputed
   int image_frame = -1;         // frame whose images are written; −1 = the first non-key frame
   float lobe_seed_cell = 0.0f;  // > 0: glossy lobe rays seeded per world cell of this size × diagonal
   bool breakdown = false;       // with --compare: temporal error by pixel class, key-frame age, seed noise

@@ -1,8 +1,16 @@
 #include "proxima/core/timer.h"
 
+#include <ctime>
+
 #include <algorithm>
 
 namespace proxima {
+
+double process_cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
+}
 
 double median(std::vector<double> samples) {
   if (samples.empty()) return 0.0;

@@ -83,24 +83,35 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
         }
         float former = s.distance(cx, cy, r);
         bool converged = false;
-        // The last step's 3×3 distances: on convergence they are the end point's
-        // neighbours, which the sub-pixel fit reads again.
+        // The last step's 3×3 distances (centre included): on convergence they are the end
+        // point's neighbours, which the sub-pixel fit reads again; after a step of (sx, sy)
+        // the cells both squares share are not evaluated again (the same values: same bits).
         float around[3][3] = {};
+        around[1][1] = former;
+        int sx = 3, sy = 3;  // no previous square yet (every cell falls outside it)
         for (int step = 0; step < max_steps; ++step) {
           int bx = cx, by = cy;
           float best = kInf;
+          float next[3][3];
+          next[1][1] = former;
           for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx) {
               if (!dx && !dy) continue;
-              const float d = s.distance_in(cx + dx, cy + dy, object, r);
-              around[dy + 1][dx + 1] = d;
+              const int ox = dx + sx, oy = dy + sy;  // the cell in the previous square
+              const float d = ox >= -1 && ox <= 1 && oy >= -1 && oy <= 1
+                                  ? around[oy + 1][ox + 1]
+                                  : s.distance_in(cx + dx, cy + dy, object, r);
+              next[dy + 1][dx + 1] = d;
               if (d < best) best = d, bx = cx + dx, by = cy + dy;
             }
+          std::copy(&next[0][0], &next[0][0] + 9, &around[0][0]);
           if (!(best < former)) {  // local minimum (ties stop too: no cycles)
             converged = true;
             break;
           }
           former = best;
+          sx = bx - cx;
+          sy = by - cy;
           cx = bx;
           cy = by;
           ++row_steps[size_t(y)];

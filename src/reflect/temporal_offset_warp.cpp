@@ -18,11 +18,7 @@ constexpr int kBandRows = 16;
 // a pixel centre (offset 0) covers it despite rounding.
 constexpr float kEdgeSlack = 1e-3f;
 
-struct Vertex {
-  vec2 p;
-  float z;
-  vec3 lr;
-};
+using Vertex = WarpVertex;
 
 float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }
 
@@ -35,7 +31,32 @@ Vertex warp_vertex(const ReflectionDepthImage& key, const OffsetBuffer& offsets,
                 vec3(key.radiance.at(x, y, 0), key.radiance.at(x, y, 1), key.radiance.at(x, y, 2))};
 }
 
+// Lr at barycentrics b (unnormalised, ≥ 0, not all 0): the blend, or on an edge triangle
+// the corner with the largest weight (ties: the first), so no value between the sides.
+vec3 reconstruct(const Vertex v[3], const float b[3], bool nearest) {
+  if (nearest) {
+    int k = 0;
+    for (int j = 1; j < 3; ++j)
+      if (b[j] > b[k]) k = j;
+    return v[k].lr;
+  }
+  return (b[0] * v[0].lr + b[1] * v[1].lr + b[2] * v[2].lr) / (b[0] + b[1] + b[2]);
+}
+
 }  // namespace
+
+bool edge_triangle(const ReflectionDepthImage& key, const int corner_x[3], const int corner_y[3], float contrast) {
+  if (!(contrast < kInf)) return false;
+  for (int c = 0; c < 3; ++c) {
+    float lo = kInf, hi = -kInf;
+    for (int k = 0; k < 3; ++k) {
+      const float v = key.specular.at(corner_x[k], corner_y[k]) * key.radiance.at(corner_x[k], corner_y[k], c);
+      lo = std::min(lo, v), hi = std::max(hi, v);
+    }
+    if (hi - lo > contrast) return true;
+  }
+  return false;
+}
 
 bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance) {
   const IntermediateReflection& image = *mesh.image;
@@ -54,7 +75,11 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance) {
       const uint32_t quad = id / 2u, half = id % 2u;
       const int qx = int(quad % uint32_t(w)), qy = int(quad / uint32_t(w));
       Vertex v[3];
-      for (int k = 0; k < 3; ++k) v[k] = warp_vertex(*mesh.key, *mesh.offsets, qx + kCorner[half][k][0], qy + kCorner[half][k][1]);
+      int cx3[3], cy3[3];
+      for (int k = 0; k < 3; ++k) {
+        cx3[k] = qx + kCorner[half][k][0], cy3[k] = qy + kCorner[half][k][1];
+        v[k] = image.vertex[size_t(cy3[k]) * size_t(w) + size_t(cx3[k])];
+      }
       const float area2 = cross2(v[1].p - v[0].p, v[2].p - v[0].p);
       if (std::abs(area2) < 1e-12f) continue;
       float e0 = cross2(v[2].p - v[1].p, q - v[1].p), e1 = cross2(v[0].p - v[2].p, q - v[2].p),
@@ -62,8 +87,8 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance) {
       if (area2 < 0.0f) e0 = -e0, e1 = -e1, e2 = -e2;
       const float slack = kEdgeSlack * std::sqrt(std::abs(area2));
       if (e0 < -slack || e1 < -slack || e2 < -slack) continue;
-      const float b0 = std::max(e0, 0.0f), b1 = std::max(e1, 0.0f), b2 = std::max(e2, 0.0f);
-      radiance = (b0 * v[0].lr + b1 * v[1].lr + b2 * v[2].lr) / (b0 + b1 + b2);
+      const float b[3] = {std::max(e0, 0.0f), std::max(e1, 0.0f), std::max(e2, 0.0f)};
+      radiance = reconstruct(v, b, edge_triangle(*mesh.key, cx3, cy3, mesh.edge_contrast));
       return true;
     }
   return false;
@@ -78,7 +103,18 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
   out.state = ImageU8(w, h, 1, kWarpEmpty);
   out.triangle = ImageU32(w, h, 1, kNoWarpTriangle);
 
-  auto vertex = [&](int x, int y) { return warp_vertex(key, offsets, x, y); };
+  out.vertex.resize(size_t(w) * size_t(h));
+  // Per row the span [first, last] of reflective pixels (empty: first > last): the scans
+  // below skip the rest of the row, which holds no vertex.
+  std::vector<int> first(size_t(h), w), last(size_t(h), -1);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (key.object.at(x, y) != kNoReflector) {
+        out.vertex[size_t(y) * size_t(w) + size_t(x)] = warp_vertex(key, offsets, x, y);
+        first[size_t(y)] = std::min(first[size_t(y)], x);
+        last[size_t(y)] = x;
+      }
+  auto vertex = [&](int x, int y) -> const Vertex& { return out.vertex[size_t(y) * size_t(w) + size_t(x)]; };
   auto valid = [&](int x, int y) {
     return key.object.at(x, y) != kNoReflector && offsets.valid[size_t(y) * size_t(w) + size_t(x)];
   };
@@ -100,7 +136,7 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
   };
   std::vector<uint8_t> is_flat(size_t(w) * size_t(h), 1);
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
+    for (int x = first[size_t(y)]; x <= last[size_t(y)]; ++x) {
       if (key.object.at(x, y) == kNoReflector) continue;
       const float spread = key.spread.at(x, y);
       is_flat[size_t(y) * size_t(w) + size_t(x)] = spread <= options.spread_limit ||
@@ -119,11 +155,12 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
   struct Tri {
     uint32_t id;
     uint8_t state;  // WarpState its pixels get
+    bool nearest;   // an edge triangle under ReflectedEdgeRule::kNearest
   };
   const int bands = (h + kBandRows - 1) / kBandRows;
   std::vector<std::vector<Tri>> band_tris(size_t(std::max(bands, 1)));
   for (int y = 0; y + 1 < h; ++y)
-    for (int x = 0; x + 1 < w; ++x)
+    for (int x = first[size_t(y)]; x <= std::min(last[size_t(y)], w - 2); ++x)  // (x, y): both halves' corner
       for (int half = 0; half < 2; ++half) {
         int cx[3], cy[3];
         for (int k = 0; k < 3; ++k) cx[k] = x + kCorner[half][k][0], cy[k] = y + kCorner[half][k][1];
@@ -140,16 +177,22 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
         const float area = 0.5f * std::abs(cross2(b.p - a.p, c.p - a.p));
         const bool stretched = !(area <= options.stretch_limit * 0.5f);  // original area: ½ pixel²
         const bool curved = !flat(cx[0], cy[0]) || !flat(cx[1], cy[1]) || !flat(cx[2], cy[2]);
-        const uint8_t state = curved ? kWarpCurved : stretched ? kWarpUnreliable : kWarpReliable;
+        const bool edge = edge_triangle(key, cx, cy, options.edge_contrast);
+        const bool edge_recompute = edge && options.edge_rule == ReflectedEdgeRule::kRecompute;
+        const uint8_t state = curved            ? kWarpCurved
+                              : stretched       ? kWarpUnreliable
+                              : edge_recompute ? kWarpEdge
+                                                : kWarpReliable;
         out.stretched += stretched;
         out.curved += curved;
+        out.edges += edge;
         const float ymin = std::min({a.p.y, b.p.y, c.p.y}), ymax = std::max({a.p.y, b.p.y, c.p.y});
         const int r0 = std::max(0, int(std::ceil(ymin - 0.5f - kEdgeSlack)));
         const int r1 = std::min(h - 1, int(std::floor(ymax - 0.5f + kEdgeSlack)));
         if (r0 > r1) continue;
         const uint32_t id = 2u * (uint32_t(y) * uint32_t(w) + uint32_t(x)) + uint32_t(half);
         for (int band = r0 / kBandRows; band <= r1 / kBandRows; ++band)
-          band_tris[size_t(band)].push_back({id, state});
+          band_tris[size_t(band)].push_back({id, state, edge && !edge_recompute});
       }
 
   parallel_for(size_t(bands), 1, [&](size_t first, size_t last) {
@@ -183,12 +226,12 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
             if (area2 < 0.0f) e0 = -e0, e1 = -e1, e2 = -e2;
             if (e0 < -slack || e1 < -slack || e2 < -slack) continue;
             const float inv = 1.0f / std::abs(area2);
-            const float b0 = std::max(e0, 0.0f) * inv, b1 = std::max(e1, 0.0f) * inv, b2 = std::max(e2, 0.0f) * inv;
-            const float sum = b0 + b1 + b2;
-            const float z = (b0 * v[0].z + b1 * v[1].z + b2 * v[2].z) / sum;
+            const float b[3] = {std::max(e0, 0.0f) * inv, std::max(e1, 0.0f) * inv, std::max(e2, 0.0f) * inv};
+            const float sum = b[0] + b[1] + b[2];
+            const float z = (b[0] * v[0].z + b[1] * v[1].z + b[2] * v[2].z) / sum;
             if (!(z < out.depth.at(px, py))) continue;  // ties: the first triangle keeps the pixel
             out.depth.at(px, py) = z;
-            const vec3 lr = (b0 * v[0].lr + b1 * v[1].lr + b2 * v[2].lr) / sum;
+            const vec3 lr = reconstruct(v, b, t.nearest);
             for (int c = 0; c < 3; ++c) out.radiance.at(px, py, c) = lr[c];
             out.state.at(px, py) = t.state;
             out.triangle.at(px, py) = t.id;
@@ -199,7 +242,7 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
   // Valid samples no triangle reached (one-pixel-wide parts of a reflector, corners next
   // to a dropped triangle) still land as points on the pixel nearest their warped position.
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
+    for (int x = first[size_t(y)]; x <= last[size_t(y)]; ++x) {
       if (!valid(x, y)) continue;
       const Vertex v = vertex(x, y);
       const int px = int(std::floor(v.p.x)), py = int(std::floor(v.p.y));
@@ -208,7 +251,7 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
         continue;
       out.depth.at(px, py) = v.z;
       for (int c = 0; c < 3; ++c) out.radiance.at(px, py, c) = v.lr[c];
-      out.state.at(px, py) = flat(x, y) ? kWarpReliable : kWarpCurved;
+      out.state.at(px, py) = !flat(x, y) ? kWarpCurved : options.recompute_splats ? kWarpUnreliable : kWarpReliable;
     }
   return out;
 }

@@ -2,6 +2,7 @@
 // reflective samples: deterministic, and each sample gets exactly one answer or a flag.
 #include "proxima/reflect/temporal_reprojection.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -43,7 +44,8 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
         continue;
       }
       if (!reliable(nx, ny)) {
-        out.flag[i] = uint8_t(kReuseUnreliable | (state->at(nx, ny) == kWarpCurved ? kReuseCurved : 0));
+        const uint8_t st = state->at(nx, ny);
+        out.flag[i] = uint8_t(kReuseUnreliable | (st == kWarpCurved ? kReuseCurved : 0) | (st == kWarpEdge ? kReuseEdge : 0));
         continue;
       }
       if (mesh && warped_radiance_at(*mesh, q, out.radiance[i])) continue;
@@ -51,7 +53,7 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
       const float fx = q.x - 0.5f, fy = q.y - 0.5f;
       const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
       const float tx = fx - float(x0), ty = fy - float(y0);
-      vec3 sum(0.0f);
+      vec3 sum(0.0f), lo(kInf), hi(-kInf);
       float weight = 0.0f;
       for (int j = 0; j < 2; ++j)
         for (int k = 0; k < 2; ++k) {
@@ -59,10 +61,19 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
           if (!same_surface(x, y, object, proj->depth) || !reliable(x, y)) continue;
           const float wt = (k ? tx : 1.0f - tx) * (j ? ty : 1.0f - ty);
           if (wt <= 0.0f) continue;
-          sum += wt * vec3(radiance.at(x, y, 0), radiance.at(x, y, 1), radiance.at(x, y, 2));
+          const vec3 lr(radiance.at(x, y, 0), radiance.at(x, y, 1), radiance.at(x, y, 2));
+          sum += wt * lr;
           weight += wt;
+          lo = glm::min(lo, key.specular.at(x, y) * lr), hi = glm::max(hi, key.specular.at(x, y) * lr);
         }
-      if (weight > 0.0f) {
+      // The same edge rule as the mesh's: no blend across a reflected edge.
+      const vec3 range = hi - lo;
+      const bool edge = mesh && weight > 0.0f && std::max({range.x, range.y, range.z}) > mesh->edge_contrast;
+      if (edge && mesh->edge_rule == ReflectedEdgeRule::kRecompute) {
+        out.flag[i] = uint8_t(kReuseUnreliable | kReuseEdge);
+      } else if (edge) {
+        out.radiance[i] = vec3(radiance.at(nx, ny, 0), radiance.at(nx, ny, 1), radiance.at(nx, ny, 2));
+      } else if (weight > 0.0f) {
         out.radiance[i] = sum / weight;
       } else {
         out.radiance[i] = vec3(radiance.at(nx, ny, 0), radiance.at(nx, ny, 1), radiance.at(nx, ny, 2));
@@ -73,6 +84,7 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
     out.disoccluded += (f & kReuseDisoccluded) != 0;
     out.unreliable += (f & kReuseUnreliable) != 0;
     out.curved += (f & kReuseCurved) != 0;
+    out.edge += (f & kReuseEdge) != 0;
   }
   return out;
 }

@@ -80,13 +80,14 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
     const IntermediateReflection mid = warp_reflections(state.key, offsets, options.warp);
     st.warp_ms = watch.elapsed_ms();
     watch.restart();
-    const WarpedMesh mesh{&state.key, &offsets, &mid};
+    const WarpedMesh mesh{&state.key, &offsets, &mid, options.warp.edge_contrast, options.warp.edge_rule};
     ReflectionReprojection r =
         reproject_reflections(frame, state.key, mid.radiance, &mid.state, options.reproject, &mesh);
     st.reproject_ms = watch.elapsed_ms();
     st.disoccluded = r.disoccluded;
     st.unreliable = r.unreliable;
     st.curved = r.curved;
+    st.edge = r.edge;
     st.recomputed = r.recompute();
     watch.restart();
     recompute(scene, rays, frame, r);

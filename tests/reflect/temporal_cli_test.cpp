@@ -49,7 +49,9 @@ TEST(TemporalCli, BadInputIsExitCodeTwoAndWritesNothing) {
                                   base + "--path 0 --lobe-seed-cell -1 --out " + out.string(),
                                   base + "--path 0 --depth-discontinuity 0 --out " + out.string(),
                                   base + "--path 0 --compare --reference-rays -1 --out " + out.string(),
-                                  base + "--path 0 --breakdown --out " + out.string()}) {
+                                  base + "--path 0 --breakdown --out " + out.string(),
+                                  base + "--path 0 --edge-contrast -1 --out " + out.string(),
+                                  base + "--path 0 --edge-rule blend --out " + out.string()}) {
     const RunResult r = run_cli(args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
     EXPECT_NE(r.output.find("--"), std::string::npos) << r.output;  // names the flag
@@ -57,17 +59,28 @@ TEST(TemporalCli, BadInputIsExitCodeTwoAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
-// --breakdown splits the temporal error into classes whose contributions add up to the
-// MAE; --reference-rays and --lobe-seed-cell run alongside.
-TEST(TemporalCli, BreakdownContributionsAddUpToTheMae) {
+namespace {
+
+// Metrics of a 6-frame --compare run on room-reflector (48×32) with `extra` flags; null
+// (and a test failure) when the run fails.
+nlohmann::json compare_metrics(const std::string& extra) {
   TempDir dir;
   const auto out = dir.path / "run";
   const RunResult r = run_cli("reflect --method temporal --scene room-reflector --path 0 --frames 6 --width 48 "
-                              "--height 32 --compare --breakdown --reference-rays 16 --lobe-seed-cell 0.01 --out " +
-                              out.string());
-  ASSERT_EQ(r.exit_code, 0) << r.output;
+                              "--height 32 --compare " + extra + " --out " + out.string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  if (r.exit_code != 0) return nullptr;
   std::ifstream in(out / "results.json");
-  const nlohmann::json m = nlohmann::json::parse(in)["metrics"];
+  return nlohmann::json::parse(in)["metrics"];
+}
+
+}  // namespace
+
+// --breakdown splits the temporal error into classes whose contributions add up to the
+// MAE; --reference-rays and --lobe-seed-cell run alongside.
+TEST(TemporalCli, BreakdownContributionsAddUpToTheMae) {
+  const nlohmann::json m = compare_metrics("--breakdown --reference-rays 16 --lobe-seed-cell 0.01");
+  ASSERT_FALSE(m.is_null());
   double sum = 0.0;
   int classes = 0;
   for (const auto& [name, value] : m.items())
@@ -78,6 +91,18 @@ TEST(TemporalCli, BreakdownContributionsAddUpToTheMae) {
   EXPECT_TRUE(m.contains("seed_noise_mae_avg"));
   EXPECT_TRUE(m.contains("hq_temporal_mae_avg"));
   EXPECT_NEAR(m["lobe_seed_cell"].get<double>(), 0.01, 1e-6);  // stored as float
+}
+
+// --edge-rule recompute: reflected-edge pixels are recomputed (counted apart), and the run
+// reports the CPU-time speed-up beside the wall-clock one.
+TEST(TemporalCli, EdgeRuleRecomputeIsReported) {
+  const nlohmann::json m = compare_metrics("--edge-contrast 0.02 --edge-rule recompute");
+  ASSERT_FALSE(m.is_null());
+  EXPECT_EQ(m["edge_rule_recompute"].get<double>(), 1.0);
+  EXPECT_GE(m["edge_pct_avg"].get<double>(), 0.0);
+  EXPECT_LE(m["edge_pct_avg"].get<double>(), m["recompute_pct_avg"].get<double>());
+  for (const char* name : {"temporal_cpu_ms_avg", "reference_cpu_ms_avg", "speedup_cpu_vs_reference"})
+    EXPECT_GT(m[name].get<double>(), 0.0) << name;
 }
 
 }  // namespace proxima

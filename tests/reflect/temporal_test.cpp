@@ -3,6 +3,7 @@
 // planar mirror, disocclusion flags, determinism.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -290,6 +291,147 @@ TEST(TemporalReflections, CurvedMirrorPixelsAreUnreliablePlanarOnesAreNot) {
   size_t ball_ok_off = 0;
   for (size_t i = 0; i < frame1.sample_count(); ++i) ball_ok_off += frame1.reflector[i] == ball_id && r_off.flag[i] == kReuseOk;
   EXPECT_GT(ball_ok_off, ball1 / 4);
+}
+
+// The floor mirror reflecting a wall of vertical stripes (alternately 0.27 and 0.33 m wide,
+// albedo 0.02 and 0.9: about 6 pixels each in the mirror): the reflected image is all sharp
+// edges. A reused sample "crosses an edge" when its Lr lies between the two sides' levels,
+// a blend no point sample of the scene has.
+TEST(TemporalReflections, EdgeRuleNeverReusesAcrossAReflectedEdge) {
+  Scene scene;
+  scene.name = "striped-mirror";
+  add_quad(scene, vec3(-2, 0, -2), vec3(0, 0, 4), vec3(4, 0, 0), add_diffuse(scene, vec3(0.5f), 1.0f), "mirror");
+  scene.ambient = vec3(1.0f);  // flat ambient shading, no lights: each stripe one level
+  const uint32_t dark = add_diffuse(scene, vec3(0.02f)), bright = add_diffuse(scene, vec3(0.9f));
+  float x = -4.0f;
+  for (int k = 0; x < 4.0f; ++k) {
+    const float width = k % 2 ? 0.33f : 0.27f;
+    add_quad(scene, vec3(x, -1, -2), vec3(width, 0, 0), vec3(0, 6, 0), k % 2 ? bright : dark, "stripe");
+    x += width;
+  }
+  RayScene rays(scene);
+  const ReflectionFrame frame0 = frame_at(scene, kKeyEye);
+  const ReflectionDepthImage key = make_reflection_depth_image(frame0, trace_reflections(scene, rays, frame0), 1e3f);
+  const ReflectionFrame frame1 = frame_at(scene, kKeyEye + kMove);
+  const OffsetBuffer offsets = best_match_search(key, frame1.camera.position, nullptr, {});
+  const TracedReflections truth = trace_reflections(scene, rays, frame1);
+  const ImageF reference = compose_reflections(frame1, truth.radiance);
+
+  // The two sides' levels from the traced frame: the dark stripes' brightest Lr and the
+  // bright ones' darkest (albedo ratio 45; the light varies far less across the wall).
+  auto luminance = [](vec3 c) { return (c.x + c.y + c.z) / 3.0f; };
+  std::vector<float> levels;
+  for (const vec3& c : truth.radiance) levels.push_back(luminance(c));
+  std::sort(levels.begin(), levels.end());
+  const float median = levels[levels.size() / 2];
+  float dark_max = 0.0f, bright_min = kInf;
+  for (float l : levels) {
+    if (l < 0.2f * median) dark_max = std::max(dark_max, l);
+    else bright_min = std::min(bright_min, l);
+  }
+  ASSERT_GT(bright_min, 4.0f * dark_max);  // two well-separated levels
+  auto across = [&](vec3 c) { const float l = luminance(c); return l > 1.5f * dark_max && l < bright_min / 1.5f; };
+  size_t traced_across = 0;
+  for (const vec3& c : truth.radiance) traced_across += across(c);
+  EXPECT_EQ(traced_across, 0u);  // no point sample lies between the sides
+
+  struct Outcome {
+    size_t reused = 0, across = 0;
+    double mae = 0.0, reused_mae = 0.0;
+    uint64_t recomputed = 0, edge = 0;
+  };
+  auto run = [&](const WarpOptions& warp) {
+    const IntermediateReflection mid = warp_reflections(key, offsets, warp);
+    const WarpedMesh mesh{&key, &offsets, &mid, warp.edge_contrast, warp.edge_rule};
+    ReflectionReprojection r = reproject_reflections(frame1, key, mid.radiance, &mid.state, {}, &mesh);
+    Outcome o;
+    std::vector<uint8_t> ok(frame1.sample_count());
+    for (size_t i = 0; i < ok.size(); ++i) {
+      ok[i] = r.flag[i] == kReuseOk;
+      o.reused += ok[i];
+      o.across += ok[i] && across(r.radiance[i]);
+      if (!ok[i]) r.radiance[i] = truth.radiance[i];  // recomputed: what the ray tracer gives
+    }
+    const ImageF color = compose_reflections(frame1, r.radiance);
+    const ImageU8 all_mask = mask_of(frame1, std::vector<uint8_t>(ok.size(), 1));
+    o.mae = compare_images(color, reference, &all_mask).mae_avg;
+    const ImageU8 reused_mask = mask_of(frame1, ok);
+    o.reused_mae = compare_images(color, reference, &reused_mask).mae_avg;
+    o.recomputed = r.recompute();
+    o.edge = r.edge;
+    return o;
+  };
+  WarpOptions off, nearest, recompute;
+  nearest.edge_contrast = recompute.edge_contrast = 0.05f;
+  recompute.edge_rule = ReflectedEdgeRule::kRecompute;
+  const Outcome o_off = run(off), o_near = run(nearest), o_rec = run(recompute);
+  std::printf("striped wall in a planar mirror, %zu samples: MAE off %.3f (%zu reused, %zu across an edge), "
+              "nearest %.3f (%zu, %zu), recompute %.3f (%zu, %zu; %llu recomputed, %llu on edges)\n",
+              frame1.sample_count(), o_off.mae, o_off.reused, o_off.across, o_near.mae, o_near.reused, o_near.across,
+              o_rec.mae, o_rec.reused, o_rec.across, static_cast<unsigned long long>(o_rec.recomputed),
+              static_cast<unsigned long long>(o_rec.edge));
+  ASSERT_GT(o_off.reused, frame1.sample_count() / 2);
+  // Blending the key frame's point samples puts many reused samples between the sides ...
+  EXPECT_GT(o_off.across, o_off.reused / 20);
+  // ... the rule none, whether it takes the nearest corner or recomputes the edge.
+  EXPECT_EQ(o_near.across, 0u);
+  EXPECT_EQ(o_rec.across, 0u);
+  EXPECT_EQ(o_near.reused, o_off.reused);  // nearest: the same samples reused
+  EXPECT_EQ(o_off.edge, 0u);
+  EXPECT_GT(o_rec.edge, 0u);
+  // Lower error than blending: nearest on the same samples, recompute at least halves it.
+  EXPECT_LT(o_near.mae, o_off.mae);
+  EXPECT_LT(o_rec.mae, 0.5 * o_off.mae);
+
+  // Same bits for 1 and 2 threads with the rule on (and splats recomputed), through the
+  // whole method.
+  WarpOptions splats = recompute;
+  splats.recompute_splats = true;
+  for (const WarpOptions& warp : {nearest, recompute, splats}) {
+    auto frames = [&](int threads) {
+      ThreadLimit limit(threads);
+      TemporalOptions options;
+      options.warp = warp;
+      TemporalState state;
+      std::vector<vec3> out;
+      for (int f = 0; f < 3; ++f) {
+        const std::vector<vec3> r =
+            temporal_reflections(scene, rays, frame_at(scene, kKeyEye + float(f) * kMove), state, options);
+        out.insert(out.end(), r.begin(), r.end());
+      }
+      return out;
+    };
+    EXPECT_EQ(frames(1), frames(2));
+  }
+}
+
+// Key samples no warp triangle reached are splatted as lone points; with recompute_splats
+// they are unreliable (recomputed) instead of reused through the bilinear fallback.
+TEST(TemporalReflections, RecomputeSplatsMarksSplattedPointsUnreliable) {
+  const Scene scene = floor_mirror(true);
+  RayScene rays(scene);
+  const ReflectionFrame frame0 = frame_at(scene, kKeyEye);
+  const ReflectionDepthImage key = make_reflection_depth_image(frame0, trace_reflections(scene, rays, frame0), 1e3f);
+  const OffsetBuffer offsets = best_match_search(key, kKeyEye + vec3(0.3f, 0.0f, 0.0f), nullptr, {});
+  auto splats = [&](const IntermediateReflection& mid, uint8_t state) {
+    size_t n = 0;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x)
+        n += mid.state.at(x, y) == state && mid.triangle.at(x, y) == kNoWarpTriangle;
+    return n;
+  };
+  const IntermediateReflection off = warp_reflections(key, offsets, {});
+  WarpOptions on;
+  on.recompute_splats = true;
+  const IntermediateReflection mid = warp_reflections(key, offsets, on);
+  const size_t reused_splats = splats(off, kWarpReliable);
+  ASSERT_GT(reused_splats, 0u);  // the case has splats (next to the box's dropped triangles)
+  EXPECT_EQ(splats(mid, kWarpReliable), 0u);
+  EXPECT_EQ(splats(mid, kWarpUnreliable), reused_splats);
+  // Everything the triangles drew is unchanged.
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x)
+      if (off.triangle.at(x, y) != kNoWarpTriangle) ASSERT_EQ(mid.state.at(x, y), off.state.at(x, y));
 }
 
 }  // namespace proxima

@@ -31,6 +31,10 @@ class ScopedTimer {
   Stopwatch watch_;
 };
 
+// CPU time of the whole process (all threads) in milliseconds: under load from other
+// processes a step's CPU time stays what it costs, unlike its wall-clock time.
+double process_cpu_ms();
+
 // Median of the samples (mean of the middle two for an even count); 0 for none.
 double median(std::vector<double> samples);
 

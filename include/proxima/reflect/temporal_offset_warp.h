@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "proxima/core/image.h"
 #include "proxima/reflect/temporal_best_match.h"
@@ -20,8 +21,16 @@
 namespace proxima {
 
 // kWarpCurved: unreliable because the reflector is strongly curved there (spread_limit),
-// which a new key frame would not change.
-enum WarpState : uint8_t { kWarpEmpty = 0, kWarpReliable = 1, kWarpUnreliable = 2, kWarpCurved = 3 };
+// which a new key frame would not change; kWarpEdge: on an edge of the reflected image
+// (edge_contrast with ReflectedEdgeRule::kRecompute), which a new key frame would not change either.
+enum WarpState : uint8_t { kWarpEmpty = 0, kWarpReliable = 1, kWarpUnreliable = 2, kWarpCurved = 3, kWarpEdge = 4 };
+
+// What a reused pixel does inside an edge triangle (corners' s·Lr differ by more than
+// edge_contrast): blending a point-sampled edge puts a value that is on neither side of it.
+enum class ReflectedEdgeRule : uint8_t {
+  kNearest,    // take the Lr of the triangle's corner nearest the pixel (largest barycentric)
+  kRecompute,  // mark the triangle's pixels kWarpEdge: recomputed by the ray tracer
+};
 
 struct WarpOptions {
   float stretch_limit = 16.0f;        // warped / original triangle area above this → unreliable
@@ -35,16 +44,34 @@ struct WarpOptions {
                                       // the same reflector by more than this (linear, any channel):
                                       // a curved mirror showing a smooth wall is safe to reuse;
                                       // negative: every curved pixel
+  float edge_contrast = kInf;         // off by default: triangles whose corners' s·Lr differ by more
+                                      // than this (linear, any channel) span an edge of the
+                                      // reflected image and follow edge_rule
+  ReflectedEdgeRule edge_rule = ReflectedEdgeRule::kNearest;
+  bool recompute_splats = false;      // splatted points (no triangle reached them) are unreliable:
+                                      // their value is a lone sample read by the bilinear fallback
 };
 
+// True when the corners' s·Lr (s = key.specular) differ by more than `contrast` in a channel.
+bool edge_triangle(const ReflectionDepthImage& key, const int corner_x[3], const int corner_y[3], float contrast);
+
 inline constexpr uint32_t kNoWarpTriangle = 0xFFFFFFFFu;
+
+// A key pixel as a mesh vertex: its centre moved by its offset, depth s.d + s.r, s.Lr.
+struct WarpVertex {
+  vec2 p;
+  float z;
+  vec3 lr;
+};
 
 struct IntermediateReflection {
   ImageF radiance;    // 3 channels, interpolated s.Lr of the nearest warped triangle
   ImageF depth;       // its interpolated s.d + s.r, +inf where empty
   ImageU8 state;      // WarpState
   ImageU32 triangle;  // that triangle: 2·(y·width + x) + half of its grid quad, or kNoWarpTriangle
-  uint64_t triangles = 0, stretched = 0, curved = 0, discontinuous = 0;
+  std::vector<WarpVertex> vertex;  // per key pixel (row-major), set on reflective pixels only:
+                                   // computed once, read by every triangle that uses it
+  uint64_t triangles = 0, stretched = 0, curved = 0, discontinuous = 0, edges = 0;
 };
 
 // Deterministic for any thread count (fixed row bands, triangles in a fixed order per band).
@@ -56,6 +83,11 @@ struct WarpedMesh {
   const ReflectionDepthImage* key = nullptr;
   const OffsetBuffer* offsets = nullptr;
   const IntermediateReflection* image = nullptr;
+  float edge_contrast = kInf;  // WarpOptions::edge_contrast of the warp: edge triangles give their
+                               // nearest corner's Lr (under kRecompute they are not reliable)
+  ReflectedEdgeRule edge_rule = ReflectedEdgeRule::kNearest;
+  bool recompute_splats = false;      // splatted points (no triangle reached them) are unreliable:
+                                      // their value is a lone sample read by the bilinear fallback
 };
 
 // s.Lr of the warped mesh at continuous key-grid position q: the reliable triangles stored

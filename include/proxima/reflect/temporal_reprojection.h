@@ -25,6 +25,7 @@ enum ReuseFlag : uint8_t {
   kReuseDisoccluded = 1u << 0,  // no key pixel of the same reflector at this depth
   kReuseUnreliable = 1u << 1,   // the image is empty or unreliable there
   kReuseCurved = 1u << 2,       // with kReuseUnreliable: on a strongly curved reflector (kWarpCurved)
+  kReuseEdge = 1u << 3,         // with kReuseUnreliable: on an edge of the reflected image (kWarpEdge)
 };
 
 struct ReprojectOptions {
@@ -34,7 +35,7 @@ struct ReprojectOptions {
 struct ReflectionReprojection {
   std::vector<vec3> radiance;  // per sample of the frame; 0 where flagged
   std::vector<uint8_t> flag;   // ReuseFlag bits
-  uint64_t disoccluded = 0, unreliable = 0, curved = 0;  // curved ⊂ unreliable
+  uint64_t disoccluded = 0, unreliable = 0, curved = 0, edge = 0;  // curved, edge ⊂ unreliable
   uint64_t recompute() const { return disoccluded + unreliable; }
 };
 

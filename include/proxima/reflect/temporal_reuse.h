@@ -5,8 +5,8 @@
 // only the disoccluded and unreliable samples. The result composes as base + s·Lr
 // (compose_reflections), the same blend full ray tracing uses (docs/temporal.md).
 // Key-frame policy (§5.4.4): when a frame recomputes more than `keyframe_threshold` of its
-// reflective samples, the next frame is a key frame (samples on strongly curved reflectors,
-// recomputed whatever the key frame, do not count).
+// reflective samples, the next frame is a key frame (samples on strongly curved reflectors
+// or reflected edges, recomputed whatever the key frame, do not count).
 #pragma once
 
 #include <cstdint>
@@ -44,6 +44,7 @@ struct TemporalFrameStats {
   uint64_t recomputed = 0;   // traced on a non-key frame (disoccluded + unreliable)
   uint64_t disoccluded = 0, unreliable = 0, invalid_offsets = 0;
   uint64_t curved = 0;       // of the unreliable: on a strongly curved reflector (kReuseCurved)
+  uint64_t edge = 0;         // of the unreliable: on an edge of the reflected image (kReuseEdge)
   double key_ms = 0.0;        // key frame: full trace + reflection depth image
   double match_ms = 0.0;      // best match (Algorithm 9)
   double warp_ms = 0.0;       // reflection offset (grid forward warp)
@@ -51,9 +52,11 @@ struct TemporalFrameStats {
   double recompute_ms = 0.0;  // tracing the flagged samples
   double reflection_ms() const { return key_ms + match_ms + warp_ms + reproject_ms + recompute_ms; }
   double recompute_fraction() const { return reflective ? double(recomputed) / double(reflective) : 0.0; }
-  // What a new key frame would save: the recomputed samples bar the curved ones, which are
-  // recomputed whatever the key frame.
-  double stale_fraction() const { return reflective ? double(recomputed - curved) / double(reflective) : 0.0; }
+  // What a new key frame would save: the recomputed samples bar the curved and edge ones,
+  // which are recomputed whatever the key frame.
+  double stale_fraction() const {
+    return reflective ? double(recomputed - curved - edge) / double(reflective) : 0.0;
+  }
 };
 
 // Reflected radiance per sample of `frame` (supersample 1; `rays` built from `scene`).
