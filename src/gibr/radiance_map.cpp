@@ -108,10 +108,11 @@ vec3 pixel_color(const ImageF& image, int x, int y) { return {image.at(x, y, 0),
 ImageU32 vismap_pixel_polygons(const VisibilityMap& map, bool exclude_all_boundaries, bool subpixel) {
   const ImageU32 centers = rasterize_map(map);
   const ImageU8 touched = touched_mask(map, exclude_all_boundaries);
-  ImageU32 labels(map.width, map.height, subpixel ? 4 : 1, kNone);
+  ImageU32 labels(map.width, map.height, subpixel ? kRecordChannels : 1, kNone);
   if (subpixel)
     for (int y = 0; y < map.height; ++y)
-      for (int x = 0; x < map.width; ++x) labels.at(x, y, 3) = 0;
+      for (int x = 0; x < map.width; ++x)
+        for (int c = 3; c < kRecordChannels; ++c) labels.at(x, y, c) = 0;
   for (int y = 0; y < map.height; ++y)
     for (int x = 0; x < map.width; ++x)
       if (!touched.at(x, y)) labels.at(x, y) = centers.at(x, y);
@@ -124,7 +125,6 @@ ImageU32 vismap_pixel_polygons(const VisibilityMap& map, bool exclude_all_bounda
   for (int y = 0; y < map.height; ++y)
     for (int x = 0; x < map.width; ++x) {
       if (!touched.at(x, y)) continue;
-      uint32_t mask = 0;
       for (int s = 0; s < kSubCells * kSubCells; ++s) {
         const int fx = x * kSubCells + s % kSubCells, fy = y * kSubCells + s / kSubCells;
         const uint32_t p = fine_centers.at(fx, fy);
@@ -134,11 +134,10 @@ ImageU32 vismap_pixel_polygons(const VisibilityMap& map, bool exclude_all_bounda
           uint32_t& q = labels.at(x, y, 1 + k);
           if (q == kNone) q = p;
           if (q != p) continue;
-          mask |= 1u << (16 * k + s);
+          labels.at(x, y, 3 + k * kMaskWords + s / 32) |= 1u << (s % 32);
           break;
         }
       }
-      labels.at(x, y, 3) = mask;
     }
   return labels;
 }
@@ -146,15 +145,15 @@ ImageU32 vismap_pixel_polygons(const VisibilityMap& map, bool exclude_all_bounda
 ImageU32 unmix_silhouette_pixels(const VisibilityMap& map, const ImageU32& labels, const ImageF& photo, int samples,
                                  bool exclude_all_boundaries) {
   const int W = map.width, H = map.height;
-  if (labels.width() != W || labels.height() != H || labels.channels() != 4 || photo.width() != W ||
+  if (labels.width() != W || labels.height() != H || labels.channels() != kRecordChannels || photo.width() != W ||
       photo.height() != H || photo.channels() < 3)
-    fail_input("unmixing: the labels (4 channels) and photograph must have the map's size");
+    fail_input("unmixing: the labels (a sub-pixel record) and photograph must have the map's size");
   if (samples < 1 || samples > 8) fail_input("unmixing: samples per pixel side must be in 1..8");
-  ImageU32 out(W, H, 6, kNone);
+  ImageU32 out(W, H, kRecordChannels + 2, kNone);
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {
-      for (int c = 0; c < 4; ++c) out.at(x, y, c) = labels.at(x, y, c);
-      out.at(x, y, 5) = 0;
+      for (int c = 0; c < kRecordChannels; ++c) out.at(x, y, c) = labels.at(x, y, c);
+      out.at(x, y, kRecordChannels + 1) = 0;
     }
   const ImageU32 centers = rasterize_map(map);
   const ImageU8 touched = touched_mask(map, exclude_all_boundaries);
@@ -198,8 +197,8 @@ ImageU32 unmix_silhouette_pixels(const VisibilityMap& map, const ImageU32& label
         c -= (float(count) / float(n)) * cq;
       }
       if (!known) continue;
-      out.at(x, y, 4) = P->first;
-      out.at(x, y, 5) = pack_srgb8(c * (float(n) / float(P->second)));  // pack_srgb8 clamps to [0, 1]
+      out.at(x, y, kRecordChannels) = P->first;
+      out.at(x, y, kRecordChannels + 1) = pack_srgb8(c * (float(n) / float(P->second)));  // pack_srgb8 clamps to [0, 1]
     }
   return out;
 }
@@ -233,7 +232,12 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
   // Texel-coordinate bounds of each polygon's mapped pixels (their corners on its plane).
   std::vector<glm::dvec4> box(model.polygons.size(), glm::dvec4(INFINITY, INFINITY, -INFINITY, -INFINITY));
   std::vector<uint32_t> seen;
-  const bool sub = labels.channels() >= 4, unmix = labels.channels() == 6;
+  const bool sub = labels.channels() >= kRecordChannels, unmix = labels.channels() == kRecordChannels + 2;
+  auto any_bits = [&](int x, int y, int k) {
+    for (int w = 0; w < kMaskWords; ++w)
+      if (labels.at(x, y, 3 + k * kMaskWords + w)) return true;
+    return false;
+  };
   auto add_pixel = [&](uint32_t p, int x, int y) {
     const Plane& pl = model.polygons[p].plane;
     const double d = pl.distance(eye);
@@ -255,9 +259,9 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
       if (p != kNone) {
         ++out.pixels_mapped;
         add_pixel(p, x, y);
-      } else if (sub && labels.at(x, y, 3) != 0) {
+      } else if (sub) {
         for (int k = 0; k < 2; ++k)
-          if ((labels.at(x, y, 3) >> (16 * k)) & 0xFFFFu) add_pixel(labels.at(x, y, 1 + k), x, y);
+          if (any_bits(x, y, k)) add_pixel(labels.at(x, y, 1 + k), x, y);
       }
     }
   std::sort(seen.begin(), seen.end());
@@ -303,8 +307,8 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
           if (!sub) continue;
           const int s = std::min(kSubCells - 1, int((px - ix) * kSubCells)) +
                         kSubCells * std::min(kSubCells - 1, int((py - iy) * kSubCells));
-          const uint32_t mask = labels.at(ix, iy, 3);
-          if (!((labels.at(ix, iy, 1) == p && ((mask >> s) & 1u)) || (labels.at(ix, iy, 2) == p && ((mask >> (16 + s)) & 1u))))
+          if (!((labels.at(ix, iy, 1) == p && record_bit(labels, ix, iy, 0, s)) ||
+                (labels.at(ix, iy, 2) == p && record_bit(labels, ix, iy, 1, s))))
             continue;
         }
         // Bilinear over the pixel centers around (px, py) that map onto p (exact-visible
@@ -318,10 +322,10 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
         for (int k = 0; k < 4; ++k) {
           const int xx = x0 + (k & 1), yy = y0 + (k >> 1);
           if (xx < 0 || yy < 0 || xx >= W || yy >= H) continue;
-          const bool clean = labels.at(xx, yy) == p, unmixed = !direct && unmix && labels.at(xx, yy, 4) == p;
+          const bool clean = labels.at(xx, yy) == p, unmixed = !direct && unmix && labels.at(xx, yy, kRecordChannels) == p;
           if (!clean && !unmixed) continue;
           const double w = ((k & 1) ? fx : 1.0 - fx) * ((k >> 1) ? fy : 1.0 - fy);
-          c += float(w) * (clean ? pixel_color(image, xx, yy) : unpack_srgb8(labels.at(xx, yy, 5)));
+          c += float(w) * (clean ? pixel_color(image, xx, yy) : unpack_srgb8(labels.at(xx, yy, kRecordChannels + 1)));
           wsum += w;
           used_unmixed = used_unmixed || (unmixed && w > 0.0);
         }

@@ -286,7 +286,7 @@ TEST(GibrMapping, UnmixedSilhouettePixelsRecoverTheirPolygonsFlatColor) {
     }
   const VisibilityMap map = trace_visibility_map(door.wp, cam);
   const ImageU32 labels = unmix_silhouette_pixels(map, vismap_pixel_polygons(map), photo, s);
-  ASSERT_EQ(labels.channels(), 6);
+  ASSERT_EQ(labels.channels(), kRecordChannels + 2);
   // sRGB 8-bit distance (0–255) between a packed color and a linear one.
   auto srgb_error = [](uint32_t packed, const vec3& linear) {
     const vec3 q = unpack_srgb8(packed);
@@ -298,14 +298,14 @@ TEST(GibrMapping, UnmixedSilhouettePixelsRecoverTheirPolygonsFlatColor) {
   float worst = 0.0f;
   for (int y = 0; y < cam.height; ++y)
     for (int x = 0; x < cam.width; ++x) {
-      const uint32_t p = labels.at(x, y, 4);
+      const uint32_t p = labels.at(x, y, kRecordChannels);
       if (p == kNone) continue;
       ++unmixed;
       const auto& h = hits.at(x, y);
       oracle_bad += 2 * std::count(h.begin(), h.end(), p) < s * s;
       const vec3 raw(photo.at(x, y, 0), photo.at(x, y, 1), photo.at(x, y, 2));
       truly_mixed += srgb_error(pack_srgb8(raw), flat[p]) > 20.0f;
-      const float e = srgb_error(labels.at(x, y, 5), flat[p]);
+      const float e = srgb_error(labels.at(x, y, kRecordChannels + 1), flat[p]);
       worst = std::max(worst, e);
       color_bad += e > 1.0f;
     }

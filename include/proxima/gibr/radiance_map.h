@@ -91,21 +91,29 @@ struct RadianceMaps {
 // needing more than 2^26 texels throws InputError.
 std::vector<TexelGrid> make_texel_grids(const visibility::ModelPolygons& model, double texel);
 
-// Sub-cells per pixel side of the visibility map's sub-pixel record (see below).
-inline constexpr int kSubCells = 4;
+// Sub-cells per pixel side of the visibility map's sub-pixel record (see below), the 32-bit
+// words of one polygon's sub-cell bits, and the record's channels.
+inline constexpr int kSubCells = 8;
+inline constexpr int kMaskWords = kSubCells * kSubCells / 32;
+inline constexpr int kRecordChannels = 3 + 2 * kMaskWords;
+// Sub-cell s (row-major) of pixel (x, y) of a sub-pixel record lies wholly on side k (0 = A, 1 = B).
+inline bool record_bit(const ImageU32& labels, int x, int y, int k, int s) {
+  return (labels.at(x, y, 3 + k * kMaskWords + s / 32) >> (s % 32)) & 1u;
+}
 
 // Visibility-map mapping: channel 0 is per pixel the polygon it maps onto, kNone for a pixel
 // that is not wholly inside one polygon's regions (or sees the background). With `subpixel`
-// (4 channels) a pixel touching a silhouette also records which of its kSubCells² sub-cells
-// lie wholly inside a polygon's regions (the same test on the map scaled by kSubCells):
-// channels 1 and 2 hold up to two polygons A, B (kNone if absent), channel 3 the sub-cell
-// bits of A (bits 0–15, row-major) and of B (bits 16–31). Its color is still never mapped:
+// (kRecordChannels channels) a pixel touching a silhouette also records which of its
+// kSubCells² sub-cells lie wholly inside a polygon's regions (the same test on the map scaled
+// by kSubCells): channels 1 and 2 hold up to two polygons A, B (kNone if absent), channels
+// 3 … 3 + kMaskWords − 1 the sub-cell bits of A (row-major), the next kMaskWords those of B
+// (record_bit). Its color is still never mapped:
 // a texel whose center projects into such a sub-cell of P is exactly visible and takes its
 // color from the nearest pixels wholly on P (build_radiance_maps).
 ImageU32 vismap_pixel_polygons(const visibility::VisibilityMap& map, bool exclude_all_boundaries = false,
                                bool subpixel = true);
 
-// Unmixing of pixels touching a silhouette (labels: vismap_pixel_polygons' 4-channel record
+// Unmixing of pixels touching a silhouette (labels: vismap_pixel_polygons' sub-pixel record
 // of the same map and options; photo: that photograph, linear RGB, rendered with s × s
 // samples per pixel at the cell centers of a regular grid). The map gives, exactly, the
 // share α_Q of the pixel's s × s samples that see each polygon Q (or the background): the
@@ -114,7 +122,8 @@ ImageU32 vismap_pixel_polygons(const visibility::VisibilityMap& map, bool exclud
 // wholly inside Q's regions (touching no map edge between different polygons; Q may be the
 // background) — P's own
 // color is c_P = (c − Σ_{Q≠P} α_Q c_Q) / α_P, clamped to [0, 1]. Returns the labels with two
-// more channels: 4 = P (kNone where the pixel is not unmixed), 5 = pack_srgb8(c_P).
+// more channels: kRecordChannels = P (kNone where the pixel is not unmixed), the next =
+// pack_srgb8(c_P).
 // (For a box-filtered camera α would be P's area of the pixel; the synthetic photographs
 // average point samples, so their α is the share of samples.)
 ImageU32 unmix_silhouette_pixels(const visibility::VisibilityMap& map, const ImageU32& labels, const ImageF& photo,
@@ -127,7 +136,7 @@ ImageU8 silhouette_pixel_mask(const visibility::VisibilityMap& map, double radiu
 ImageU32 itembuffer_pixel_polygons(const Scene& scene, const visibility::ModelPolygons& model, const Camera& camera);
 
 // Builds the layers of every photograph from its image and pixel → polygon mapping (same
-// sizes as the camera; 1 channel, 4 as vismap_pixel_polygons' sub-pixel record, or 6 with
+// sizes as the camera; 1 channel, kRecordChannels as vismap_pixel_polygons' sub-pixel record, or 2 more with
 // unmix_silhouette_pixels' channels). A texel of P is sampled when its center projects into
 // a pixel mapped onto P ("direct": bilinear over the 2 × 2 pixel centers around the
 // projection that map onto P, alpha 255) or into a sub-cell wholly inside P of a pixel
