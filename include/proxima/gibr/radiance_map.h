@@ -7,6 +7,9 @@
 //   wholly inside P's regions of the photograph's exact visibility map, i.e. its center is
 //   in a region of P and no silhouette edge (option: no map edge between different
 //   polygons) passes within √2/2 px of its center (a conservative test of the square);
+//   A pixel touching a silhouette is never mapped as it is; with unmixing, its color less
+//   the other sides' (exact coverage from the map) colors P's exactly visible texels
+//   (unmix_silhouette_pixels);
 // - item buffer (Debevec-style baseline): the z-buffered polygon id at the pixel center, no
 //   silhouette detection.
 // Texel (i, j) of polygon P has its center at origin + (i + ½)·s·u + (j + ½)·s·v (s = texel
