@@ -99,6 +99,9 @@ Command register_gibr(CLI::App& root) {
   app->add_flag("--whole-pixels", f.model.whole_pixels,
                 "visibility-map mapping without the sub-pixel record: texels seen only in pixels touching a "
                 "silhouette get no sample");
+  app->add_flag("!--no-unmix", f.model.unmix,
+                "visibility-map mapping without unmixing silhouette pixels: exact-visible texels take colors only "
+                "from pixels wholly on their polygon");
   app->add_option("--fps-repeat", f.fps_repeat, "timed renders of each novel view (median → novel_view_fps)")
       ->capture_default_str();
   app->add_flag("!--no-photo-images", f.photo_images, "do not write the photographs as PNG");
@@ -161,6 +164,8 @@ Command register_gibr(CLI::App& root) {
             m["photos"] = double(cams.size());
             m["layers_vismap"] = double(vis_maps.stats.layers);
             m["samples_vismap"] = double(vis_maps.stats.samples);
+            m["samples_unmixed_vismap"] = double(vis_maps.stats.samples_unmixed);
+            m["samples_extrapolated_vismap"] = double(vis_maps.stats.samples_extrapolated);
             m["samples_itembuffer"] = double(item_maps.stats.samples);
             m["texels_covered_pct_vismap"] = 100.0 * double(vis_maps.stats.texels_covered) / double(std::max<size_t>(1, vis_maps.stats.texels));
             m["pixels_mapped_vismap"] = double(vis_maps.stats.pixels_mapped);

@@ -81,6 +81,8 @@ GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) 
       const VisibilityMap map = trace_visibility_map(g.winged_pair, g.cameras[i]);
       silhouettes[i] = double(map.stats.silhouette_edges);
       labels[i] = vismap_pixel_polygons(map, o.exclude_boundaries, !o.whole_pixels);
+      if (o.unmix && !o.whole_pixels)
+        labels[i] = unmix_silhouette_pixels(map, labels[i], g.photos[i], o.supersample, o.exclude_boundaries);
     }
   });
   g.stats.vismap_ms = w.elapsed_ms();

@@ -80,36 +80,51 @@ ImageU8 silhouette_pixel_mask(const VisibilityMap& map, double radius) {
   return map_edge_mask(sil, radius);
 }
 
+namespace {
+
+// Pixels whose square touches a silhouette edge (or any edge between different polygons):
+// a pixel square touches a segment only if the segment passes within √2/2 of its center.
+ImageU8 touched_mask(const VisibilityMap& m, bool exclude_all_boundaries) {
+  const double radius = std::sqrt(0.5) + 1e-9;
+  return exclude_all_boundaries ? map_edge_mask(m, radius) : silhouette_pixel_mask(m, radius);
+}
+
+// The map scaled by `factor`: its pixel centers are the cell centers of a factor × factor
+// grid in each pixel of the original.
+VisibilityMap scaled_map(const VisibilityMap& map, int factor) {
+  VisibilityMap fine = map;
+  fine.width *= factor;
+  fine.height *= factor;
+  for (dvec2& v : fine.vertices) v *= double(factor);
+  for (MapRegion& r : fine.regions)
+    for (dvec2& v : r.vertices) v *= double(factor);
+  return fine;
+}
+
+vec3 pixel_color(const ImageF& image, int x, int y) { return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)}; }
+
+}  // namespace
+
 ImageU32 vismap_pixel_polygons(const VisibilityMap& map, bool exclude_all_boundaries, bool subpixel) {
   const ImageU32 centers = rasterize_map(map);
-  // A pixel square touches a segment only if the segment passes within √2/2 of its center.
-  const double radius = std::sqrt(0.5) + 1e-9;
-  auto touched_mask = [&](const VisibilityMap& m) {
-    return exclude_all_boundaries ? map_edge_mask(m, radius) : silhouette_pixel_mask(m, radius);
-  };
-  const ImageU8 touched = touched_mask(map);
-  ImageU32 labels(map.width, map.height, subpixel ? 4 : 1, kNone);
+  const ImageU8 touched = touched_mask(map, exclude_all_boundaries);
+  ImageU32 labels(map.width, map.height, subpixel ? kRecordChannels : 1, kNone);
   if (subpixel)
     for (int y = 0; y < map.height; ++y)
-      for (int x = 0; x < map.width; ++x) labels.at(x, y, 3) = 0;
+      for (int x = 0; x < map.width; ++x)
+        for (int c = 3; c < kRecordChannels; ++c) labels.at(x, y, c) = 0;
   for (int y = 0; y < map.height; ++y)
     for (int x = 0; x < map.width; ++x)
       if (!touched.at(x, y)) labels.at(x, y) = centers.at(x, y);
   if (!subpixel) return labels;
   // The same test on the map scaled by kSubCells: which sub-cells of a touched pixel lie
   // wholly inside one polygon's regions.
-  VisibilityMap fine = map;
-  fine.width *= kSubCells;
-  fine.height *= kSubCells;
-  for (dvec2& v : fine.vertices) v *= double(kSubCells);
-  for (MapRegion& r : fine.regions)
-    for (dvec2& v : r.vertices) v *= double(kSubCells);
+  const VisibilityMap fine = scaled_map(map, kSubCells);
   const ImageU32 fine_centers = rasterize_map(fine);
-  const ImageU8 fine_touched = touched_mask(fine);
+  const ImageU8 fine_touched = touched_mask(fine, exclude_all_boundaries);
   for (int y = 0; y < map.height; ++y)
     for (int x = 0; x < map.width; ++x) {
       if (!touched.at(x, y)) continue;
-      uint32_t mask = 0;
       for (int s = 0; s < kSubCells * kSubCells; ++s) {
         const int fx = x * kSubCells + s % kSubCells, fy = y * kSubCells + s / kSubCells;
         const uint32_t p = fine_centers.at(fx, fy);
@@ -119,13 +134,73 @@ ImageU32 vismap_pixel_polygons(const VisibilityMap& map, bool exclude_all_bounda
           uint32_t& q = labels.at(x, y, 1 + k);
           if (q == kNone) q = p;
           if (q != p) continue;
-          mask |= 1u << (16 * k + s);
+          labels.at(x, y, 3 + k * kMaskWords + s / 32) |= 1u << (s % 32);
           break;
         }
       }
-      labels.at(x, y, 3) = mask;
     }
   return labels;
+}
+
+ImageU32 unmix_silhouette_pixels(const VisibilityMap& map, const ImageU32& labels, const ImageF& photo, int samples,
+                                 bool exclude_all_boundaries) {
+  const int W = map.width, H = map.height;
+  if (labels.width() != W || labels.height() != H || labels.channels() != kRecordChannels || photo.width() != W ||
+      photo.height() != H || photo.channels() < 3)
+    fail_input("unmixing: the labels (a sub-pixel record) and photograph must have the map's size");
+  if (samples < 1 || samples > 8) fail_input("unmixing: samples per pixel side must be in 1..8");
+  ImageU32 out(W, H, kRecordChannels + 2, kNone);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      for (int c = 0; c < kRecordChannels; ++c) out.at(x, y, c) = labels.at(x, y, c);
+      out.at(x, y, kRecordChannels + 1) = 0;
+    }
+  const ImageU32 centers = rasterize_map(map);
+  const ImageU8 touched = touched_mask(map, exclude_all_boundaries);
+  // The other sides' colors come from pixels wholly inside one polygon's regions (touching
+  // no edge between different polygons: a pixel on a crease is a mix too).
+  const ImageU8 inside = touched_mask(map, true);
+  // The polygon each of the photograph's s × s samples sees.
+  const ImageU32 fine = rasterize_map(scaled_map(map, samples));
+  const int n = samples * samples;
+  std::vector<std::pair<uint32_t, int>> sides;  // polygon (kNone = background), samples
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      if (!touched.at(x, y)) continue;
+      sides.clear();
+      for (int s = 0; s < n; ++s) {
+        const uint32_t q = fine.at(x * samples + s % samples, y * samples + s / samples);
+        auto it = std::find_if(sides.begin(), sides.end(), [&](const auto& e) { return e.first == q; });
+        if (it == sides.end()) sides.push_back({q, 1});
+        else ++it->second;
+      }
+      // P: the first side (in sample order) with at least half the samples; not the background.
+      const auto P = std::find_if(sides.begin(), sides.end(), [&](const auto& e) { return 2 * e.second >= n; });
+      if (P == sides.end() || P->first == kNone) continue;
+      vec3 c = pixel_color(photo, x, y);
+      bool known = true;
+      for (const auto& [q, count] : sides) {
+        if (q == P->first) continue;
+        // The other side's color: the nearest pixel within 2 px wholly on it (first in row order).
+        double best = 4.0 + 1e-9;
+        vec3 cq(0.0f);
+        for (int yy = std::max(0, y - 2); yy <= std::min(H - 1, y + 2); ++yy)
+          for (int xx = std::max(0, x - 2); xx <= std::min(W - 1, x + 2); ++xx) {
+            if (inside.at(xx, yy) || centers.at(xx, yy) != q) continue;
+            const double dd = double((xx - x) * (xx - x) + (yy - y) * (yy - y));
+            if (dd < best) best = dd, cq = pixel_color(photo, xx, yy);
+          }
+        if (best > 4.0) {
+          known = false;
+          break;
+        }
+        c -= (float(count) / float(n)) * cq;
+      }
+      if (!known) continue;
+      out.at(x, y, kRecordChannels) = P->first;
+      out.at(x, y, kRecordChannels + 1) = pack_srgb8(c * (float(n) / float(P->second)));  // pack_srgb8 clamps to [0, 1]
+    }
+  return out;
 }
 
 ImageU32 itembuffer_pixel_polygons(const Scene& scene, const ModelPolygons& model, const Camera& camera) {
@@ -157,7 +232,12 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
   // Texel-coordinate bounds of each polygon's mapped pixels (their corners on its plane).
   std::vector<glm::dvec4> box(model.polygons.size(), glm::dvec4(INFINITY, INFINITY, -INFINITY, -INFINITY));
   std::vector<uint32_t> seen;
-  const bool sub = labels.channels() == 4;
+  const bool sub = labels.channels() >= kRecordChannels, unmix = labels.channels() == kRecordChannels + 2;
+  auto any_bits = [&](int x, int y, int k) {
+    for (int w = 0; w < kMaskWords; ++w)
+      if (labels.at(x, y, 3 + k * kMaskWords + w)) return true;
+    return false;
+  };
   auto add_pixel = [&](uint32_t p, int x, int y) {
     const Plane& pl = model.polygons[p].plane;
     const double d = pl.distance(eye);
@@ -179,9 +259,9 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
       if (p != kNone) {
         ++out.pixels_mapped;
         add_pixel(p, x, y);
-      } else if (sub && labels.at(x, y, 3) != 0) {
+      } else if (sub) {
         for (int k = 0; k < 2; ++k)
-          if ((labels.at(x, y, 3) >> (16 * k)) & 0xFFFFu) add_pixel(labels.at(x, y, 1 + k), x, y);
+          if (any_bits(x, y, k)) add_pixel(labels.at(x, y, 1 + k), x, y);
       }
     }
   std::sort(seen.begin(), seen.end());
@@ -227,22 +307,27 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
           if (!sub) continue;
           const int s = std::min(kSubCells - 1, int((px - ix) * kSubCells)) +
                         kSubCells * std::min(kSubCells - 1, int((py - iy) * kSubCells));
-          const uint32_t mask = labels.at(ix, iy, 3);
-          if (!((labels.at(ix, iy, 1) == p && ((mask >> s) & 1u)) || (labels.at(ix, iy, 2) == p && ((mask >> (16 + s)) & 1u))))
+          if (!((labels.at(ix, iy, 1) == p && record_bit(labels, ix, iy, 0, s)) ||
+                (labels.at(ix, iy, 2) == p && record_bit(labels, ix, iy, 1, s))))
             continue;
         }
-        // Bilinear over the pixel centers around (px, py) that map onto p.
+        // Bilinear over the pixel centers around (px, py) that map onto p (exact-visible
+        // texels: or are unmixed for p).
         const double sx = px - 0.5, sy = py - 0.5;
         const int x0 = int(std::floor(sx)), y0 = int(std::floor(sy));
         const double fx = sx - x0, fy = sy - y0;
         vec3 c(0.0f);
         double wsum = 0.0;
+        bool used_unmixed = false;
         for (int k = 0; k < 4; ++k) {
           const int xx = x0 + (k & 1), yy = y0 + (k >> 1);
-          if (xx < 0 || yy < 0 || xx >= W || yy >= H || labels.at(xx, yy) != p) continue;
+          if (xx < 0 || yy < 0 || xx >= W || yy >= H) continue;
+          const bool clean = labels.at(xx, yy) == p, unmixed = !direct && unmix && labels.at(xx, yy, kRecordChannels) == p;
+          if (!clean && !unmixed) continue;
           const double w = ((k & 1) ? fx : 1.0 - fx) * ((k >> 1) ? fy : 1.0 - fy);
-          c += float(w) * vec3(image.at(xx, yy, 0), image.at(xx, yy, 1), image.at(xx, yy, 2));
+          c += float(w) * (clean ? pixel_color(image, xx, yy) : unpack_srgb8(labels.at(xx, yy, kRecordChannels + 1)));
           wsum += w;
+          used_unmixed = used_unmixed || (unmixed && w > 0.0);
         }
         if (wsum <= 0.0) {
           // Exact-visible texel with no wholly-on-p pixel among the 2 × 2: the nearest within 2 px.
@@ -251,14 +336,14 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
             for (int xx = ix - 2; xx <= ix + 2; ++xx) {
               if (xx < 0 || yy < 0 || xx >= W || yy >= H || labels.at(xx, yy) != p) continue;
               const double dd = (xx + 0.5 - px) * (xx + 0.5 - px) + (yy + 0.5 - py) * (yy + 0.5 - py);
-              if (dd < best) best = dd, c = vec3(image.at(xx, yy, 0), image.at(xx, yy, 1), image.at(xx, yy, 2)), wsum = 1.0;
+              if (dd < best) best = dd, c = pixel_color(image, xx, yy), wsum = 1.0;
             }
         }
-        uint32_t alpha = direct ? 0xFFu : kExtrapolated;
+        uint32_t alpha = direct ? 0xFFu : used_unmixed ? kUnmixed : kExtrapolated;
         if (wsum <= 0.0) {
           // No pixel wholly on p near it (a sliver of p along a silhouette): the pixel's own,
           // mixed color, flagged as a last resort for holes (novel_view.h).
-          c = vec3(image.at(ix, iy, 0), image.at(ix, iy, 1), image.at(ix, iy, 2));
+          c = pixel_color(image, ix, iy);
           wsum = 1.0;
           alpha = kMixed;
         }
@@ -325,6 +410,7 @@ RadianceMaps build_radiance_maps(const ModelPolygons& model, double texel, std::
           } else if (a != 0) {
             ++s.samples;
             s.samples_extrapolated += a == kExtrapolated;
+            s.samples_unmixed += a == kUnmixed;
             covered[size_t(j + L.y0) * size_t(g.width) + size_t(i + L.x0)] = 1;
           }
     }

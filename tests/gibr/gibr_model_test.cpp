@@ -54,7 +54,8 @@ TEST(GibrModel, SameMapsAsThePhasesByHand) {
   std::vector<ImageU32> labels;
   for (size_t i = 0; i < cams.size(); ++i) {
     photos.push_back(render_photo(scene, rays, cams[i], 1, derive_seed(7, i, 1)));
-    labels.push_back(vismap_pixel_polygons(trace_visibility_map(wp, cams[i])));
+    const VisibilityMap map = trace_visibility_map(wp, cams[i]);
+    labels.push_back(unmix_silhouette_pixels(map, vismap_pixel_polygons(map), photos.back(), 1));
     EXPECT_TRUE(photos.back() == g.photos[i]) << i;
   }
   const RadianceMaps maps = build_radiance_maps(model, g.texel, cams, photos, labels);

@@ -6,8 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <set>
 
+#include "proxima/core/image_io.h"
 #include "proxima/gibr/novel_view.h"
 #include "proxima/gibr/photo_set.h"
 #include "proxima/scene/visibility_models.h"
@@ -163,6 +166,20 @@ TEST(GibrMapping, OccludedTexelNeverReceivesThatPhotographsColor) {
   EXPECT_GT(vis_total, 10000u);
   EXPECT_EQ(vis_bad, 0u) << "of " << vis_total;
   EXPECT_GT(item_bad, 0u) << "the item-buffer baseline should map some occluded texels (of " << item_total << ")";
+
+  // With unmixed silhouette pixels (photographs of 2 × 2 samples, so pixels are true mixes):
+  // the unmixed colors go only to exactly visible texels too.
+  std::vector<ImageF> photos2;
+  std::vector<ImageU32> unmixed;
+  for (const Camera& c : cams) {
+    photos2.push_back(render_photo(textured, rays, c, 2, 1));
+    const VisibilityMap map = trace_visibility_map(wp, c);
+    unmixed.push_back(unmix_silhouette_pixels(map, vismap_pixel_polygons(map), photos2.back(), 2));
+  }
+  const RadianceMaps unmixed_maps = build_radiance_maps(model, 0.02, cams, photos2, unmixed);
+  EXPECT_GT(unmixed_maps.stats.samples_unmixed, 100u) << "the check should cover unmixed samples";
+  size_t unmixed_total = 0;
+  EXPECT_EQ(occluded_samples(unmixed_maps, unmixed_total), 0u) << "of " << unmixed_total;
 }
 
 // The sub-pixel record fills texels seen only in pixels touching a silhouette, never with
@@ -234,6 +251,81 @@ TEST(GibrMapping, ExactVisibleTexelsTakeColorOnlyFromPixelsWhollyOnTheirPolygon)
   EXPECT_EQ(seen_dark, 0u);
   EXPECT_EQ(exact.samples, whole.samples + exact.extrapolated);
   EXPECT_GT(item.dark, 50u) << "the item buffer maps straddling pixels' colors";
+}
+
+// Unmixing: a photograph whose polygons are flat colored (each of the 2 × 2 samples of a
+// pixel the color of the polygon a ray cast there hits, the background black), so every
+// pixel touching the door jamb's silhouette is an exact mix of the jamb and the wall behind.
+// Every unmixed pixel is unmixed for the polygon that the ray-cast oracle finds in at least
+// half of its samples, and recovers that polygon's color to within sRGB rounding — while
+// the raw mixed colors are far from it (the check can fail); the exact-visible texel samples
+// colored from unmixed pixels carry it too.
+TEST(GibrMapping, UnmixedSilhouettePixelsRecoverTheirPolygonsFlatColor) {
+  const DoorView door;
+  const Camera& cam = door.cam;
+  const ModelPolygons& model = door.model;
+  const size_t np = model.polygons.size();
+  std::vector<vec3> flat(np);
+  for (size_t p = 0; p < np; ++p)  // distinct colors in [0.1, 0.9]
+    flat[p] = vec3(0.1f + 0.8f * float((p * 37) % 11) / 10.0f, 0.1f + 0.8f * float((p * 53) % 7) / 6.0f,
+                   0.1f + 0.8f * float((p * 17) % 5) / 4.0f);
+  const int s = 2;
+  ImageF photo(cam.width, cam.height, 3, 0.0f);
+  Image<std::array<uint32_t, 4>> hits(cam.width, cam.height, 1);
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x) {
+      vec3 c(0.0f);
+      for (int k = 0; k < s * s; ++k) {
+        const vec2 at(float(x) + (float(k % s) + 0.5f) / float(s), float(y) + (float(k / s) + 0.5f) / float(s));
+        const Hit h = door.rays.intersect(ray_through(cam, at));
+        const uint32_t q = h.valid() ? model.triangle_polygon[h.triangle] : kNone;
+        hits.at(x, y)[size_t(k)] = q;
+        if (q != kNone) c += flat[q] / float(s * s);
+      }
+      for (int ch = 0; ch < 3; ++ch) photo.at(x, y, ch) = c[ch];
+    }
+  const VisibilityMap map = trace_visibility_map(door.wp, cam);
+  const ImageU32 labels = unmix_silhouette_pixels(map, vismap_pixel_polygons(map), photo, s);
+  ASSERT_EQ(labels.channels(), kRecordChannels + 2);
+  // sRGB 8-bit distance (0–255) between a packed color and a linear one.
+  auto srgb_error = [](uint32_t packed, const vec3& linear) {
+    const vec3 q = unpack_srgb8(packed);
+    float e = 0.0f;
+    for (int ch = 0; ch < 3; ++ch) e = std::max(e, std::abs(linear_to_srgb(q[ch]) - linear_to_srgb(linear[ch])) * 255.0f);
+    return e;
+  };
+  size_t unmixed = 0, truly_mixed = 0, oracle_bad = 0, color_bad = 0;
+  float worst = 0.0f;
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x) {
+      const uint32_t p = labels.at(x, y, kRecordChannels);
+      if (p == kNone) continue;
+      ++unmixed;
+      const auto& h = hits.at(x, y);
+      oracle_bad += 2 * std::count(h.begin(), h.end(), p) < s * s;
+      const vec3 raw(photo.at(x, y, 0), photo.at(x, y, 1), photo.at(x, y, 2));
+      truly_mixed += srgb_error(pack_srgb8(raw), flat[p]) > 20.0f;
+      const float e = srgb_error(labels.at(x, y, kRecordChannels + 1), flat[p]);
+      worst = std::max(worst, e);
+      color_bad += e > 1.0f;
+    }
+  EXPECT_GT(truly_mixed, 10u) << "of " << unmixed << " unmixed pixels";
+  EXPECT_EQ(oracle_bad, 0u) << "of " << unmixed;
+  EXPECT_EQ(color_bad, 0u) << "of " << unmixed << " unmixed pixels; worst " << worst << " / 255";
+
+  const RadianceMaps maps = build_radiance_maps(model, 0.02, std::vector<Camera>{cam}, std::vector<ImageF>{photo},
+                                                std::vector<ImageU32>{labels});
+  size_t samples = 0, samples_bad = 0;
+  for (uint32_t p = 0; p < np; ++p)
+    for (const SampleLayer& L : maps.layers[p])
+      for (uint32_t t : L.rgba) {
+        if ((t >> 24) != kUnmixed) continue;
+        ++samples;
+        samples_bad += srgb_error(t, flat[p]) > 1.0f;
+      }
+  EXPECT_EQ(samples, maps.stats.samples_unmixed);
+  EXPECT_GT(samples, 50u);
+  EXPECT_EQ(samples_bad, 0u) << "of " << samples;
 }
 
 }  // namespace

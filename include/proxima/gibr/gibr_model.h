@@ -38,6 +38,7 @@ struct GibrModelOptions {
   int supersample = 2;                  // k×k samples per photograph pixel
   bool exclude_boundaries = false;      // vismap_pixel_polygons' option
   bool whole_pixels = false;            // vismap_pixel_polygons without the sub-pixel record
+  bool unmix = true;                    // unmix_silhouette_pixels (needs the sub-pixel record)
   bool item_buffer = false;             // also map through item buffers (the baseline)
   uint64_t seed = 1;
 };

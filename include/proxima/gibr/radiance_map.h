@@ -7,6 +7,9 @@
 //   wholly inside P's regions of the photograph's exact visibility map, i.e. its center is
 //   in a region of P and no silhouette edge (option: no map edge between different
 //   polygons) passes within √2/2 px of its center (a conservative test of the square);
+//   A pixel touching a silhouette is never mapped as it is; with unmixing, its color less
+//   the other sides' (exact coverage from the map) colors P's exactly visible texels
+//   (unmix_silhouette_pixels);
 // - item buffer (Debevec-style baseline): the z-buffered polygon id at the pixel center, no
 //   silhouette detection.
 // Texel (i, j) of polygon P has its center at origin + (i + ½)·s·u + (j + ½)·s·v (s = texel
@@ -39,8 +42,9 @@ struct TexelGrid {
 };
 
 // Samples of one photograph on one polygon: a texel rectangle, sRGB 8-bit RGB + alpha
-// (255 = sample, kExtrapolated = sample colored from neighboring pixels, kMixed = last-resort
-// sample for holes, 0 = none), row-major.
+// (255 = sample, kUnmixed = sample colored partly from unmixed silhouette pixels,
+// kExtrapolated = sample colored from neighboring pixels, kMixed = last-resort sample for
+// holes, 0 = none), row-major.
 struct SampleLayer {
   uint32_t photo = 0;
   int x0 = 0, y0 = 0, width = 0, height = 0;
@@ -57,6 +61,9 @@ struct SampleLayer {
 // Alpha of a sample whose texel is exactly visible in a pixel touching a silhouette, its color
 // taken from neighboring pixels wholly on the polygon (blended like any other sample).
 inline constexpr uint32_t kExtrapolated = 0x80;
+// Alpha of an exact-visible sample whose bilinear color includes unmixed pixels
+// (unmix_silhouette_pixels); blended like kExtrapolated ones (novel_view.h).
+inline constexpr uint32_t kUnmixed = 0xC0;
 // Alpha of a last-resort sample: an exact-visible texel with no pixel wholly on its polygon
 // within 2 px takes its own (mixed) pixel's color; used only to fill holes (novel_view.h).
 inline constexpr uint32_t kMixed = 0x40;
@@ -66,6 +73,7 @@ struct RadianceStats {
   size_t layers = 0;            // (polygon, photograph) pairs with ≥ 1 sample
   size_t samples = 0;           // texel samples over all layers
   size_t samples_extrapolated = 0;  // of which exact-visible texels in silhouette pixels
+  size_t samples_unmixed = 0;   // of which exact-visible, colored partly from unmixed pixels
   size_t samples_mixed = 0;     // last-resort samples (kMixed), not in `samples`
   size_t texels = 0;            // texels of all grids
   size_t texels_covered = 0;    // texels with ≥ 1 sample
@@ -86,19 +94,43 @@ struct RadianceMaps {
 // needing more than 2^26 texels throws InputError.
 std::vector<TexelGrid> make_texel_grids(const visibility::ModelPolygons& model, double texel);
 
-// Sub-cells per pixel side of the visibility map's sub-pixel record (see below).
-inline constexpr int kSubCells = 4;
+// Sub-cells per pixel side of the visibility map's sub-pixel record (see below), the 32-bit
+// words of one polygon's sub-cell bits, and the record's channels.
+inline constexpr int kSubCells = 8;
+inline constexpr int kMaskWords = kSubCells * kSubCells / 32;
+inline constexpr int kRecordChannels = 3 + 2 * kMaskWords;
+// Sub-cell s (row-major) of pixel (x, y) of a sub-pixel record lies wholly on side k (0 = A, 1 = B).
+inline bool record_bit(const ImageU32& labels, int x, int y, int k, int s) {
+  return (labels.at(x, y, 3 + k * kMaskWords + s / 32) >> (s % 32)) & 1u;
+}
 
 // Visibility-map mapping: channel 0 is per pixel the polygon it maps onto, kNone for a pixel
 // that is not wholly inside one polygon's regions (or sees the background). With `subpixel`
-// (4 channels) a pixel touching a silhouette also records which of its kSubCells² sub-cells
-// lie wholly inside a polygon's regions (the same test on the map scaled by kSubCells):
-// channels 1 and 2 hold up to two polygons A, B (kNone if absent), channel 3 the sub-cell
-// bits of A (bits 0–15, row-major) and of B (bits 16–31). Its color is still never mapped:
+// (kRecordChannels channels) a pixel touching a silhouette also records which of its
+// kSubCells² sub-cells lie wholly inside a polygon's regions (the same test on the map scaled
+// by kSubCells): channels 1 and 2 hold up to two polygons A, B (kNone if absent), channels
+// 3 … 3 + kMaskWords − 1 the sub-cell bits of A (row-major), the next kMaskWords those of B
+// (record_bit). Its color is still never mapped:
 // a texel whose center projects into such a sub-cell of P is exactly visible and takes its
 // color from the nearest pixels wholly on P (build_radiance_maps).
 ImageU32 vismap_pixel_polygons(const visibility::VisibilityMap& map, bool exclude_all_boundaries = false,
                                bool subpixel = true);
+
+// Unmixing of pixels touching a silhouette (labels: vismap_pixel_polygons' sub-pixel record
+// of the same map and options; photo: that photograph, linear RGB, rendered with s × s
+// samples per pixel at the cell centers of a regular grid). The map gives, exactly, the
+// share α_Q of the pixel's s × s samples that see each polygon Q (or the background): the
+// photograph's pixel filter, so the pixel's color is c = Σ α_Q c_Q. Where one polygon P has
+// α_P ≥ ½ and the color c_Q of every other side is known — the nearest pixel within 2 px
+// wholly inside Q's regions (touching no map edge between different polygons; Q may be the
+// background) — P's own
+// color is c_P = (c − Σ_{Q≠P} α_Q c_Q) / α_P, clamped to [0, 1]. Returns the labels with two
+// more channels: kRecordChannels = P (kNone where the pixel is not unmixed), the next =
+// pack_srgb8(c_P).
+// (For a box-filtered camera α would be P's area of the pixel; the synthetic photographs
+// average point samples, so their α is the share of samples.)
+ImageU32 unmix_silhouette_pixels(const visibility::VisibilityMap& map, const ImageU32& labels, const ImageF& photo,
+                                 int samples, bool exclude_all_boundaries = false);
 
 // 1 where a pixel center lies within `radius` px of a silhouette edge of the map, else 0.
 ImageU8 silhouette_pixel_mask(const visibility::VisibilityMap& map, double radius);
@@ -107,12 +139,14 @@ ImageU8 silhouette_pixel_mask(const visibility::VisibilityMap& map, double radiu
 ImageU32 itembuffer_pixel_polygons(const Scene& scene, const visibility::ModelPolygons& model, const Camera& camera);
 
 // Builds the layers of every photograph from its image and pixel → polygon mapping (same
-// sizes as the camera; 1 channel, or 4 as vismap_pixel_polygons' sub-pixel record). A texel
-// of P is sampled when its center projects into a pixel mapped onto P ("direct": bilinear
-// over the 2 × 2 pixel centers around the projection that map onto P, alpha 255) or into a
-// sub-cell wholly inside P of a pixel touching a silhouette ("exact-visible": the same
-// bilinear, else the nearest pixel center within 2 px mapped onto P; alpha kExtrapolated;
-// with none, the pixel's own mixed color, alpha kMixed, for holes only).
+// sizes as the camera; 1 channel, kRecordChannels as vismap_pixel_polygons' sub-pixel record, or 2 more with
+// unmix_silhouette_pixels' channels). A texel of P is sampled when its center projects into
+// a pixel mapped onto P ("direct": bilinear over the 2 × 2 pixel centers around the
+// projection that map onto P, alpha 255) or into a sub-cell wholly inside P of a pixel
+// touching a silhouette ("exact-visible": the same bilinear over pixels mapped onto P or
+// unmixed for P — alpha kUnmixed when an unmixed one is among them, else kExtrapolated —
+// else the nearest pixel center within 2 px mapped onto P, alpha kExtrapolated; with none,
+// the pixel's own mixed color, alpha kMixed, for holes only).
 // Parallel over photographs; the result does not depend on threads.
 RadianceMaps build_radiance_maps(const visibility::ModelPolygons& model, double texel, std::span<const Camera> cameras,
                                  std::span<const ImageF> photos, std::span<const ImageU32> pixel_polygons);
