@@ -10,6 +10,7 @@
 
 #include "proxima/core/error.h"
 #include "proxima/core/image_io.h"
+#include "proxima/core/image_rgb.h"
 #include "proxima/core/parallel.h"
 #include "proxima/core/timer.h"
 #include "proxima/raster/rasterizer.h"
@@ -101,7 +102,6 @@ VisibilityMap scaled_map(const VisibilityMap& map, int factor) {
   return fine;
 }
 
-vec3 pixel_color(const ImageF& image, int x, int y) { return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)}; }
 
 }  // namespace
 
@@ -159,7 +159,7 @@ ImageU32 unmix_silhouette_pixels(const VisibilityMap& map, const ImageU32& label
   const ImageU8 touched = touched_mask(map, exclude_all_boundaries);
   // The other sides' colors come from pixels wholly inside one polygon's regions (touching
   // no edge between different polygons: a pixel on a crease is a mix too).
-  const ImageU8 inside = touched_mask(map, true);
+  const ImageU8 on_any_edge = touched_mask(map, true);
   // The polygon each of the photograph's s × s samples sees.
   const ImageU32 fine = rasterize_map(scaled_map(map, samples));
   const int n = samples * samples;
@@ -177,7 +177,7 @@ ImageU32 unmix_silhouette_pixels(const VisibilityMap& map, const ImageU32& label
       // P: the first side (in sample order) with at least half the samples; not the background.
       const auto P = std::find_if(sides.begin(), sides.end(), [&](const auto& e) { return 2 * e.second >= n; });
       if (P == sides.end() || P->first == kNone) continue;
-      vec3 c = pixel_color(photo, x, y);
+      vec3 c = rgb_at(photo, x, y);
       bool known = true;
       for (const auto& [q, count] : sides) {
         if (q == P->first) continue;
@@ -186,9 +186,9 @@ ImageU32 unmix_silhouette_pixels(const VisibilityMap& map, const ImageU32& label
         vec3 cq(0.0f);
         for (int yy = std::max(0, y - 2); yy <= std::min(H - 1, y + 2); ++yy)
           for (int xx = std::max(0, x - 2); xx <= std::min(W - 1, x + 2); ++xx) {
-            if (inside.at(xx, yy) || centers.at(xx, yy) != q) continue;
+            if (on_any_edge.at(xx, yy) || centers.at(xx, yy) != q) continue;
             const double dd = double((xx - x) * (xx - x) + (yy - y) * (yy - y));
-            if (dd < best) best = dd, cq = pixel_color(photo, xx, yy);
+            if (dd < best) best = dd, cq = rgb_at(photo, xx, yy);
           }
         if (best > 4.0) {
           known = false;
@@ -325,7 +325,7 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
           const bool clean = labels.at(xx, yy) == p, unmixed = !direct && unmix && labels.at(xx, yy, kRecordChannels) == p;
           if (!clean && !unmixed) continue;
           const double w = ((k & 1) ? fx : 1.0 - fx) * ((k >> 1) ? fy : 1.0 - fy);
-          c += float(w) * (clean ? pixel_color(image, xx, yy) : unpack_srgb8(labels.at(xx, yy, kRecordChannels + 1)));
+          c += float(w) * (clean ? rgb_at(image, xx, yy) : unpack_srgb8(labels.at(xx, yy, kRecordChannels + 1)));
           wsum += w;
           used_unmixed = used_unmixed || (unmixed && w > 0.0);
         }
@@ -336,14 +336,14 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
             for (int xx = ix - 2; xx <= ix + 2; ++xx) {
               if (xx < 0 || yy < 0 || xx >= W || yy >= H || labels.at(xx, yy) != p) continue;
               const double dd = (xx + 0.5 - px) * (xx + 0.5 - px) + (yy + 0.5 - py) * (yy + 0.5 - py);
-              if (dd < best) best = dd, c = pixel_color(image, xx, yy), wsum = 1.0;
+              if (dd < best) best = dd, c = rgb_at(image, xx, yy), wsum = 1.0;
             }
         }
         uint32_t alpha = direct ? 0xFFu : used_unmixed ? kUnmixed : kExtrapolated;
         if (wsum <= 0.0) {
           // No pixel wholly on p near it (a sliver of p along a silhouette): the pixel's own,
           // mixed color, flagged as a last resort for holes (novel_view.h).
-          c = pixel_color(image, ix, iy);
+          c = rgb_at(image, ix, iy);
           wsum = 1.0;
           alpha = kMixed;
         }

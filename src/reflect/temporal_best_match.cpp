@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "proxima/core/image_rgb.h"
 #include "proxima/core/parallel.h"
 
 namespace proxima {
@@ -15,7 +16,6 @@ constexpr size_t kRowGrain = 4;
 // parabola would move it by < ~0.01 px).
 constexpr float kExactMatch = 1e-4f;
 
-vec3 pixel3(const ImageF& image, int x, int y) { return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)}; }
 
 struct Search {
   const ReflectionDepthImage& key;
@@ -26,7 +26,7 @@ struct Search {
     return x >= 0 && y >= 0 && x < w && y < h && key.object.at(x, y) == object;
   }
   float distance(int x, int y, vec3 r) const {
-    return match_distance(pixel3(key.position, x, y), pixel3(key.normal, x, y), r, eye);
+    return match_distance(rgb_at(key.position, x, y), rgb_at(key.normal, x, y), r, eye);
   }
   // Pixels of another reflector (or none) are outside the search space.
   float distance_in(int x, int y, uint32_t object, vec3 r) const {
@@ -126,7 +126,7 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
             for (int dx = -1; dx <= 1; ++dx)
               if (!s.same(cx + dx, cy + dy, object)) border = true;
           if (border) {
-            const vec3 wc = pixel3(key.position, cx, cy), nc = pixel3(key.normal, cx, cy);
+            const vec3 wc = rgb_at(key.position, cx, cy), nc = rgb_at(key.normal, cx, cy);
             const vec3 m = r - 2.0f * glm::dot(r - wc, nc) * nc;
             const float scale = glm::length(wc - m) / std::max(glm::length(eye - m), 1e-6f);
             const float miss_px = former * scale * focal / std::max(key.depth.at(cx, cy), 1e-6f);

@@ -5,28 +5,25 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "proxima/core/image_rgb.h"
 #include "proxima/scene/shading.h"
 
 namespace proxima {
 
-namespace {
-vec3 pixel3(const ImageF& image, int x, int y) { return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)}; }
-}  // namespace
-
 vec3 key_mirror_direction(const ReflectionDepthImage& key, int x, int y) {
-  const vec3 w = pixel3(key.position, x, y);
-  return glm::normalize(reflect(w - key.camera.position, pixel3(key.normal, x, y)));
+  const vec3 w = rgb_at(key.position, x, y);
+  return glm::normalize(reflect(w - key.camera.position, rgb_at(key.normal, x, y)));
 }
 
 vec3 key_reflected_point(const ReflectionDepthImage& key, int x, int y) {
-  return pixel3(key.position, x, y) + key_mirror_direction(key, x, y) * key.distance.at(x, y);
+  return rgb_at(key.position, x, y) + key_mirror_direction(key, x, y) * key.distance.at(x, y);
 }
 
 float mirror_spread(const ReflectionDepthImage& key, int x, int y) {
   const int w = key.object.width(), h = key.object.height();
   const uint32_t object = key.object.at(x, y);
   const vec3 e = key.camera.position;
-  const vec3 view = glm::normalize(pixel3(key.position, x, y) - e);
+  const vec3 view = glm::normalize(rgb_at(key.position, x, y) - e);
   const vec3 mirror = key_mirror_direction(key, x, y);
   constexpr int kStep[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
   float spread = -1.0f;
@@ -34,7 +31,7 @@ float mirror_spread(const ReflectionDepthImage& key, int x, int y) {
     const int nx = x + d[0], ny = y + d[1];
     if (nx < 0 || ny < 0 || nx >= w || ny >= h || key.object.at(nx, ny) != object) continue;
     // Angles from |a − b| of unit vectors (2 sin(θ/2)): accurate for the tiny pixel angles.
-    const float view_angle = glm::length(glm::normalize(pixel3(key.position, nx, ny) - e) - view);
+    const float view_angle = glm::length(glm::normalize(rgb_at(key.position, nx, ny) - e) - view);
     const float mirror_angle = glm::length(key_mirror_direction(key, nx, ny) - mirror);
     if (view_angle > 0.0f) spread = std::max(spread, mirror_angle / view_angle);
   }

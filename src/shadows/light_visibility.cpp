@@ -9,6 +9,7 @@
 #include <bit>
 #include <cmath>
 
+#include "proxima/core/image_rgb.h"
 #include "proxima/core/parallel.h"
 #include "proxima/core/timer.h"
 #include "proxima/depthimage/depth_image.h"
@@ -31,7 +32,6 @@ namespace {
 
 constexpr size_t kRows = 8;  // receiver rows per parallel chunk
 
-vec3 at3(const ImageF& img, int x, int y) { return vec3(img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2)); }
 
 void set_bit(LightVisibility& v, int x, int y, int s) {
   v.bits[(size_t(y) * size_t(v.width) + size_t(x)) * size_t(v.words) + size_t(s >> 6)] |= uint64_t(1) << (s & 63);
@@ -60,7 +60,7 @@ LightVisibility shadow_map_visibility(const Scene& occluders, const Receivers& r
       for (int y = int(y0); y < int(y1); ++y)
         for (int x = 0; x < w; ++x) {
           if (!receivers.mask.at(x, y)) continue;
-          const vec3 p = at3(receivers.position, x, y), n = at3(receivers.normal, x, y);
+          const vec3 p = rgb_at(receivers.position, x, y), n = rgb_at(receivers.normal, x, y);
           const vec3 l = s - p;
           const float cos_theta = glm::dot(n, l) / glm::length(l);
           if (!(cos_theta > 0.0f)) continue;  // below the receiver's tangent plane
@@ -94,7 +94,7 @@ LightVisibility ray_visibility(const RayScene& rays, const Scene& scene, const R
     for (int x = 0; x < w; ++x)
       if (receivers.mask.at(x, y)) {
         pixel.push_back(y * w + x);
-        origin.push_back(at3(receivers.position, x, y) + eps * at3(receivers.normal, x, y));
+        origin.push_back(rgb_at(receivers.position, x, y) + eps * rgb_at(receivers.normal, x, y));
       }
   std::vector<Ray> batch(pixel.size());
   std::vector<uint8_t> blocked(pixel.size());
@@ -105,7 +105,7 @@ LightVisibility ray_visibility(const RayScene& rays, const Scene& scene, const R
       for (size_t i = i0; i < i1; ++i) {
         const int x = pixel[i] % w, y = pixel[i] / w;
         const vec3 d = s - origin[i];
-        facing[i] = glm::dot(at3(receivers.normal, x, y), d) > 0.0f;
+        facing[i] = glm::dot(rgb_at(receivers.normal, x, y), d) > 0.0f;
         Ray& r = batch[i];
         r.origin = origin[i];
         r.dir = d;
