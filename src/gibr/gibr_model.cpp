@@ -76,13 +76,17 @@ GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) 
   const size_t n = g.cameras.size();
   std::vector<ImageU32> labels(n);
   std::vector<double> silhouettes(n);
+  // Kept until phase 3 for the exact texel-center test in pixels not mapped as a whole
+  // (instead of a sub-pixel record: exact, and a third of the labels' memory).
+  std::vector<VisibilityMap> vis_maps(o.whole_pixels ? 0 : n);
   parallel_for(n, 1, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
-      const VisibilityMap map = trace_visibility_map(g.winged_pair, g.cameras[i]);
+      VisibilityMap map = trace_visibility_map(g.winged_pair, g.cameras[i]);
       silhouettes[i] = double(map.stats.silhouette_edges);
-      labels[i] = vismap_pixel_polygons(map, o.exclude_boundaries, !o.whole_pixels);
+      labels[i] = vismap_pixel_polygons(map, o.exclude_boundaries, false);
       if (o.unmix && !o.whole_pixels)
         labels[i] = unmix_silhouette_pixels(map, labels[i], g.photos[i], o.supersample, o.exclude_boundaries);
+      if (!o.whole_pixels) vis_maps[i] = std::move(map);
     }
   });
   g.stats.vismap_ms = w.elapsed_ms();
@@ -97,7 +101,8 @@ GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) 
     g.stats.itembuffer_ms = w.elapsed_ms();
   }
   // Phase 3: radiance maps.
-  g.maps = build_radiance_maps(g.model, g.texel, g.cameras, g.photos, labels);
+  g.maps = build_radiance_maps(g.model, g.texel, g.cameras, g.photos, labels, vis_maps);
+  vis_maps = {};
   if (o.item_buffer) g.item_maps = build_radiance_maps(g.model, g.texel, g.cameras, g.photos, item_labels);
   g.stats.total_ms = total.elapsed_ms();
   return g;

@@ -145,15 +145,16 @@ ImageU32 vismap_pixel_polygons(const VisibilityMap& map, bool exclude_all_bounda
 ImageU32 unmix_silhouette_pixels(const VisibilityMap& map, const ImageU32& labels, const ImageF& photo, int samples,
                                  bool exclude_all_boundaries) {
   const int W = map.width, H = map.height;
-  if (labels.width() != W || labels.height() != H || labels.channels() != kRecordChannels || photo.width() != W ||
+  const int L = labels.channels();
+  if (labels.width() != W || labels.height() != H || (L != 1 && L != kRecordChannels) || photo.width() != W ||
       photo.height() != H || photo.channels() < 3)
-    fail_input("unmixing: the labels (a sub-pixel record) and photograph must have the map's size");
+    fail_input("unmixing: the labels (1 channel or a sub-pixel record) and photograph must have the map's size");
   if (samples < 1 || samples > 8) fail_input("unmixing: samples per pixel side must be in 1..8");
-  ImageU32 out(W, H, kRecordChannels + 2, kNone);
+  ImageU32 out(W, H, L + 2, kNone);
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {
-      for (int c = 0; c < kRecordChannels; ++c) out.at(x, y, c) = labels.at(x, y, c);
-      out.at(x, y, kRecordChannels + 1) = 0;
+      for (int c = 0; c < L; ++c) out.at(x, y, c) = labels.at(x, y, c);
+      out.at(x, y, L + 1) = 0;
     }
   const ImageU32 centers = rasterize_map(map);
   const ImageU8 touched = touched_mask(map, exclude_all_boundaries);
@@ -197,8 +198,8 @@ ImageU32 unmix_silhouette_pixels(const VisibilityMap& map, const ImageU32& label
         c -= (float(count) / float(n)) * cq;
       }
       if (!known) continue;
-      out.at(x, y, kRecordChannels) = P->first;
-      out.at(x, y, kRecordChannels + 1) = pack_srgb8(c * (float(n) / float(P->second)));  // pack_srgb8 clamps to [0, 1]
+      out.at(x, y, L) = P->first;
+      out.at(x, y, L + 1) = pack_srgb8(c * (float(n) / float(P->second)));  // pack_srgb8 clamps to [0, 1]
     }
   return out;
 }
@@ -223,8 +224,59 @@ struct PhotoLayers {
   size_t pixels_mapped = 0;
 };
 
+// The visibility map's regions of a polygon that may hold a point of each pixel not mapped
+// as a whole (label kNone: touching a silhouette, or background): regions whose bounding
+// box meets the pixel, in region order (compressed rows: pixel → [first[i], first[i + 1])).
+struct PixelRegions {
+  std::vector<uint32_t> first, region;
+};
+
+PixelRegions pixel_regions(const VisibilityMap& map, const ImageU32& labels) {
+  const int W = map.width, H = map.height;
+  PixelRegions out;
+  out.first.assign(size_t(W) * size_t(H) + 1, 0);
+  // Two passes over the regions' boxes: count per pixel, then fill.
+  auto for_each = [&](auto&& f) {
+    for (uint32_t r = 0; r < map.regions.size(); ++r) {
+      const MapRegion& R = map.regions[r];
+      if (R.polygon == kNone || R.vertices.empty()) continue;
+      dvec2 lo(INFINITY), hi(-INFINITY);
+      for (const dvec2& v : R.vertices) lo = glm::min(lo, v), hi = glm::max(hi, v);
+      const int x0 = std::max(0, int(std::floor(lo.x))), x1 = std::min(W - 1, int(std::floor(hi.x)));
+      const int y0 = std::max(0, int(std::floor(lo.y))), y1 = std::min(H - 1, int(std::floor(hi.y)));
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x)
+          if (labels.at(x, y) == kNone) f(size_t(y) * size_t(W) + size_t(x), r);
+    }
+  };
+  for_each([&](size_t i, uint32_t) { ++out.first[i + 1]; });
+  for (size_t i = 1; i < out.first.size(); ++i) out.first[i] += out.first[i - 1];
+  out.region.resize(out.first.back());
+  std::vector<uint32_t> next(out.first.begin(), out.first.end() - 1);
+  for_each([&](size_t i, uint32_t r) { out.region[next[i]++] = r; });
+  return out;
+}
+
+// Distance (px) a point must keep from every edge of the region holding it to count as seen
+// there: a margin for rounding between the map and the texel's projection, negligible next
+// to the 8 × 8 sub-cell record's strip (≈ 0.09 px).
+constexpr double kRegionMargin = 1e-3;
+
+// Is q inside the convex region R (positive shoelace area: interior on the left of each edge)
+// by at least kRegionMargin?
+bool inside_region(const MapRegion& R, const dvec2& q) {
+  const size_t n = R.vertices.size();
+  for (size_t k = 0; k < n; ++k) {
+    const dvec2 a = R.vertices[k], e = R.vertices[(k + 1) % n] - a, r = q - a;
+    const double len = std::sqrt(e.x * e.x + e.y * e.y);
+    if (len == 0.0) continue;
+    if (e.x * r.y - e.y * r.x < kRegionMargin * len) return false;
+  }
+  return n >= 3;
+}
+
 PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& grids, uint32_t photo,
-                      const Camera& cam, const ImageF& image, const ImageU32& labels) {
+                      const Camera& cam, const ImageF& image, const ImageU32& labels, const VisibilityMap* vis_map) {
   PhotoLayers out;
   const dvec3 eye(cam.position), R(camera_right(cam)), U(camera_up(cam)), F(camera_forward(cam));
   const double f = focal_length_px(cam), cx = 0.5 * cam.width, cy = 0.5 * cam.height;
@@ -232,7 +284,16 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
   // Texel-coordinate bounds of each polygon's mapped pixels (their corners on its plane).
   std::vector<glm::dvec4> box(model.polygons.size(), glm::dvec4(INFINITY, INFINITY, -INFINITY, -INFINITY));
   std::vector<uint32_t> seen;
-  const bool sub = labels.channels() >= kRecordChannels, unmix = labels.channels() == kRecordChannels + 2;
+  // Exact-visible texels: from the map's regions when it is given (exact point test), else from
+  // the sub-pixel record's sub-cells.
+  const bool exact = vis_map != nullptr, sub = !exact && labels.channels() >= kRecordChannels;
+  const int uc = unmix_channel(labels);
+  const bool unmix = uc >= 0;
+  const PixelRegions candidates = exact ? pixel_regions(*vis_map, labels) : PixelRegions{};
+  auto regions_at = [&](int x, int y) {
+    const size_t i = size_t(y) * size_t(W) + size_t(x);
+    return std::span<const uint32_t>(candidates.region.data() + candidates.first[i], candidates.first[i + 1] - candidates.first[i]);
+  };
   auto any_bits = [&](int x, int y, int k) {
     for (int w = 0; w < kMaskWords; ++w)
       if (labels.at(x, y, 3 + k * kMaskWords + w)) return true;
@@ -262,6 +323,10 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
       } else if (sub) {
         for (int k = 0; k < 2; ++k)
           if (any_bits(x, y, k)) add_pixel(labels.at(x, y, 1 + k), x, y);
+      } else if (exact) {
+        uint32_t last = kNone;  // (regions of one polygon are often consecutive)
+        for (uint32_t r : regions_at(x, y))
+          if (const uint32_t q = vis_map->regions[r].polygon; q != last) add_pixel(q, x, y), last = q;
       }
     }
   std::sort(seen.begin(), seen.end());
@@ -302,7 +367,17 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
         if (!(px >= 0.0 && py >= 0.0 && px < W && py < H)) continue;
         const int ix = int(px), iy = int(py);
         const bool direct = labels.at(ix, iy) == p;
-        if (!direct) {
+        if (!direct && exact) {
+          // A pixel not wholly on one polygon: is the projection itself in a region of p?
+          if (labels.at(ix, iy) != kNone) continue;  // wholly on another polygon
+          bool seen_here = false;
+          for (uint32_t r : regions_at(ix, iy))
+            if (vis_map->regions[r].polygon == p && inside_region(vis_map->regions[r], dvec2(px, py))) {
+              seen_here = true;
+              break;
+            }
+          if (!seen_here) continue;
+        } else if (!direct) {
           // A pixel touching a silhouette: is the sub-cell holding the projection wholly on p?
           if (!sub) continue;
           const int s = std::min(kSubCells - 1, int((px - ix) * kSubCells)) +
@@ -322,10 +397,10 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
         for (int k = 0; k < 4; ++k) {
           const int xx = x0 + (k & 1), yy = y0 + (k >> 1);
           if (xx < 0 || yy < 0 || xx >= W || yy >= H) continue;
-          const bool clean = labels.at(xx, yy) == p, unmixed = !direct && unmix && labels.at(xx, yy, kRecordChannels) == p;
+          const bool clean = labels.at(xx, yy) == p, unmixed = !direct && unmix && labels.at(xx, yy, uc) == p;
           if (!clean && !unmixed) continue;
           const double w = ((k & 1) ? fx : 1.0 - fx) * ((k >> 1) ? fy : 1.0 - fy);
-          c += float(w) * (clean ? rgb_at(image, xx, yy) : unpack_srgb8(labels.at(xx, yy, kRecordChannels + 1)));
+          c += float(w) * (clean ? rgb_at(image, xx, yy) : unpack_srgb8(labels.at(xx, yy, uc + 1)));
           wsum += w;
           used_unmixed = used_unmixed || (unmixed && w > 0.0);
         }
@@ -376,9 +451,15 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
 }  // namespace
 
 RadianceMaps build_radiance_maps(const ModelPolygons& model, double texel, std::span<const Camera> cameras,
-                                 std::span<const ImageF> photos, std::span<const ImageU32> pixel_polygons) {
+                                 std::span<const ImageF> photos, std::span<const ImageU32> pixel_polygons,
+                                 std::span<const VisibilityMap> vis_maps) {
   if (cameras.size() != photos.size() || cameras.size() != pixel_polygons.size())
     fail_input("radiance maps: one image and one pixel mapping per camera");
+  if (!vis_maps.empty() && vis_maps.size() != cameras.size())
+    fail_input("radiance maps: one visibility map per camera, or none");
+  for (size_t k = 0; k < vis_maps.size(); ++k)
+    if (vis_maps[k].width != cameras[k].width || vis_maps[k].height != cameras[k].height)
+      fail_input("radiance maps: a visibility map's size differs from its camera's");
   Stopwatch watch;
   RadianceMaps maps;
   maps.grids = make_texel_grids(model, texel);
@@ -387,7 +468,8 @@ RadianceMaps build_radiance_maps(const ModelPolygons& model, double texel, std::
   std::vector<PhotoLayers> per(cameras.size());
   parallel_for(cameras.size(), 1, [&](size_t b, size_t e) {
     for (size_t k = b; k < e; ++k)
-      per[k] = map_photo(model, maps.grids, uint32_t(k), cameras[k], photos[k], pixel_polygons[k]);
+      per[k] = map_photo(model, maps.grids, uint32_t(k), cameras[k], photos[k], pixel_polygons[k],
+                         vis_maps.empty() ? nullptr : &vis_maps[k]);
   });
   RadianceStats& s = maps.stats;
   s.photos = cameras.size();

@@ -52,13 +52,15 @@ TEST(GibrModel, SameMapsAsThePhasesByHand) {
   const WingedPair wp = build_winged_pair(model);
   std::vector<ImageF> photos;
   std::vector<ImageU32> labels;
+  std::vector<VisibilityMap> vis_maps;
   for (size_t i = 0; i < cams.size(); ++i) {
     photos.push_back(render_photo(scene, rays, cams[i], 1, derive_seed(7, i, 1)));
-    const VisibilityMap map = trace_visibility_map(wp, cams[i]);
-    labels.push_back(unmix_silhouette_pixels(map, vismap_pixel_polygons(map), photos.back(), 1));
+    vis_maps.push_back(trace_visibility_map(wp, cams[i]));
+    labels.push_back(unmix_silhouette_pixels(vis_maps.back(), vismap_pixel_polygons(vis_maps.back(), false, false),
+                                             photos.back(), 1));
     EXPECT_TRUE(photos.back() == g.photos[i]) << i;
   }
-  const RadianceMaps maps = build_radiance_maps(model, g.texel, cams, photos, labels);
+  const RadianceMaps maps = build_radiance_maps(model, g.texel, cams, photos, labels, vis_maps);
   ASSERT_EQ(maps.layers.size(), g.maps.layers.size());
   for (size_t p = 0; p < maps.layers.size(); ++p) {
     ASSERT_EQ(maps.layers[p].size(), g.maps.layers[p].size()) << p;

@@ -328,5 +328,64 @@ TEST(GibrMapping, UnmixedSilhouettePixelsRecoverTheirPolygonsFlatColor) {
   EXPECT_EQ(samples_bad, 0u) << "of " << samples;
 }
 
+// The exact texel-center test (the visibility map's regions given to build_radiance_maps):
+// in the pixels not mapped as a whole, every texel that the ray-cast oracle sees clearly —
+// rays through its projection and through points 0.01 px around it all hit its polygon — gets
+// a sample, none of them occluded; the 8 × 8 sub-cell record misses some (its strip of
+// sub-cells touching a silhouette), so the check can fail.
+TEST(GibrMapping, ExactTexelCenterTestSamplesEveryClearlyVisibleTexelBesideSilhouettes) {
+  const DoorView door;
+  const Camera& cam = door.cam;
+  const ModelPolygons& model = door.model;
+  const ImageF photo = render_photo(make_photo_scene(door.scene), door.rays, cam, 2, 1);
+  const VisibilityMap map = trace_visibility_map(door.wp, cam);
+  const std::vector<Camera> cams{cam};
+  const std::vector<ImageF> photos{photo};
+  const ImageU32 whole = vismap_pixel_polygons(map, false, false);
+  const RadianceMaps exact = build_radiance_maps(model, 0.01, cams, photos, std::vector<ImageU32>{whole},
+                                                 std::vector<VisibilityMap>{map});
+  const RadianceMaps record = build_radiance_maps(model, 0.01, cams, photos, std::vector<ImageU32>{vismap_pixel_polygons(map)});
+  auto sampled = [](const RadianceMaps& m, uint32_t p, int i, int j) {
+    for (const SampleLayer& L : m.layers[p])
+      if (L.has(i, j)) return true;
+    return false;
+  };
+  const vec3 eye = cam.position;
+  const float eps = float(1e-4 * model.scale);
+  auto sees = [&](const vec2& at, uint32_t p) {
+    const Hit h = door.rays.intersect(ray_through(cam, at));
+    return h.valid() && model.triangle_polygon[h.triangle] == p;
+  };
+  size_t clear = 0, exact_missed = 0, record_missed = 0, exact_samples = 0, occluded = 0;
+  for (uint32_t p = 0; p < model.polygons.size(); ++p) {
+    const TexelGrid& g = exact.grids[p];
+    for (int j = 0; j < g.height; ++j)
+      for (int i = 0; i < g.width; ++i) {
+        const vec3 x(texel_center(g, i, j));
+        const auto q = project(cam, x);
+        if (!q || !(q->pixel.x >= 0.0f && q->pixel.y >= 0.0f && q->pixel.x < float(cam.width) &&
+                    q->pixel.y < float(cam.height)))
+          continue;
+        if (whole.at(int(q->pixel.x), int(q->pixel.y)) != kNone) continue;  // pixels not mapped as a whole only
+        if (sampled(exact, p, i, j)) {
+          ++exact_samples;
+          const float d = glm::length(x - eye);
+          occluded += door.rays.occluded(Ray{eye, (x - eye) / d, 0.0f, d - eps});
+        }
+        bool clearly = sees(q->pixel, p);
+        for (int k = 0; k < 4 && clearly; ++k)
+          clearly = sees(q->pixel + 0.01f * vec2(k == 0 ? 1 : k == 1 ? -1 : 0, k == 2 ? 1 : k == 3 ? -1 : 0), p);
+        if (!clearly) continue;
+        ++clear;
+        exact_missed += !sampled(exact, p, i, j);
+        record_missed += !sampled(record, p, i, j);
+      }
+  }
+  EXPECT_GT(clear, 500u);
+  EXPECT_EQ(exact_missed, 0u) << "of " << clear << " clearly visible texels in pixels not mapped as a whole";
+  EXPECT_GT(record_missed, 10u) << "the sub-cell record should miss some (of " << clear << ")";
+  EXPECT_EQ(occluded, 0u) << "of " << exact_samples;
+  EXPECT_GE(exact.stats.samples, record.stats.samples);
+}
 }  // namespace
 }  // namespace proxima::gibr

@@ -116,8 +116,8 @@ inline bool record_bit(const ImageU32& labels, int x, int y, int k, int s) {
 ImageU32 vismap_pixel_polygons(const visibility::VisibilityMap& map, bool exclude_all_boundaries = false,
                                bool subpixel = true);
 
-// Unmixing of pixels touching a silhouette (labels: vismap_pixel_polygons' sub-pixel record
-// of the same map and options; photo: that photograph, linear RGB, rendered with s × s
+// Unmixing of pixels touching a silhouette (labels: vismap_pixel_polygons' labels of the same
+// map and options, 1 channel or the sub-pixel record; photo: that photograph, linear RGB, rendered with s × s
 // samples per pixel at the cell centers of a regular grid). The map gives, exactly, the
 // share α_Q of the pixel's s × s samples that see each polygon Q (or the background): the
 // photograph's pixel filter, so the pixel's color is c = Σ α_Q c_Q. Where one polygon P has
@@ -125,12 +125,19 @@ ImageU32 vismap_pixel_polygons(const visibility::VisibilityMap& map, bool exclud
 // wholly inside Q's regions (touching no map edge between different polygons; Q may be the
 // background) — P's own
 // color is c_P = (c − Σ_{Q≠P} α_Q c_Q) / α_P, clamped to [0, 1]. Returns the labels with two
-// more channels: kRecordChannels = P (kNone where the pixel is not unmixed), the next =
+// more channels (unmix_channel): P (kNone where the pixel is not unmixed), then
 // pack_srgb8(c_P).
 // (For a box-filtered camera α would be P's area of the pixel; the synthetic photographs
 // average point samples, so their α is the share of samples.)
 ImageU32 unmix_silhouette_pixels(const visibility::VisibilityMap& map, const ImageU32& labels, const ImageF& photo,
                                  int samples, bool exclude_all_boundaries = false);
+
+// First of unmix_silhouette_pixels' two channels in labels (1 + 2 or kRecordChannels + 2
+// channels), −1 for labels without them.
+inline int unmix_channel(const ImageU32& labels) {
+  const int c = labels.channels();
+  return c == 3 || c == kRecordChannels + 2 ? c - 2 : -1;
+}
 
 // 1 where a pixel center lies within `radius` px of a silhouette edge of the map, else 0.
 ImageU8 silhouette_pixel_mask(const visibility::VisibilityMap& map, double radius);
@@ -142,14 +149,18 @@ ImageU32 itembuffer_pixel_polygons(const Scene& scene, const visibility::ModelPo
 // sizes as the camera; 1 channel, kRecordChannels as vismap_pixel_polygons' sub-pixel record, or 2 more with
 // unmix_silhouette_pixels' channels). A texel of P is sampled when its center projects into
 // a pixel mapped onto P ("direct": bilinear over the 2 × 2 pixel centers around the
-// projection that map onto P, alpha 255) or into a sub-cell wholly inside P of a pixel
-// touching a silhouette ("exact-visible": the same bilinear over pixels mapped onto P or
+// projection that map onto P, alpha 255) or, in a pixel not mapped as a whole, exactly onto
+// P — with `vis_maps` (the photographs' visibility maps, the labels' source) when the
+// projection lies in a region of P (exact point test, 10⁻³ px from its edges), else when it
+// lies in a sub-cell of the sub-pixel record wholly inside P ("exact-visible": the same
+// bilinear over pixels mapped onto P or
 // unmixed for P — alpha kUnmixed when an unmixed one is among them, else kExtrapolated —
 // else the nearest pixel center within 2 px mapped onto P, alpha kExtrapolated; with none,
 // the pixel's own mixed color, alpha kMixed, for holes only).
 // Parallel over photographs; the result does not depend on threads.
 RadianceMaps build_radiance_maps(const visibility::ModelPolygons& model, double texel, std::span<const Camera> cameras,
-                                 std::span<const ImageF> photos, std::span<const ImageU32> pixel_polygons);
+                                 std::span<const ImageF> photos, std::span<const ImageU32> pixel_polygons,
+                                 std::span<const visibility::VisibilityMap> vis_maps = {});
 
 // Texel coordinates (continuous, texel centers at +0.5) of a world point on the grid's plane.
 inline dvec2 texel_coords(const TexelGrid& g, const dvec3& p) {
