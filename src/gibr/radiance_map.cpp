@@ -224,14 +224,31 @@ struct PhotoLayers {
   size_t pixels_mapped = 0;
 };
 
-// The visibility map's regions of a polygon that may hold a point of each pixel not mapped
-// as a whole (label kNone: touching a silhouette, or background): regions whose bounding
-// box meets the pixel, in region order (compressed rows: pixel → [first[i], first[i + 1])).
+// The visibility map's regions of a polygon that may hold a point of each pixel that may
+// show more than one polygon — not mapped as a whole (label kNone: touching a silhouette,
+// or background) or beside a pixel with another label (a crease between polygons: the
+// pixel is mapped onto its center's polygon, another one may still cover part of it):
+// regions whose bounding box meets the pixel, in region order (compressed rows: pixel →
+// [first[i], first[i + 1])).
 struct PixelRegions {
   std::vector<uint32_t> first, region;
 };
 
-PixelRegions pixel_regions(const VisibilityMap& map, const ImageU32& labels) {
+ImageU8 boundary_pixels(const ImageU32& labels) {
+  const int W = labels.width(), H = labels.height();
+  ImageU8 out(W, H, 1, 0);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const uint32_t c = labels.at(x, y);
+      bool b = c == kNone;
+      for (int yy = std::max(0, y - 1); !b && yy <= std::min(H - 1, y + 1); ++yy)
+        for (int xx = std::max(0, x - 1); !b && xx <= std::min(W - 1, x + 1); ++xx) b = labels.at(xx, yy) != c;
+      out.at(x, y) = b;
+    }
+  return out;
+}
+
+PixelRegions pixel_regions(const VisibilityMap& map, const ImageU8& boundary) {
   const int W = map.width, H = map.height;
   PixelRegions out;
   out.first.assign(size_t(W) * size_t(H) + 1, 0);
@@ -246,7 +263,7 @@ PixelRegions pixel_regions(const VisibilityMap& map, const ImageU32& labels) {
       const int y0 = std::max(0, int(std::floor(lo.y))), y1 = std::min(H - 1, int(std::floor(hi.y)));
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x)
-          if (labels.at(x, y) == kNone) f(size_t(y) * size_t(W) + size_t(x), r);
+          if (boundary.at(x, y)) f(size_t(y) * size_t(W) + size_t(x), r);
     }
   };
   for_each([&](size_t i, uint32_t) { ++out.first[i + 1]; });
@@ -289,7 +306,8 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
   const bool exact = vis_map != nullptr, sub = !exact && labels.channels() >= kRecordChannels;
   const int uc = unmix_channel(labels);
   const bool unmix = uc >= 0;
-  const PixelRegions candidates = exact ? pixel_regions(*vis_map, labels) : PixelRegions{};
+  const ImageU8 boundary = exact ? boundary_pixels(labels) : ImageU8();
+  const PixelRegions candidates = exact ? pixel_regions(*vis_map, boundary) : PixelRegions{};
   auto regions_at = [&](int x, int y) {
     const size_t i = size_t(y) * size_t(W) + size_t(x);
     return std::span<const uint32_t>(candidates.region.data() + candidates.first[i], candidates.first[i + 1] - candidates.first[i]);
@@ -323,8 +341,9 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
       } else if (sub) {
         for (int k = 0; k < 2; ++k)
           if (any_bits(x, y, k)) add_pixel(labels.at(x, y, 1 + k), x, y);
-      } else if (exact) {
-        uint32_t last = kNone;  // (regions of one polygon are often consecutive)
+      }
+      if (exact && boundary.at(x, y)) {
+        uint32_t last = p;  // (regions of one polygon are often consecutive)
         for (uint32_t r : regions_at(x, y))
           if (const uint32_t q = vis_map->regions[r].polygon; q != last) add_pixel(q, x, y), last = q;
       }
@@ -368,8 +387,8 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
         const int ix = int(px), iy = int(py);
         const bool direct = labels.at(ix, iy) == p;
         if (!direct && exact) {
-          // A pixel not wholly on one polygon: is the projection itself in a region of p?
-          if (labels.at(ix, iy) != kNone) continue;  // wholly on another polygon
+          // A pixel that may show p in part: is the projection itself in a region of p?
+          if (!boundary.at(ix, iy)) continue;  // wholly on another polygon
           bool seen_here = false;
           for (uint32_t r : regions_at(ix, iy))
             if (vis_map->regions[r].polygon == p && inside_region(vis_map->regions[r], dvec2(px, py))) {
