@@ -97,8 +97,8 @@ Command register_gibr(CLI::App& root) {
   app->add_flag("--exclude-boundaries", f.model.exclude_boundaries,
                 "visibility-map mapping also drops pixels touching any edge between different polygons");
   app->add_flag("--whole-pixels", f.model.whole_pixels,
-                "visibility-map mapping without the sub-pixel record: texels seen only in pixels touching a "
-                "silhouette get no sample");
+                "visibility-map mapping without exact-visible texels: texels seen only in pixels not mapped onto "
+                "their polygon (silhouettes, creases) get no sample");
   app->add_flag("!--no-unmix", f.model.unmix,
                 "visibility-map mapping without unmixing silhouette pixels: exact-visible texels take colors only "
                 "from pixels wholly on their polygon");

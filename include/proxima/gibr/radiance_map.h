@@ -149,10 +149,11 @@ ImageU32 itembuffer_pixel_polygons(const Scene& scene, const visibility::ModelPo
 // sizes as the camera; 1 channel, kRecordChannels as vismap_pixel_polygons' sub-pixel record, or 2 more with
 // unmix_silhouette_pixels' channels). A texel of P is sampled when its center projects into
 // a pixel mapped onto P ("direct": bilinear over the 2 × 2 pixel centers around the
-// projection that map onto P, alpha 255) or, in a pixel not mapped as a whole, exactly onto
-// P — with `vis_maps` (the photographs' visibility maps, the labels' source) when the
-// projection lies in a region of P (exact point test, 10⁻³ px from its edges), else when it
-// lies in a sub-cell of the sub-pixel record wholly inside P ("exact-visible": the same
+// projection that map onto P, alpha 255) or, in a pixel not mapped onto P, exactly onto P
+// ("exact-visible") — with `vis_maps` (the photographs' visibility maps, the labels' source)
+// when the pixel may show P (label kNone, or beside a pixel with another label: a crease)
+// and the projection lies in a region of P (point-in-convex-polygon, ≥ 10⁻³ px inside its
+// edges); without, when it lies in a sub-cell of the sub-pixel record wholly inside P (the same
 // bilinear over pixels mapped onto P or
 // unmixed for P — alpha kUnmixed when an unmixed one is among them, else kExtrapolated —
 // else the nearest pixel center within 2 px mapped onto P, alpha kExtrapolated; with none,
