@@ -248,6 +248,22 @@ ImageU8 boundary_pixels(const ImageU32& labels) {
   return out;
 }
 
+// Does the convex region R meet the closed pixel square (x, y)? (Its box does; no edge of R
+// has all four corners strictly outside.)
+bool meets_pixel(const MapRegion& R, int x, int y) {
+  const size_t n = R.vertices.size();
+  for (size_t k = 0; k < n; ++k) {
+    const dvec2 a = R.vertices[k], e = R.vertices[(k + 1) % n] - a;
+    bool all_out = true;
+    for (int c = 0; c < 4 && all_out; ++c) {
+      const dvec2 r = dvec2(x + (c & 1), y + (c >> 1)) - a;
+      all_out = e.x * r.y - e.y * r.x < 0.0;
+    }
+    if (all_out) return false;
+  }
+  return true;
+}
+
 PixelRegions pixel_regions(const VisibilityMap& map, const ImageU8& boundary) {
   const int W = map.width, H = map.height;
   PixelRegions out;
@@ -263,7 +279,7 @@ PixelRegions pixel_regions(const VisibilityMap& map, const ImageU8& boundary) {
       const int y0 = std::max(0, int(std::floor(lo.y))), y1 = std::min(H - 1, int(std::floor(hi.y)));
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x)
-          if (boundary.at(x, y)) f(size_t(y) * size_t(W) + size_t(x), r);
+          if (boundary.at(x, y) && meets_pixel(R, x, y)) f(size_t(y) * size_t(W) + size_t(x), r);
     }
   };
   for_each([&](size_t i, uint32_t) { ++out.first[i + 1]; });
