@@ -224,12 +224,11 @@ struct PhotoLayers {
   size_t pixels_mapped = 0;
 };
 
-// The visibility map's regions of a polygon that may hold a point of each pixel that may
-// show more than one polygon — not mapped as a whole (label kNone: touching a silhouette,
+// The visibility map's regions of a polygon meeting each pixel that may show more than one
+// polygon — not mapped as a whole (label kNone: touching a silhouette,
 // or background) or beside a pixel with another label (a crease between polygons: the
 // pixel is mapped onto its center's polygon, another one may still cover part of it):
-// regions whose bounding box meets the pixel, in region order (compressed rows: pixel →
-// [first[i], first[i + 1])).
+// in region order (compressed rows: pixel → [first[i], first[i + 1])).
 struct PixelRegions {
   std::vector<uint32_t> first, region;
 };
@@ -248,20 +247,30 @@ ImageU8 boundary_pixels(const ImageU32& labels) {
   return out;
 }
 
-// Does the convex region R meet the closed pixel square (x, y)? (Its box does; no edge of R
-// has all four corners strictly outside.)
-bool meets_pixel(const MapRegion& R, int x, int y) {
+// The x extent of the convex region R within the row band [y, y + 1] (empty: lo > hi):
+// the pixels of the row whose closed squares meet R are floor(lo) … floor(hi).
+dvec2 row_extent(const MapRegion& R, int y) {
+  const double y0 = y, y1 = y + 1.0;
+  dvec2 ext(INFINITY, -INFINITY);
   const size_t n = R.vertices.size();
   for (size_t k = 0; k < n; ++k) {
-    const dvec2 a = R.vertices[k], e = R.vertices[(k + 1) % n] - a;
-    bool all_out = true;
-    for (int c = 0; c < 4 && all_out; ++c) {
-      const dvec2 r = dvec2(x + (c & 1), y + (c >> 1)) - a;
-      all_out = e.x * r.y - e.y * r.x < 0.0;
+    const dvec2 a = R.vertices[k], b = R.vertices[(k + 1) % n];
+    // The part of edge a → b inside the band.
+    double ta = 0.0, tb = 1.0;
+    if (a.y != b.y) {
+      const double t0 = (y0 - a.y) / (b.y - a.y), t1 = (y1 - a.y) / (b.y - a.y);
+      ta = std::max(ta, std::min(t0, t1));
+      tb = std::min(tb, std::max(t0, t1));
+    } else if (a.y < y0 || a.y > y1) {
+      continue;
     }
-    if (all_out) return false;
+    if (ta > tb) continue;
+    for (double t : {ta, tb}) {
+      const double x = a.x + t * (b.x - a.x);
+      ext = dvec2(std::min(ext.x, x), std::max(ext.y, x));
+    }
   }
-  return true;
+  return ext;
 }
 
 PixelRegions pixel_regions(const VisibilityMap& map, const ImageU8& boundary) {
@@ -275,11 +284,14 @@ PixelRegions pixel_regions(const VisibilityMap& map, const ImageU8& boundary) {
       if (R.polygon == kNone || R.vertices.empty()) continue;
       dvec2 lo(INFINITY), hi(-INFINITY);
       for (const dvec2& v : R.vertices) lo = glm::min(lo, v), hi = glm::max(hi, v);
-      const int x0 = std::max(0, int(std::floor(lo.x))), x1 = std::min(W - 1, int(std::floor(hi.x)));
       const int y0 = std::max(0, int(std::floor(lo.y))), y1 = std::min(H - 1, int(std::floor(hi.y)));
-      for (int y = y0; y <= y1; ++y)
+      for (int y = y0; y <= y1; ++y) {
+        const dvec2 e = row_extent(R, y);
+        if (!(e.x <= e.y)) continue;
+        const int x0 = std::max(0, int(std::floor(e.x))), x1 = std::min(W - 1, int(std::floor(e.y)));
         for (int x = x0; x <= x1; ++x)
-          if (boundary.at(x, y) && meets_pixel(R, x, y)) f(size_t(y) * size_t(W) + size_t(x), r);
+          if (boundary.at(x, y)) f(size_t(y) * size_t(W) + size_t(x), r);
+      }
     }
   };
   for_each([&](size_t i, uint32_t) { ++out.first[i + 1]; });
@@ -288,6 +300,31 @@ PixelRegions pixel_regions(const VisibilityMap& map, const ImageU8& boundary) {
   std::vector<uint32_t> next(out.first.begin(), out.first.end() - 1);
   for_each([&](size_t i, uint32_t r) { out.region[next[i]++] = r; });
   return out;
+}
+
+// The convex polygon `poly` clipped to the pixel square (x, y) (Sutherland–Hodgman).
+void clip_to_pixel(std::span<const dvec2> poly, int x, int y, std::vector<dvec2>& out) {
+  out.assign(poly.begin(), poly.end());
+  std::vector<dvec2> in;
+  for (int side = 0; side < 4; ++side) {
+    in.swap(out);
+    out.clear();
+    // Inside: x ≥ x0, x ≤ x0 + 1, y ≥ y0, y ≤ y0 + 1.
+    auto dist = [&](const dvec2& v) {
+      switch (side) {
+        case 0: return v.x - x;
+        case 1: return x + 1.0 - v.x;
+        case 2: return v.y - y;
+        default: return y + 1.0 - v.y;
+      }
+    };
+    for (size_t k = 0; k < in.size(); ++k) {
+      const dvec2 a = in[k], b = in[(k + 1) % in.size()];
+      const double da = dist(a), db = dist(b);
+      if (da >= 0.0) out.push_back(a);
+      if ((da >= 0.0) != (db >= 0.0)) out.push_back(a + (da / (da - db)) * (b - a));
+    }
+  }
 }
 
 // Distance (px) a point must keep from every edge of the region holding it to count as seen
@@ -301,9 +338,11 @@ bool inside_region(const MapRegion& R, const dvec2& q) {
   const size_t n = R.vertices.size();
   for (size_t k = 0; k < n; ++k) {
     const dvec2 a = R.vertices[k], e = R.vertices[(k + 1) % n] - a, r = q - a;
-    const double len = std::sqrt(e.x * e.x + e.y * e.y);
-    if (len == 0.0) continue;
-    if (e.x * r.y - e.y * r.x < kRegionMargin * len) return false;
+    const double cross = e.x * r.y - e.y * r.x;  // |e| × the distance to the edge's line
+    if (cross < 0.0 || cross * cross < kRegionMargin * kRegionMargin * (e.x * e.x + e.y * e.y)) {
+      if (e.x == 0.0 && e.y == 0.0) continue;
+      return false;
+    }
   }
   return n >= 3;
 }
@@ -333,12 +372,13 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
       if (labels.at(x, y, 3 + k * kMaskWords + w)) return true;
     return false;
   };
-  auto add_pixel = [&](uint32_t p, int x, int y) {
+  // Extends p's box by image points (their sightlines' hits on p's plane).
+  auto add_points = [&](uint32_t p, std::span<const dvec2> points) {
     const Plane& pl = model.polygons[p].plane;
     const double d = pl.distance(eye);
     if (box[p].x == INFINITY) seen.push_back(p);
-    for (int k = 0; k < 4; ++k) {
-      const double px = x + (k & 1), py = y + (k >> 1);
+    for (const dvec2& q : points) {
+      const double px = q.x, py = q.y;
       const dvec3 dir = F + ((px - cx) / f) * R - ((py - cy) / f) * U;
       const double denom = glm::dot(pl.normal, dir);
       if (denom == 0.0) continue;
@@ -348,6 +388,11 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
       box[p] = glm::dvec4(std::min(box[p].x, c.x), std::min(box[p].y, c.y), std::max(box[p].z, c.x), std::max(box[p].w, c.y));
     }
   };
+  auto add_pixel = [&](uint32_t p, int x, int y) {
+    const dvec2 corners[4] = {{x, y}, {x + 1, y}, {x, y + 1}, {x + 1, y + 1}};
+    add_points(p, corners);
+  };
+  std::vector<dvec2> clipped;
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {
       const uint32_t p = labels.at(x, y);
@@ -359,9 +404,13 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
           if (any_bits(x, y, k)) add_pixel(labels.at(x, y, 1 + k), x, y);
       }
       if (exact && boundary.at(x, y)) {
-        uint32_t last = p;  // (regions of one polygon are often consecutive)
+        // Only the part of each region inside the pixel: a sliver of a polygon seen edge-on
+        // would otherwise stretch its box over the whole polygon.
         for (uint32_t r : regions_at(x, y))
-          if (const uint32_t q = vis_map->regions[r].polygon; q != last) add_pixel(q, x, y), last = q;
+          if (const MapRegion& reg = vis_map->regions[r]; reg.polygon != p) {
+            clip_to_pixel(reg.vertices, x, y, clipped);
+            add_points(reg.polygon, clipped);
+          }
       }
     }
   std::sort(seen.begin(), seen.end());
