@@ -170,16 +170,25 @@ TEST(GibrMapping, OccludedTexelNeverReceivesThatPhotographsColor) {
   // With unmixed silhouette pixels (photographs of 2 × 2 samples, so pixels are true mixes):
   // the unmixed colors go only to exactly visible texels too.
   std::vector<ImageF> photos2;
-  std::vector<ImageU32> unmixed;
+  std::vector<ImageU32> unmixed, unmixed_exact;
+  std::vector<VisibilityMap> photo_maps;
   for (const Camera& c : cams) {
     photos2.push_back(render_photo(textured, rays, c, 2, 1));
-    const VisibilityMap map = trace_visibility_map(wp, c);
-    unmixed.push_back(unmix_silhouette_pixels(map, vismap_pixel_polygons(map), photos2.back(), 2));
+    photo_maps.push_back(trace_visibility_map(wp, c));
+    unmixed.push_back(unmix_silhouette_pixels(photo_maps.back(), vismap_pixel_polygons(photo_maps.back()), photos2.back(), 2));
+    unmixed_exact.push_back(
+        unmix_silhouette_pixels(photo_maps.back(), vismap_pixel_polygons(photo_maps.back(), false, false), photos2.back(), 2));
   }
   const RadianceMaps unmixed_maps = build_radiance_maps(model, 0.02, cams, photos2, unmixed);
   EXPECT_GT(unmixed_maps.stats.samples_unmixed, 100u) << "the check should cover unmixed samples";
   size_t unmixed_total = 0;
   EXPECT_EQ(occluded_samples(unmixed_maps, unmixed_total), 0u) << "of " << unmixed_total;
+  // And with the exact texel-center test (the maps given, as build_gibr_model does).
+  const RadianceMaps exact_maps = build_radiance_maps(model, 0.02, cams, photos2, unmixed_exact, photo_maps);
+  EXPECT_GT(exact_maps.stats.samples_extrapolated + exact_maps.stats.samples_unmixed,
+            unmixed_maps.stats.samples_extrapolated + unmixed_maps.stats.samples_unmixed);
+  size_t exact_total = 0;
+  EXPECT_EQ(occluded_samples(exact_maps, exact_total), 0u) << "of " << exact_total;
 }
 
 // The sub-pixel record fills texels seen only in pixels touching a silhouette, never with
