@@ -5,6 +5,7 @@
 #include "proxima/gibr/novel_view.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -48,9 +49,36 @@ bool sample_layer(const SampleLayer& L, vec2 tc, uint32_t min_alpha, vec3& out) 
   return true;
 }
 
-// The sample with alpha ≥ min_alpha nearest to texel (ci, cj) within `radius` rings (ring by
-// ring, row-major).
+// The sample with alpha ≥ min_alpha (> 0) nearest to texel (ci, cj) within `radius` rings
+// (ring by ring, row-major within a ring). Visits only the ring's cells inside the layer's
+// rectangle — O(r) per ring, not the whole square — in that same order.
 bool nearest_sample(const SampleLayer& L, int ci, int cj, int radius, uint32_t min_alpha, vec3& out) {
+  const int li = ci - L.x0, lj = cj - L.y0;  // layer-local
+  if (li + radius < 0 || lj + radius < 0 || li - radius >= L.width || lj - radius >= L.height) return false;
+  auto hit = [&](int i, int j) {
+    const uint32_t t = L.rgba[size_t(j) * size_t(L.width) + size_t(i)];
+    if ((t >> 24) < min_alpha) return false;
+    out = unpack_srgb8(t);
+    return true;
+  };
+  for (int r = 0; r <= radius; ++r) {
+    const int j0 = std::max(lj - r, 0), j1 = std::min(lj + r, L.height - 1);
+    const int i0 = std::max(li - r, 0), i1 = std::min(li + r, L.width - 1);
+    for (int j = j0; j <= j1; ++j) {
+      if (j == lj - r || j == lj + r) {  // top or bottom row of the ring: all of it
+        for (int i = i0; i <= i1; ++i)
+          if (hit(i, j)) return true;
+      } else {  // a middle row: its two ends
+        if (li - r >= 0 && li - r < L.width && hit(li - r, j)) return true;
+        if (li + r >= 0 && li + r < L.width && hit(li + r, j)) return true;
+      }
+    }
+  }
+  return false;
+}
+
+// The plain search nearest_sample replaces (whole square per ring): NovelViewOptions::fast = false.
+bool nearest_sample_plain(const SampleLayer& L, int ci, int cj, int radius, uint32_t min_alpha, vec3& out) {
   for (int r = 0; r <= radius; ++r)
     for (int j = cj - r; j <= cj + r; ++j)
       for (int i = ci - r; i <= ci + r; ++i) {
@@ -62,6 +90,24 @@ bool nearest_sample(const SampleLayer& L, int ci, int cj, int radius, uint32_t m
       }
   return false;
 }
+
+// Hole fills already found in a tile: the fill is a function of (polygon, nearest
+// photograph's layer, texel), and neighboring pixels and samples of a hole usually share all
+// three (texels span several pixels), so a small direct-mapped memo skips the repeated ring
+// searches. Bits are unchanged: a hit returns what the search would.
+struct HoleMemo {
+  struct Entry {
+    uint32_t p = kNone, best = 0;
+    int ci = 0, cj = 0;
+    bool got = false;
+    vec3 color{0.0f};
+  };
+  static constexpr size_t kSize = 256;
+  std::array<Entry, kSize> e;
+  static size_t slot(uint32_t p, int ci, int cj) {
+    return (size_t(p) * 73856093u ^ size_t(uint32_t(ci)) * 19349663u ^ size_t(uint32_t(cj)) * 83492791u) % kSize;
+  }
+};
 
 }  // namespace
 
@@ -115,7 +161,7 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
   };
   // The color of surface point w on polygon p: `hole` when no photograph's sample covers it,
   // `filled` when the hole fill found one.
-  auto shade = [&](uint32_t p, const vec3& w, vec3& color, bool& hole, bool& filled) {
+  auto shade = [&](uint32_t p, const vec3& w, vec3& color, bool& hole, bool& filled, HoleMemo& memo) {
     const GridF& g = grids[p];
     const vec3 d = w - g.origin;
     const vec2 tc(glm::dot(d, g.u) * g.inv_texel, glm::dot(d, g.v) * g.inv_texel);
@@ -152,14 +198,23 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
       if (dd < best_d) best_d = dd, best = &L;
     }
     const int ci = int(std::floor(tc.x)), cj = int(std::floor(tc.y));
-    bool got = best && nearest_sample(*best, ci, cj, options.hole_radius, kExtrapolated, color);
+    const uint32_t best_i = best ? uint32_t(best - layers.data()) : uint32_t(layers.size());
+    HoleMemo::Entry& m = memo.e[HoleMemo::slot(p, ci, cj)];
+    if (options.fast && m.p == p && m.best == best_i && m.ci == ci && m.cj == cj) {
+      color = m.color;
+      filled = m.got;
+      return;
+    }
+    const auto search = options.fast ? &nearest_sample : &nearest_sample_plain;
+    bool got = best && search(*best, ci, cj, options.hole_radius, kExtrapolated, color);
     // Then the other photographs that saw P, closest direction first; last, the
     // mixed samples of texels no photograph saw in a pixel wholly on P.
     for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
-      got = nearest_sample(layers[order[o]], ci, cj, options.hole_radius, kExtrapolated, color);
+      got = search(layers[order[o]], ci, cj, options.hole_radius, kExtrapolated, color);
     for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
-      got = layers[order[o]].mixed > 0 && nearest_sample(layers[order[o]], ci, cj, options.hole_radius, kMixed, color);
+      got = layers[order[o]].mixed > 0 && search(layers[order[o]], ci, cj, options.hole_radius, kMixed, color);
     filled = got;
+    m = {p, best_i, ci, cj, got, color};
   };
 
   const int W = camera.width, H = camera.height;
@@ -174,6 +229,7 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
   const float inv_samples = 1.0f / float(ss * ss);
   parallel_for_tiles(W, H, tile, [&](const Tile& t) {
     size_t holes = 0, filled = 0, covered = 0;
+    HoleMemo memo;
     for (int y = t.y0; y < t.y1; ++y)
       for (int x = t.x0; x < t.x1; ++x) {
         // Multisampling: where all ss × ss samples see one polygon, shade once at the pixel
@@ -194,7 +250,7 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
         auto add = [&](uint32_t p, const vec3& w, float weight) {
           vec3 c;
           bool hole = false, got = false;
-          shade(p, w, c, hole, got);
+          shade(p, w, c, hole, got, memo);
           any = true;
           sum += weight * c;
           if (hole) any_hole = true, all_filled = all_filled && got;
