@@ -25,9 +25,21 @@ struct GridF {
   float inv_texel;
 };
 
+// Linear values of the 256 sRGB codes, unpack_srgb8 per channel: a table the blend's
+// innermost loop reads inline (unpack_srgb8 is out of line in radiance_map.cpp). Built on
+// first use, after radiance_map.cpp's statics.
+const float* srgb_lut() {
+  static const std::array<float, 256> lut = [] {
+    std::array<float, 256> t{};
+    for (uint32_t i = 0; i < 256; ++i) t[i] = unpack_srgb8(i).x;
+    return t;
+  }();
+  return lut.data();
+}
+
 // Bilinear sample of a layer at continuous texel coordinates over the texels holding
 // samples with alpha ≥ min_alpha; false when none of the 2 × 2 does.
-bool sample_layer(const SampleLayer& L, vec2 tc, uint32_t min_alpha, vec3& out) {
+bool sample_layer(const SampleLayer& L, vec2 tc, uint32_t min_alpha, const float* lut, vec3& out) {
   const float sx = tc.x - 0.5f - float(L.x0), sy = tc.y - 0.5f - float(L.y0);
   const float fx0 = std::floor(sx), fy0 = std::floor(sy);
   const int i0 = int(fx0), j0 = int(fy0);
@@ -41,12 +53,22 @@ bool sample_layer(const SampleLayer& L, vec2 tc, uint32_t min_alpha, vec3& out) 
     const uint32_t t = L.rgba[size_t(j) * size_t(L.width) + size_t(i)];
     if ((t >> 24) < min_alpha) continue;
     const float w = ((k & 1) ? fx : 1.0f - fx) * ((k >> 1) ? fy : 1.0f - fy);
-    c += w * unpack_srgb8(t);
+    c += w * vec3(lut[t & 0xFF], lut[(t >> 8) & 0xFF], lut[(t >> 16) & 0xFF]);
     wsum += w;
   }
   if (wsum <= 1e-6f) return false;
   out = c / wsum;
   return true;
+}
+
+// Prefetches the 2 × 2 texels sample_layer(L, tc, …) reads: the maps are large (hundreds of
+// MiB), so the blend waits on memory; fetching several layers' texels at once overlaps the
+// misses that the layer loop would otherwise take one after another.
+void prefetch_layer(const SampleLayer& L, vec2 tc) {
+  const int i0 = int(std::floor(tc.x - 0.5f - float(L.x0))), j0 = int(std::floor(tc.y - 0.5f - float(L.y0)));
+  const int i = std::clamp(i0, 0, L.width - 1);
+  for (int j = std::max(j0, 0); j <= std::min(j0 + 1, L.height - 1); ++j)
+    __builtin_prefetch(L.rgba.data() + size_t(j) * size_t(L.width) + size_t(i));
 }
 
 // The sample with alpha ≥ min_alpha (> 0) nearest to texel (ci, cj) within `radius` rings
@@ -152,6 +174,16 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
     std::sort(keyed.begin(), keyed.end());
     for (const auto& kv : keyed) order.push_back(kv.second);
   }
+  // The ranked layers flat, with their photographs' eyes (one indirection less per layer).
+  std::vector<const SampleLayer*> ranked(order.size());
+  std::vector<vec3> ranked_eye(order.size());
+  for (size_t p = 0; p < np; ++p)
+    for (uint32_t o = offset[p]; o < offset[p + 1]; ++o) {
+      ranked[o] = &maps.layers[p][order[o]];
+      ranked_eye[o] = maps.cameras[ranked[o]->photo].position;
+    }
+  const float* lut = srgb_lut();
+  constexpr uint32_t kPrefetchLayers = 6;  // ≥ k: most pixels find their k samples in these
 
   const int k = std::max(1, options.k);
   // Polygon seen by sample (x, y) of the fine raster, kNone for none.
@@ -170,14 +202,15 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
     vec3 sum(0.0f);
     float wsum = 0.0f;
     int found = 0;
+    for (uint32_t o = offset[p]; options.fast && o < std::min(offset[p] + kPrefetchLayers, offset[p + 1]); ++o)
+      prefetch_layer(*ranked[o], tc);
     // Direct samples first; exact-visible (extrapolated) ones only where no photograph
     // has a direct sample (mixed last-resort samples never: holes only).
     for (int pass = 0; pass < 2 && found == 0; ++pass)
       for (uint32_t o = offset[p]; o < offset[p + 1] && found < k; ++o) {
-        const SampleLayer& L = layers[order[o]];
         vec3 c;
-        if (!sample_layer(L, tc, pass == 0 ? 0xFFu : kExtrapolated, c)) continue;
-        const float cosv = glm::dot(glm::normalize(maps.cameras[L.photo].position - w), view);
+        if (!sample_layer(*ranked[o], tc, pass == 0 ? 0xFFu : kExtrapolated, lut, c)) continue;
+        const float cosv = glm::dot(glm::normalize(ranked_eye[o] - w), view);
         const float wt = 1.0f / (1.0f - cosv + 1e-7f);
         sum += wt * c;
         wsum += wt;
@@ -210,9 +243,9 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
     // Then the other photographs that saw P, closest direction first; last, the
     // mixed samples of texels no photograph saw in a pixel wholly on P.
     for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
-      got = search(layers[order[o]], ci, cj, options.hole_radius, kExtrapolated, color);
+      got = search(*ranked[o], ci, cj, options.hole_radius, kExtrapolated, color);
     for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
-      got = layers[order[o]].mixed > 0 && search(layers[order[o]], ci, cj, options.hole_radius, kMixed, color);
+      got = ranked[o]->mixed > 0 && search(*ranked[o], ci, cj, options.hole_radius, kMixed, color);
     filled = got;
     m = {p, best_i, ci, cj, got, color};
   };
