@@ -61,16 +61,6 @@ bool sample_layer(const SampleLayer& L, vec2 tc, uint32_t min_alpha, const float
   return true;
 }
 
-// Prefetches the 2 × 2 texels sample_layer(L, tc, …) reads: the maps are large (hundreds of
-// MiB), so the blend waits on memory; fetching several layers' texels at once overlaps the
-// misses that the layer loop would otherwise take one after another.
-void prefetch_layer(const SampleLayer& L, vec2 tc) {
-  const int i0 = int(std::floor(tc.x - 0.5f - float(L.x0))), j0 = int(std::floor(tc.y - 0.5f - float(L.y0)));
-  const int i = std::clamp(i0, 0, L.width - 1);
-  for (int j = std::max(j0, 0); j <= std::min(j0 + 1, L.height - 1); ++j)
-    __builtin_prefetch(L.rgba.data() + size_t(j) * size_t(L.width) + size_t(i));
-}
-
 // The sample with alpha ≥ min_alpha (> 0) nearest to texel (ci, cj) within `radius` rings
 // (ring by ring, row-major within a ring). Visits only the ring's cells inside the layer's
 // rectangle — O(r) per ring, not the whole square — in that same order.
@@ -183,7 +173,6 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
       ranked_eye[o] = maps.cameras[ranked[o]->photo].position;
     }
   const float* lut = srgb_lut();
-  constexpr uint32_t kPrefetchLayers = 6;  // ≥ k: most pixels find their k samples in these
 
   const int k = std::max(1, options.k);
   // Polygon seen by sample (x, y) of the fine raster, kNone for none.
@@ -202,8 +191,6 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
     vec3 sum(0.0f);
     float wsum = 0.0f;
     int found = 0;
-    for (uint32_t o = offset[p]; options.fast && o < std::min(offset[p] + kPrefetchLayers, offset[p + 1]); ++o)
-      prefetch_layer(*ranked[o], tc);
     // Direct samples first; exact-visible (extrapolated) ones only where no photograph
     // has a direct sample (mixed last-resort samples never: holes only).
     for (int pass = 0; pass < 2 && found == 0; ++pass)
