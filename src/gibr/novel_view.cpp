@@ -61,6 +61,33 @@ bool sample_layer(const SampleLayer& L, vec2 tc, uint32_t min_alpha, const float
   return true;
 }
 
+// sample_layer at both blend thresholds from one read of the 2 × 2 texels: ok[0], out[0] as
+// with min_alpha 0xFF (direct), ok[1], out[1] as with kExtrapolated.
+void sample_layer_both(const SampleLayer& L, vec2 tc, const float* lut, bool ok[2], vec3 out[2]) {
+  ok[0] = ok[1] = false;
+  const float sx = tc.x - 0.5f - float(L.x0), sy = tc.y - 0.5f - float(L.y0);
+  const float fx0 = std::floor(sx), fy0 = std::floor(sy);
+  const int i0 = int(fx0), j0 = int(fy0);
+  if (i0 < -1 || j0 < -1 || i0 >= L.width || j0 >= L.height) return;
+  const float fx = sx - fx0, fy = sy - fy0;
+  vec3 c[2] = {vec3(0.0f), vec3(0.0f)};
+  float wsum[2] = {0.0f, 0.0f};
+  for (int k = 0; k < 4; ++k) {
+    const int i = i0 + (k & 1), j = j0 + (k >> 1);
+    if (i < 0 || j < 0 || i >= L.width || j >= L.height) continue;
+    const uint32_t t = L.rgba[size_t(j) * size_t(L.width) + size_t(i)];
+    if ((t >> 24) < kExtrapolated) continue;
+    const float w = ((k & 1) ? fx : 1.0f - fx) * ((k >> 1) ? fy : 1.0f - fy);
+    const vec3 v(lut[t & 0xFF], lut[(t >> 8) & 0xFF], lut[(t >> 16) & 0xFF]);
+    for (int m = (t >> 24) >= 0xFFu ? 0 : 1; m < 2; ++m) {
+      c[m] += w * v;
+      wsum[m] += w;
+    }
+  }
+  for (int m = 0; m < 2; ++m)
+    if (!(wsum[m] <= 1e-6f)) ok[m] = true, out[m] = c[m] / wsum[m];
+}
+
 // The sample with alpha ≥ min_alpha (> 0) nearest to texel (ci, cj) within `radius` rings
 // (ring by ring, row-major within a ring). Visits only the ring's cells inside the layer's
 // rectangle — O(r) per ring, not the whole square — in that same order.
@@ -193,7 +220,26 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
     int found = 0;
     // Direct samples first; exact-visible (extrapolated) ones only where no photograph
     // has a direct sample (mixed last-resort samples never: holes only).
-    for (int pass = 0; pass < 2 && found == 0; ++pass)
+    if (options.fast) {
+      // Both passes in one scan, each summed in its own order as below: a hole (pass 1)
+      // does not scan P's layers twice.
+      vec3 sum1(0.0f);
+      float wsum1 = 0.0f;
+      int found1 = 0;
+      for (uint32_t o = offset[p]; o < offset[p + 1] && found < k; ++o) {
+        bool ok[2];
+        vec3 c[2] = {vec3(0.0f), vec3(0.0f)};
+        sample_layer_both(*ranked[o], tc, lut, ok, c);
+        const bool use1 = ok[1] && found1 < k;
+        if (!ok[0] && !use1) continue;
+        const float cosv = glm::dot(glm::normalize(ranked_eye[o] - w), view);
+        const float wt = 1.0f / (1.0f - cosv + 1e-7f);
+        if (ok[0]) sum += wt * c[0], wsum += wt, ++found;
+        if (use1) sum1 += wt * c[1], wsum1 += wt, ++found1;
+      }
+      if (found == 0) sum = sum1, wsum = wsum1, found = found1;
+    }
+    for (int pass = 0; !options.fast && pass < 2 && found == 0; ++pass)
       for (uint32_t o = offset[p]; o < offset[p + 1] && found < k; ++o) {
         vec3 c;
         if (!sample_layer(*ranked[o], tc, pass == 0 ? 0xFFu : kExtrapolated, lut, c)) continue;
