@@ -37,32 +37,10 @@ const float* srgb_lut() {
   return lut.data();
 }
 
-// Bilinear sample of a layer at continuous texel coordinates over the texels holding
-// samples with alpha ≥ min_alpha; false when none of the 2 × 2 does.
-bool sample_layer(const SampleLayer& L, vec2 tc, uint32_t min_alpha, const float* lut, vec3& out) {
-  const float sx = tc.x - 0.5f - float(L.x0), sy = tc.y - 0.5f - float(L.y0);
-  const float fx0 = std::floor(sx), fy0 = std::floor(sy);
-  const int i0 = int(fx0), j0 = int(fy0);
-  if (i0 < -1 || j0 < -1 || i0 >= L.width || j0 >= L.height) return false;
-  const float fx = sx - fx0, fy = sy - fy0;
-  vec3 c(0.0f);
-  float wsum = 0.0f;
-  for (int k = 0; k < 4; ++k) {
-    const int i = i0 + (k & 1), j = j0 + (k >> 1);
-    if (i < 0 || j < 0 || i >= L.width || j >= L.height) continue;
-    const uint32_t t = L.rgba[size_t(j) * size_t(L.width) + size_t(i)];
-    if ((t >> 24) < min_alpha) continue;
-    const float w = ((k & 1) ? fx : 1.0f - fx) * ((k >> 1) ? fy : 1.0f - fy);
-    c += w * vec3(lut[t & 0xFF], lut[(t >> 8) & 0xFF], lut[(t >> 16) & 0xFF]);
-    wsum += w;
-  }
-  if (wsum <= 1e-6f) return false;
-  out = c / wsum;
-  return true;
-}
-
-// sample_layer at both blend thresholds from one read of the 2 × 2 texels: ok[0], out[0] as
-// with min_alpha 0xFF (direct), ok[1], out[1] as with kExtrapolated.
+// Bilinear samples of a layer at continuous texel coordinates, from one read of the 2 × 2
+// texels around them: out[0] over the direct samples (alpha 0xFF), out[1] over direct and
+// exact-visible ones (alpha ≥ kExtrapolated), weights renormalized; ok[m] false when none of
+// the 2 × 2 holds such a sample.
 void sample_layer_both(const SampleLayer& L, vec2 tc, const float* lut, bool ok[2], vec3 out[2]) {
   ok[0] = ok[1] = false;
   const float sx = tc.x - 0.5f - float(L.x0), sy = tc.y - 0.5f - float(L.y0);
@@ -241,8 +219,11 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
     }
     for (int pass = 0; !options.fast && pass < 2 && found == 0; ++pass)
       for (uint32_t o = offset[p]; o < offset[p + 1] && found < k; ++o) {
-        vec3 c;
-        if (!sample_layer(*ranked[o], tc, pass == 0 ? 0xFFu : kExtrapolated, lut, c)) continue;
+        bool ok[2];
+        vec3 cc[2] = {vec3(0.0f), vec3(0.0f)};
+        sample_layer_both(*ranked[o], tc, lut, ok, cc);
+        if (!ok[pass]) continue;
+        const vec3 c = cc[pass];
         const float cosv = glm::dot(glm::normalize(ranked_eye[o] - w), view);
         const float wt = 1.0f / (1.0f - cosv + 1e-7f);
         sum += wt * c;
