@@ -5,6 +5,7 @@
 #include "proxima/gibr/novel_view.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -24,33 +25,77 @@ struct GridF {
   float inv_texel;
 };
 
-// Bilinear sample of a layer at continuous texel coordinates over the texels holding
-// samples with alpha ≥ min_alpha; false when none of the 2 × 2 does.
-bool sample_layer(const SampleLayer& L, vec2 tc, uint32_t min_alpha, vec3& out) {
+// Linear values of the 256 sRGB codes, unpack_srgb8 per channel: a table the blend's
+// innermost loop reads inline (unpack_srgb8 is out of line in radiance_map.cpp). Built on
+// first use, after radiance_map.cpp's statics.
+const float* srgb_lut() {
+  static const std::array<float, 256> lut = [] {
+    std::array<float, 256> t{};
+    for (uint32_t i = 0; i < 256; ++i) t[i] = unpack_srgb8(i).x;
+    return t;
+  }();
+  return lut.data();
+}
+
+// Bilinear samples of a layer at continuous texel coordinates, from one read of the 2 × 2
+// texels around them: out[0] over the direct samples (alpha 0xFF), out[1] over direct and
+// exact-visible ones (alpha ≥ kExtrapolated), weights renormalized; ok[m] false when none of
+// the 2 × 2 holds such a sample.
+void sample_layer_both(const SampleLayer& L, vec2 tc, const float* lut, bool ok[2], vec3 out[2]) {
+  ok[0] = ok[1] = false;
   const float sx = tc.x - 0.5f - float(L.x0), sy = tc.y - 0.5f - float(L.y0);
   const float fx0 = std::floor(sx), fy0 = std::floor(sy);
   const int i0 = int(fx0), j0 = int(fy0);
-  if (i0 < -1 || j0 < -1 || i0 >= L.width || j0 >= L.height) return false;
+  if (i0 < -1 || j0 < -1 || i0 >= L.width || j0 >= L.height) return;
   const float fx = sx - fx0, fy = sy - fy0;
-  vec3 c(0.0f);
-  float wsum = 0.0f;
+  vec3 c[2] = {vec3(0.0f), vec3(0.0f)};
+  float wsum[2] = {0.0f, 0.0f};
   for (int k = 0; k < 4; ++k) {
     const int i = i0 + (k & 1), j = j0 + (k >> 1);
     if (i < 0 || j < 0 || i >= L.width || j >= L.height) continue;
     const uint32_t t = L.rgba[size_t(j) * size_t(L.width) + size_t(i)];
-    if ((t >> 24) < min_alpha) continue;
+    if ((t >> 24) < kExtrapolated) continue;
     const float w = ((k & 1) ? fx : 1.0f - fx) * ((k >> 1) ? fy : 1.0f - fy);
-    c += w * unpack_srgb8(t);
-    wsum += w;
+    const vec3 v(lut[t & 0xFF], lut[(t >> 8) & 0xFF], lut[(t >> 16) & 0xFF]);
+    for (int m = (t >> 24) >= 0xFFu ? 0 : 1; m < 2; ++m) {
+      c[m] += w * v;
+      wsum[m] += w;
+    }
   }
-  if (wsum <= 1e-6f) return false;
-  out = c / wsum;
-  return true;
+  for (int m = 0; m < 2; ++m)
+    if (!(wsum[m] <= 1e-6f)) ok[m] = true, out[m] = c[m] / wsum[m];
 }
 
-// The sample with alpha ≥ min_alpha nearest to texel (ci, cj) within `radius` rings (ring by
-// ring, row-major).
+// The sample with alpha ≥ min_alpha (> 0) nearest to texel (ci, cj) within `radius` rings
+// (ring by ring, row-major within a ring). Visits only the ring's cells inside the layer's
+// rectangle — O(r) per ring, not the whole square — in that same order.
 bool nearest_sample(const SampleLayer& L, int ci, int cj, int radius, uint32_t min_alpha, vec3& out) {
+  const int li = ci - L.x0, lj = cj - L.y0;  // layer-local
+  if (li + radius < 0 || lj + radius < 0 || li - radius >= L.width || lj - radius >= L.height) return false;
+  auto hit = [&](int i, int j) {
+    const uint32_t t = L.rgba[size_t(j) * size_t(L.width) + size_t(i)];
+    if ((t >> 24) < min_alpha) return false;
+    out = unpack_srgb8(t);
+    return true;
+  };
+  for (int r = 0; r <= radius; ++r) {
+    const int j0 = std::max(lj - r, 0), j1 = std::min(lj + r, L.height - 1);
+    const int i0 = std::max(li - r, 0), i1 = std::min(li + r, L.width - 1);
+    for (int j = j0; j <= j1; ++j) {
+      if (j == lj - r || j == lj + r) {  // top or bottom row of the ring: all of it
+        for (int i = i0; i <= i1; ++i)
+          if (hit(i, j)) return true;
+      } else {  // a middle row: its two ends
+        if (li - r >= 0 && li - r < L.width && hit(li - r, j)) return true;
+        if (li + r >= 0 && li + r < L.width && hit(li + r, j)) return true;
+      }
+    }
+  }
+  return false;
+}
+
+// The plain search nearest_sample replaces (whole square per ring): NovelViewOptions::fast = false.
+bool nearest_sample_plain(const SampleLayer& L, int ci, int cj, int radius, uint32_t min_alpha, vec3& out) {
   for (int r = 0; r <= radius; ++r)
     for (int j = cj - r; j <= cj + r; ++j)
       for (int i = ci - r; i <= ci + r; ++i) {
@@ -62,6 +107,24 @@ bool nearest_sample(const SampleLayer& L, int ci, int cj, int radius, uint32_t m
       }
   return false;
 }
+
+// Hole fills already found in a tile: the fill is a function of (polygon, nearest
+// photograph's layer, texel), and neighboring pixels and samples of a hole usually share all
+// three (texels span several pixels), so a small direct-mapped memo skips the repeated ring
+// searches. Bits are unchanged: a hit returns what the search would.
+struct HoleMemo {
+  struct Entry {
+    uint32_t p = kNone, best = 0;
+    int ci = 0, cj = 0;
+    bool got = false;
+    vec3 color{0.0f};
+  };
+  static constexpr size_t kSize = 256;
+  std::array<Entry, kSize> e;
+  static size_t slot(uint32_t p, int ci, int cj) {
+    return (size_t(p) * 73856093u ^ size_t(uint32_t(ci)) * 19349663u ^ size_t(uint32_t(cj)) * 83492791u) % kSize;
+  }
+};
 
 }  // namespace
 
@@ -106,6 +169,15 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
     std::sort(keyed.begin(), keyed.end());
     for (const auto& kv : keyed) order.push_back(kv.second);
   }
+  // The ranked layers flat, with their photographs' eyes (one indirection less per layer).
+  std::vector<const SampleLayer*> ranked(order.size());
+  std::vector<vec3> ranked_eye(order.size());
+  for (size_t p = 0; p < np; ++p)
+    for (uint32_t o = offset[p]; o < offset[p + 1]; ++o) {
+      ranked[o] = &maps.layers[p][order[o]];
+      ranked_eye[o] = maps.cameras[ranked[o]->photo].position;
+    }
+  const float* lut = srgb_lut();
 
   const int k = std::max(1, options.k);
   // Polygon seen by sample (x, y) of the fine raster, kNone for none.
@@ -115,7 +187,7 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
   };
   // The color of surface point w on polygon p: `hole` when no photograph's sample covers it,
   // `filled` when the hole fill found one.
-  auto shade = [&](uint32_t p, const vec3& w, vec3& color, bool& hole, bool& filled) {
+  auto shade = [&](uint32_t p, const vec3& w, vec3& color, bool& hole, bool& filled, HoleMemo& memo) {
     const GridF& g = grids[p];
     const vec3 d = w - g.origin;
     const vec2 tc(glm::dot(d, g.u) * g.inv_texel, glm::dot(d, g.v) * g.inv_texel);
@@ -126,12 +198,33 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
     int found = 0;
     // Direct samples first; exact-visible (extrapolated) ones only where no photograph
     // has a direct sample (mixed last-resort samples never: holes only).
-    for (int pass = 0; pass < 2 && found == 0; ++pass)
+    if (options.fast) {
+      // Both passes in one scan, each summed in its own order as below: a hole (pass 1)
+      // does not scan P's layers twice.
+      vec3 sum1(0.0f);
+      float wsum1 = 0.0f;
+      int found1 = 0;
       for (uint32_t o = offset[p]; o < offset[p + 1] && found < k; ++o) {
-        const SampleLayer& L = layers[order[o]];
-        vec3 c;
-        if (!sample_layer(L, tc, pass == 0 ? 0xFFu : kExtrapolated, c)) continue;
-        const float cosv = glm::dot(glm::normalize(maps.cameras[L.photo].position - w), view);
+        bool ok[2];
+        vec3 c[2] = {vec3(0.0f), vec3(0.0f)};
+        sample_layer_both(*ranked[o], tc, lut, ok, c);
+        const bool use1 = ok[1] && found1 < k;
+        if (!ok[0] && !use1) continue;
+        const float cosv = glm::dot(glm::normalize(ranked_eye[o] - w), view);
+        const float wt = 1.0f / (1.0f - cosv + 1e-7f);
+        if (ok[0]) sum += wt * c[0], wsum += wt, ++found;
+        if (use1) sum1 += wt * c[1], wsum1 += wt, ++found1;
+      }
+      if (found == 0) sum = sum1, wsum = wsum1, found = found1;
+    }
+    for (int pass = 0; !options.fast && pass < 2 && found == 0; ++pass)
+      for (uint32_t o = offset[p]; o < offset[p + 1] && found < k; ++o) {
+        bool ok[2];
+        vec3 cc[2] = {vec3(0.0f), vec3(0.0f)};
+        sample_layer_both(*ranked[o], tc, lut, ok, cc);
+        if (!ok[pass]) continue;
+        const vec3 c = cc[pass];
+        const float cosv = glm::dot(glm::normalize(ranked_eye[o] - w), view);
         const float wt = 1.0f / (1.0f - cosv + 1e-7f);
         sum += wt * c;
         wsum += wt;
@@ -152,14 +245,23 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
       if (dd < best_d) best_d = dd, best = &L;
     }
     const int ci = int(std::floor(tc.x)), cj = int(std::floor(tc.y));
-    bool got = best && nearest_sample(*best, ci, cj, options.hole_radius, kExtrapolated, color);
+    const uint32_t best_i = best ? uint32_t(best - layers.data()) : uint32_t(layers.size());
+    HoleMemo::Entry& m = memo.e[HoleMemo::slot(p, ci, cj)];
+    if (options.fast && m.p == p && m.best == best_i && m.ci == ci && m.cj == cj) {
+      color = m.color;
+      filled = m.got;
+      return;
+    }
+    const auto search = options.fast ? &nearest_sample : &nearest_sample_plain;
+    bool got = best && search(*best, ci, cj, options.hole_radius, kExtrapolated, color);
     // Then the other photographs that saw P, closest direction first; last, the
     // mixed samples of texels no photograph saw in a pixel wholly on P.
     for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
-      got = nearest_sample(layers[order[o]], ci, cj, options.hole_radius, kExtrapolated, color);
+      got = search(*ranked[o], ci, cj, options.hole_radius, kExtrapolated, color);
     for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
-      got = layers[order[o]].mixed > 0 && nearest_sample(layers[order[o]], ci, cj, options.hole_radius, kMixed, color);
+      got = ranked[o]->mixed > 0 && search(*ranked[o], ci, cj, options.hole_radius, kMixed, color);
     filled = got;
+    m = {p, best_i, ci, cj, got, color};
   };
 
   const int W = camera.width, H = camera.height;
@@ -174,6 +276,7 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
   const float inv_samples = 1.0f / float(ss * ss);
   parallel_for_tiles(W, H, tile, [&](const Tile& t) {
     size_t holes = 0, filled = 0, covered = 0;
+    HoleMemo memo;
     for (int y = t.y0; y < t.y1; ++y)
       for (int x = t.x0; x < t.x1; ++x) {
         // Multisampling: where all ss × ss samples see one polygon, shade once at the pixel
@@ -194,7 +297,7 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
         auto add = [&](uint32_t p, const vec3& w, float weight) {
           vec3 c;
           bool hole = false, got = false;
-          shade(p, w, c, hole, got);
+          shade(p, w, c, hole, got, memo);
           any = true;
           sum += weight * c;
           if (hole) any_hole = true, all_filled = all_filled && got;

@@ -40,6 +40,10 @@ struct NovelViewOptions {
   int k = 3;             // photographs blended per pixel, ≥ 1
   int hole_radius = 8;   // texels searched around a hole
   int supersample = 1;   // s×s samples per pixel (antialiasing), 1..8 (InputError otherwise)
+  // false: the plain path — a pass over the layers per sample kind, every hole searched
+  // afresh ring by ring over whole squares; the same bits, for tests and benchmarks of the
+  // fast one (both kinds in one pass, hole fills memoized, ring cells only).
+  bool fast = true;
 };
 
 struct NovelView {
