@@ -189,6 +189,9 @@ void add_temporal_reflect_flags(CLI::App* app, TemporalReflectFlags& f) {
       ->capture_default_str();
   app->add_flag("--recompute-splats", f.recompute_splats,
                 "temporal: key samples no warp triangle reached (splatted as points) are unreliable, so recomputed");
+  app->add_flag("--match-extrapolate", f.match_extrapolate,
+                "temporal: the best match also tries the previous offset plus its last change (steady motion) "
+                "and starts from the closer of the two");
   app->add_option("--depth-discontinuity", f.depth_discontinuity,
                   "temporal: warp grid corners whose s.d or s.d + s.r differ by more than this fraction are not "
                   "connected (their gap is recomputed)")
@@ -238,6 +241,7 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   to.warp.recompute_splats = tf.recompute_splats;
   to.warp.edge_rule = tf.edge_rule == "recompute" ? ReflectedEdgeRule::kRecompute : ReflectedEdgeRule::kNearest;
   to.warp.depth_discontinuity = tf.depth_discontinuity;
+  to.match.extrapolate = tf.match_extrapolate;
 
   Scene scene = animated ? pose_scene(rest, t_first) : rest;
   RayScene rays(scene);
@@ -245,7 +249,7 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   Series mirror_temporal_mae, mirror_direct_mae;
   Series reflective_pct, recompute_pct, traced_pct, temporal_mae, direct_mae, direct_recompute_pct, temporal_ms,
       reference_ms, frame_temporal_ms, frame_reference_ms, diffuse_ms, key_ms, match_ms, warp_ms, reproject_ms,
-      recompute_ms, compose_ms, intervals, curved_pct, edge_pct, temporal_cpu_ms, reference_cpu_ms;
+      recompute_ms, compose_ms, intervals, curved_pct, edge_pct, temporal_cpu_ms, reference_cpu_ms, match_steps;
   Table per_frame{"Per frame", {"frame", "key", "reflective_pct", "recompute_pct", "disoccluded_pct", "unreliable_pct",
                                 "temporal_mae", "direct_mae", "diffuse_ms", "key_ms", "match_ms", "warp_ms",
                                 "reproject_ms", "recompute_ms", "compose_ms", "reference_trace_ms"}, {}};
@@ -291,6 +295,7 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
       recompute_pct.add(100.0 * st.recompute_fraction());
       curved_pct.add(st.reflective ? 100.0 * double(st.curved) / double(st.reflective) : 0.0);
       edge_pct.add(st.reflective ? 100.0 * double(st.edge) / double(st.reflective) : 0.0);
+      match_steps.add(st.reflective ? double(st.match_steps) / double(st.reflective) : 0.0);
       traced_pct.add(100.0 * st.recompute_fraction());
     }
     ++since_key;
@@ -419,6 +424,8 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   m["diffuse_ms_avg"] = diffuse_ms.avg();
   m["key_ms_avg"] = key_ms.avg();
   m["match_ms_avg"] = match_ms.avg();
+  m["match_extrapolate"] = tf.match_extrapolate ? 1.0 : 0.0;
+  m["match_steps_per_pixel_avg"] = match_steps.avg();  // descent steps per reflective pixel, reuse frames
   m["warp_ms_avg"] = warp_ms.avg();
   m["reproject_ms_avg"] = reproject_ms.avg();
   m["recompute_ms_avg"] = recompute_ms.avg();

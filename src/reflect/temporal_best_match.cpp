@@ -55,7 +55,8 @@ float match_distance(vec3 w_n, vec3 n_n, vec3 reflected, vec3 eye) {
 }
 
 OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const OffsetBuffer* previous,
-                               const BestMatchOptions& options, BestMatchStats* stats) {
+                               const BestMatchOptions& options, BestMatchStats* stats,
+                               const OffsetBuffer* earlier) {
   const int w = key.object.width(), h = key.object.height();
   OffsetBuffer out;
   out.width = w;
@@ -63,6 +64,7 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
   out.offset.assign(size_t(w) * size_t(h), vec2(0.0f));
   out.valid.assign(size_t(w) * size_t(h), 0);
   const bool warm = previous && previous->width == w && previous->height == h;
+  const bool extrapolate = warm && options.extrapolate && earlier && earlier->width == w && earlier->height == h;
   const int max_steps = options.max_steps > 0 ? options.max_steps : w + h;
   const float focal = focal_length_px(key.camera);
   const Search s{key, eye, w, h};
@@ -82,6 +84,14 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
           if (s.same(px, py, object)) cx = px, cy = py;
         }
         float former = s.distance(cx, cy, r);
+        if (extrapolate) {  // steady motion: the offset moves on by its last change
+          const vec2 guess = 2.0f * previous->offset[i] - earlier->offset[i];
+          const int gx = x + int(std::lround(guess.x)), gy = y + int(std::lround(guess.y));
+          if ((gx != cx || gy != cy) && s.same(gx, gy, object)) {
+            const float d = s.distance(gx, gy, r);
+            if (d < former) former = d, cx = gx, cy = gy;
+          }
+        }
         bool converged = false;
         // The last step's 3×3 distances (centre included): on convergence they are the end
         // point's neighbours, which the sub-pixel fit reads again; after a step of (sx, sy)

@@ -63,6 +63,7 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
     TracedReflections traced = trace_reflections(scene, rays, frame);
     state.key = make_reflection_depth_image(frame, traced, kEscapeDistanceScale * frame.scene_diagonal);
     state.previous = {};
+    state.earlier = {};
     state.need_key = false;
     state.frames_since_key = 0;
     st.key = true;
@@ -72,10 +73,12 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
   } else {
     Stopwatch watch;
     BestMatchStats ms;
-    OffsetBuffer offsets = best_match_search(state.key, frame.camera.position,
-                                             state.previous.width ? &state.previous : nullptr, options.match, &ms);
+    OffsetBuffer offsets =
+        best_match_search(state.key, frame.camera.position, state.previous.width ? &state.previous : nullptr,
+                          options.match, &ms, state.earlier.width ? &state.earlier : nullptr);
     st.match_ms = watch.elapsed_ms();
     st.invalid_offsets = ms.invalid;
+    st.match_steps = ms.steps;
     watch.restart();
     const IntermediateReflection mid = warp_reflections(state.key, offsets, options.warp);
     st.warp_ms = watch.elapsed_ms();
@@ -92,6 +95,7 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
     watch.restart();
     recompute(scene, rays, frame, r);
     st.recompute_ms = watch.elapsed_ms();
+    if (options.match.extrapolate) state.earlier = std::move(state.previous);
     state.previous = std::move(offsets);
     ++state.frames_since_key;
     // §5.4.4: too much recomputed → the next frame refreshes the key frame.

@@ -105,4 +105,18 @@ TEST(TemporalCli, EdgeRuleRecomputeIsReported) {
     EXPECT_GT(m[name].get<double>(), 0.0) << name;
 }
 
+// --match-extrapolate is reported with the best match's descent steps per reflective pixel
+// (no key frame after the first, so later frames have two previous offset buffers).
+TEST(TemporalCli, MatchExtrapolateIsReported) {
+  const nlohmann::json plain = compare_metrics("--threshold 1");
+  const nlohmann::json m = compare_metrics("--threshold 1 --match-extrapolate");
+  ASSERT_FALSE(plain.is_null());
+  ASSERT_FALSE(m.is_null());
+  EXPECT_EQ(plain["match_extrapolate"].get<double>(), 0.0);
+  EXPECT_EQ(m["match_extrapolate"].get<double>(), 1.0);
+  EXPECT_EQ(m["keyframes"].get<double>(), 1.0);
+  EXPECT_GT(plain["match_steps_per_pixel_avg"].get<double>(), 0.0);
+  EXPECT_GT(m["match_steps_per_pixel_avg"].get<double>(), 0.0);
+}
+
 }  // namespace proxima

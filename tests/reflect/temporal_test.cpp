@@ -435,3 +435,44 @@ TEST(TemporalReflections, RecomputeSplatsMarksSplattedPointsUnreliable) {
 }
 
 }  // namespace proxima
+
+namespace proxima {
+
+// --match-extrapolate: under steady camera motion the walk starting from the offsets' last
+// change continued is shorter and ends at the same matches as the plain warm start.
+TEST(TemporalReflections, ExtrapolatedWarmStartShortensTheWalkAndKeepsTheMatches) {
+  const Scene scene = floor_mirror(false);
+  RayScene rays(scene);
+  const ReflectionFrame frame = frame_at(scene, kKeyEye);
+  const ReflectionDepthImage key = make_reflection_depth_image(frame, trace_reflections(scene, rays, frame), 1e3f);
+  BestMatchOptions plain, extrapolated;
+  extrapolated.extrapolate = true;
+  // Three equal steps of the camera: frames 1 and 2 as the warm starts of frame 3.
+  const OffsetBuffer o1 = best_match_search(key, kKeyEye + kMove, nullptr, plain);
+  const OffsetBuffer o2 = best_match_search(key, kKeyEye + 2.0f * kMove, &o1, plain);
+  BestMatchStats st_plain, st_ex;
+  const OffsetBuffer a = best_match_search(key, kKeyEye + 3.0f * kMove, &o2, plain, &st_plain);
+  const OffsetBuffer b = best_match_search(key, kKeyEye + 3.0f * kMove, &o2, extrapolated, &st_ex, &o1);
+  ASSERT_GT(st_plain.searched, 2000u);
+  // Each frame moves the matches by several pixels: the plain walk has work to save.
+  EXPECT_GT(double(st_plain.steps), 2.0 * double(st_plain.searched));
+  EXPECT_LT(double(st_ex.steps), 0.5 * double(st_plain.steps));
+  size_t both = 0, same = 0;
+  float worst = 0.0f;
+  for (size_t i = 0; i < a.valid.size(); ++i) {
+    if (!a.valid[i] || !b.valid[i]) continue;
+    ++both;
+    const float d = glm::length(a.offset[i] - b.offset[i]);
+    worst = std::max(worst, d);
+    same += d < 1e-4f;
+  }
+  EXPECT_GT(double(both), 0.98 * double(st_plain.searched - st_plain.invalid));
+  EXPECT_GT(double(same), 0.99 * double(both)) << "worst " << worst << " px";
+  EXPECT_LE(worst, 1.0f);
+  // Without `earlier` the option changes nothing.
+  const OffsetBuffer c = best_match_search(key, kKeyEye + 3.0f * kMove, &o2, extrapolated);
+  EXPECT_EQ(c.offset, a.offset);
+  EXPECT_EQ(c.valid, a.valid);
+}
+
+}  // namespace proxima

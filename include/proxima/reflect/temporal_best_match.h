@@ -29,6 +29,10 @@ struct BestMatchOptions {
                                   // of its horizontal and vertical neighbours
   float border_tolerance_px = 1.5f;  // a minimum on the silhouette border is kept only if
                                      // the reflected ray misses E_cur by ≤ this many key pixels
+  bool extrapolate = false;  // with `earlier` (the offsets one frame before `previous`): also try
+                             // s + 2·previous − earlier (steady motion continued) and start at
+                             // whichever of the two is closer; the walks shorten as the offsets
+                             // grow with the resolution
 };
 
 struct BestMatchStats {
@@ -42,8 +46,9 @@ float match_distance(vec3 w_n, vec3 n_n, vec3 reflected, vec3 eye);
 
 // Algorithm 9 for every reflective pixel of `key` (parallel, deterministic). `previous` (same
 // size, may be null) warm-starts each search at s + its offset (valid or not) when that
-// lies on the same reflector.
+// lies on the same reflector. `earlier` (may be null) is read only with options.extrapolate.
 OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const OffsetBuffer* previous,
-                               const BestMatchOptions& options, BestMatchStats* stats = nullptr);
+                               const BestMatchOptions& options, BestMatchStats* stats = nullptr,
+                               const OffsetBuffer* earlier = nullptr);
 
 }  // namespace proxima

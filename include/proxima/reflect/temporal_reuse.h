@@ -34,6 +34,7 @@ struct TemporalOptions {
 struct TemporalState {
   ReflectionDepthImage key;
   OffsetBuffer previous;   // last frame's offsets (warm start), empty after a key frame
+  OffsetBuffer earlier;    // the frame's before those (BestMatchOptions::extrapolate), empty likewise
   bool need_key = true;    // the next frame is a key frame
   int frames_since_key = 0;
 };
@@ -45,6 +46,7 @@ struct TemporalFrameStats {
   uint64_t disoccluded = 0, unreliable = 0, invalid_offsets = 0;
   uint64_t curved = 0;       // of the unreliable: on a strongly curved reflector (kReuseCurved)
   uint64_t edge = 0;         // of the unreliable: on an edge of the reflected image (kReuseEdge)
+  uint64_t match_steps = 0;  // Σ best-match descent steps
   double key_ms = 0.0;        // key frame: full trace + reflection depth image
   double match_ms = 0.0;      // best match (Algorithm 9)
   double warp_ms = 0.0;       // reflection offset (grid forward warp)
