@@ -36,6 +36,7 @@ struct GibrFlags {
   int frames = 10;
   int k = 3;
   int novel_ss = 1;         // 0 = the ground truth's (--supersample); 1 keeps ≥ 10 fps (RESULTS)
+  int hole_radius = NovelViewOptions{}.hole_radius;
   double offpath = 0.5;     // meters, --views offpath
   bool photo_images = true;
   int fps_repeat = 3;
@@ -90,6 +91,9 @@ Command register_gibr(CLI::App& root) {
   app->add_option("--novel-ss", f.novel_ss,
                   "s×s samples per novel-view pixel, both mappings (default 1; 0 = the ground truth's --supersample)")
       ->capture_default_str();
+  app->add_option("--hole-radius", f.hole_radius,
+                  "texels searched around a novel-view hole for the nearest sample, both mappings (0 = no fill)")
+      ->capture_default_str();
   app->add_option("--offpath", f.offpath, "meters the 'offpath' views are moved off the walk path")
       ->capture_default_str();
   app->add_option("--supersample", f.model.supersample, "k×k samples per photograph / ground-truth pixel")
@@ -112,6 +116,7 @@ Command register_gibr(CLI::App& root) {
             if (f.views != "path" && f.views != "photos" && f.views != "offpath")
               fail_input("--views: must be 'path', 'offpath' or 'photos' (got '" + f.views + "')");
             if (f.novel_ss < 0 || f.novel_ss > 8) fail_input("--novel-ss: must be in 0..8");
+            if (f.hole_radius < 0 || f.hole_radius > 4096) fail_input("--hole-radius: must be in 0..4096");
             if (!(f.offpath >= 0.0 && f.offpath <= 1e3)) fail_input("--offpath: must be a distance in meters ≥ 0");
             if (f.fps_repeat < 1 || f.fps_repeat > 1000) fail_input("--fps-repeat: must be in 1..1000");
             if (f.k < 1 || f.k > 64) fail_input("--k: must be in 1..64");
@@ -188,6 +193,7 @@ Command register_gibr(CLI::App& root) {
             std::filesystem::create_directories(out / "views");
             NovelViewOptions nvo;
             nvo.k = f.k;
+            nvo.hole_radius = f.hole_radius;
             // Both mappings through the same renderer, antialiased like the ground truth.
             nvo.supersample = f.novel_ss > 0 ? f.novel_ss : f.model.supersample;
             NovelViewOptions nvo1 = nvo;  // one sample per pixel: its cost, for comparison
