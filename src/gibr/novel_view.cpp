@@ -66,19 +66,29 @@ void sample_layer_both(const SampleLayer& L, vec2 tc, const float* lut, bool ok[
     if (!(wsum[m] <= 1e-6f)) ok[m] = true, out[m] = c[m] / wsum[m];
 }
 
-// The sample with alpha ≥ min_alpha (> 0) nearest to texel (ci, cj) within `radius` rings
-// (ring by ring, row-major within a ring). Visits only the ring's cells inside the layer's
-// rectangle — O(r) per ring, not the whole square — in that same order.
+// The sample with alpha ≥ min_alpha (kExtrapolated or kMixed) nearest to texel (ci, cj) within
+// `radius` rings (ring by ring, row-major within a ring). Visits only the ring's cells inside the
+// layer's rectangle — O(r) per ring, not the whole square — in that same order, and starts at
+// the first ring that may hold a sample (SampleLayer::reach): for q, the texel of the rectangle
+// nearest to c = (ci, cj), every sample t has d(c, t) ≥ d(c, q) and, as d(q, t) ≥ reach of q's
+// block, d(c, t) ≥ reach − d(c, q) (d: chessboard distance). The rings skipped hold no sample, so
+// the result is the plain search's.
 bool nearest_sample(const SampleLayer& L, int ci, int cj, int radius, uint32_t min_alpha, vec3& out) {
   const int li = ci - L.x0, lj = cj - L.y0;  // layer-local
-  if (li + radius < 0 || lj + radius < 0 || li - radius >= L.width || lj - radius >= L.height) return false;
+  const int qi = std::clamp(li, 0, L.width - 1), qj = std::clamp(lj, 0, L.height - 1);
+  const int dq = std::max(std::abs(li - qi), std::abs(lj - qj));
+  int start = dq;
+  const std::vector<uint8_t>& reach = min_alpha >= kExtrapolated ? L.reach : L.reach_mixed;
+  if (!reach.empty() && min_alpha >= kMixed)
+    start = std::max(start, int(reach[size_t(qj / kReachBlock) * size_t(L.reach_columns()) + size_t(qi / kReachBlock)]) - dq);
+  if (start > radius) return false;
   auto hit = [&](int i, int j) {
     const uint32_t t = L.rgba[size_t(j) * size_t(L.width) + size_t(i)];
     if ((t >> 24) < min_alpha) return false;
     out = unpack_srgb8(t);
     return true;
   };
-  for (int r = 0; r <= radius; ++r) {
+  for (int r = start; r <= radius; ++r) {
     const int j0 = std::max(lj - r, 0), j1 = std::min(lj + r, L.height - 1);
     const int i0 = std::max(li - r, 0), i1 = std::min(li + r, L.width - 1);
     for (int j = j0; j <= j1; ++j) {

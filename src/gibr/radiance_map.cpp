@@ -527,12 +527,60 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
     for (int j = 0; j < S.height; ++j)
       std::copy_n(L.rgba.begin() + long(size_t(j + fj0 - j0) * size_t(L.width) + size_t(fi0 - i0)), S.width,
                   S.rgba.begin() + long(size_t(j) * size_t(S.width)));
+    fill_reach(S);
     out.layers.push_back({p, std::move(S)});
   }
   return out;
 }
 
 }  // namespace
+
+namespace {
+
+// Chessboard distance from each texel of L to the nearest sample with alpha ≥ min_alpha: the
+// two-pass 3 × 3 transform (exact for this metric), reduced to the least value per block.
+std::vector<uint8_t> block_reach(const SampleLayer& L, uint32_t min_alpha) {
+  const int W = L.width, H = L.height;
+  constexpr uint16_t kFar = 0xFFFF;
+  std::vector<uint16_t> d(size_t(W) * size_t(H));
+  auto at = [&](int i, int j) -> uint16_t& { return d[size_t(j) * size_t(W) + size_t(i)]; };
+  auto step = [](uint16_t v) { return v == kFar ? kFar : uint16_t(v + 1); };
+  for (int j = 0; j < H; ++j)
+    for (int i = 0; i < W; ++i) {
+      uint16_t v = (L.rgba[size_t(j) * size_t(W) + size_t(i)] >> 24) >= min_alpha ? 0 : kFar;
+      if (v != 0) {
+        if (i > 0) v = std::min(v, step(at(i - 1, j)));
+        if (j > 0)
+          for (int di = -1; di <= 1; ++di)
+            if (i + di >= 0 && i + di < W) v = std::min(v, step(at(i + di, j - 1)));
+      }
+      at(i, j) = v;
+    }
+  for (int j = H - 1; j >= 0; --j)
+    for (int i = W - 1; i >= 0; --i) {
+      uint16_t v = at(i, j);
+      if (i + 1 < W) v = std::min(v, step(at(i + 1, j)));
+      if (j + 1 < H)
+        for (int di = -1; di <= 1; ++di)
+          if (i + di >= 0 && i + di < W) v = std::min(v, step(at(i + di, j + 1)));
+      at(i, j) = v;
+    }
+  const int bw = L.reach_columns(), bh = (H + kReachBlock - 1) / kReachBlock;
+  std::vector<uint8_t> out(size_t(bw) * size_t(bh), 255);
+  for (int j = 0; j < H; ++j)
+    for (int i = 0; i < W; ++i) {
+      uint8_t& b = out[size_t(j / kReachBlock) * size_t(bw) + size_t(i / kReachBlock)];
+      b = uint8_t(std::min<int>(b, at(i, j)));
+    }
+  return out;
+}
+
+}  // namespace
+
+void fill_reach(SampleLayer& L) {
+  L.reach = block_reach(L, kExtrapolated);
+  L.reach_mixed = L.mixed > 0 ? block_reach(L, kMixed) : std::vector<uint8_t>{};
+}
 
 RadianceMaps build_radiance_maps(const ModelPolygons& model, double texel, std::span<const Camera> cameras,
                                  std::span<const ImageF> photos, std::span<const ImageU32> pixel_polygons,

@@ -104,6 +104,7 @@ TEST(GibrNovelView, FastPathGivesThePlainPathsBits) {
     for (int s : {1, 2}) {
       NovelViewOptions fast, plain;
       fast.supersample = plain.supersample = s;
+      fast.hole_radius = plain.hole_radius = v == 0 ? 32 : 3;  // the reach's early exit fails some searches
       fast.k = plain.k = s == 1 ? 1 : 3;  // k = 1: exact-visible-only pixels are a larger share
       plain.fast = false;
       const NovelView a = render_novel_view(r.scene, r.model, r.maps, cam, fast);
