@@ -37,11 +37,20 @@ const float* srgb_lut() {
   return lut.data();
 }
 
+// A layer of a polygon in the frame's ranked order, flat: its rectangle and texels, its
+// photograph's eye (one indirection less per layer than through SampleLayer).
+struct RankedLayer {
+  int x0, y0, width, height;
+  const uint32_t* rgba;
+  vec3 eye;
+  const SampleLayer* layer;
+};
+
 // Bilinear samples of a layer at continuous texel coordinates, from one read of the 2 × 2
 // texels around them: out[0] over the direct samples (alpha 0xFF), out[1] over direct and
 // exact-visible ones (alpha ≥ kExtrapolated), weights renormalized; ok[m] false when none of
 // the 2 × 2 holds such a sample.
-void sample_layer_both(const SampleLayer& L, vec2 tc, const float* lut, bool ok[2], vec3 out[2]) {
+void sample_layer_both(const RankedLayer& L, vec2 tc, const float* lut, bool ok[2], vec3 out[2]) {
   ok[0] = ok[1] = false;
   const float sx = tc.x - 0.5f - float(L.x0), sy = tc.y - 0.5f - float(L.y0);
   const float fx0 = std::floor(sx), fy0 = std::floor(sy);
@@ -179,13 +188,11 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
     std::sort(keyed.begin(), keyed.end());
     for (const auto& kv : keyed) order.push_back(kv.second);
   }
-  // The ranked layers flat, with their photographs' eyes (one indirection less per layer).
-  std::vector<const SampleLayer*> ranked(order.size());
-  std::vector<vec3> ranked_eye(order.size());
+  std::vector<RankedLayer> ranked(order.size());
   for (size_t p = 0; p < np; ++p)
     for (uint32_t o = offset[p]; o < offset[p + 1]; ++o) {
-      ranked[o] = &maps.layers[p][order[o]];
-      ranked_eye[o] = maps.cameras[ranked[o]->photo].position;
+      const SampleLayer& L = maps.layers[p][order[o]];
+      ranked[o] = {L.x0, L.y0, L.width, L.height, L.rgba.data(), maps.cameras[L.photo].position, &L};
     }
   const float* lut = srgb_lut();
 
@@ -214,13 +221,19 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
       vec3 sum1(0.0f);
       float wsum1 = 0.0f;
       int found1 = 0;
+      // The texel left of and above tc − ½ (as sample_layer_both's i0 + x0, j0 + y0 up to its
+      // float rounding, hence a margin of one): layers whose rectangle is clearly not near it
+      // are skipped before the sampler's float work.
+      const int ti = int(std::floor(tc.x - 0.5f)), tj = int(std::floor(tc.y - 0.5f));
       for (uint32_t o = offset[p]; o < offset[p + 1] && found < k; ++o) {
+        const RankedLayer& R = ranked[o];
+        if (ti - R.x0 < -2 || ti - R.x0 > R.width || tj - R.y0 < -2 || tj - R.y0 > R.height) continue;
         bool ok[2];
         vec3 c[2] = {vec3(0.0f), vec3(0.0f)};
-        sample_layer_both(*ranked[o], tc, lut, ok, c);
+        sample_layer_both(R, tc, lut, ok, c);
         const bool use1 = ok[1] && found1 < k;
         if (!ok[0] && !use1) continue;
-        const float cosv = glm::dot(glm::normalize(ranked_eye[o] - w), view);
+        const float cosv = glm::dot(glm::normalize(R.eye - w), view);
         const float wt = 1.0f / (1.0f - cosv + 1e-7f);
         if (ok[0]) sum += wt * c[0], wsum += wt, ++found;
         if (use1) sum1 += wt * c[1], wsum1 += wt, ++found1;
@@ -231,10 +244,10 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
       for (uint32_t o = offset[p]; o < offset[p + 1] && found < k; ++o) {
         bool ok[2];
         vec3 cc[2] = {vec3(0.0f), vec3(0.0f)};
-        sample_layer_both(*ranked[o], tc, lut, ok, cc);
+        sample_layer_both(ranked[o], tc, lut, ok, cc);
         if (!ok[pass]) continue;
         const vec3 c = cc[pass];
-        const float cosv = glm::dot(glm::normalize(ranked_eye[o] - w), view);
+        const float cosv = glm::dot(glm::normalize(ranked[o].eye - w), view);
         const float wt = 1.0f / (1.0f - cosv + 1e-7f);
         sum += wt * c;
         wsum += wt;
@@ -267,9 +280,9 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
     // Then the other photographs that saw P, closest direction first; last, the
     // mixed samples of texels no photograph saw in a pixel wholly on P.
     for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
-      got = search(*ranked[o], ci, cj, options.hole_radius, kExtrapolated, color);
+      got = search(*ranked[o].layer, ci, cj, options.hole_radius, kExtrapolated, color);
     for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
-      got = ranked[o]->mixed > 0 && search(*ranked[o], ci, cj, options.hole_radius, kMixed, color);
+      got = ranked[o].layer->mixed > 0 && search(*ranked[o].layer, ci, cj, options.hole_radius, kMixed, color);
     filled = got;
     m = {p, best_i, ci, cj, got, color};
   };

@@ -537,41 +537,32 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
 
 namespace {
 
-// Chessboard distance from each texel of L to the nearest sample with alpha ≥ min_alpha: the
-// two-pass 3 × 3 transform (exact for this metric), reduced to the least value per block.
+// Chessboard distance from each texel of L to the nearest sample with alpha ≥ min_alpha, capped
+// at 255: the two-pass 3 × 3 transform (exact for this metric, and the cap commutes with its
+// min-plus steps) on a buffer with a 255 border, reduced to the least value per block.
 std::vector<uint8_t> block_reach(const SampleLayer& L, uint32_t min_alpha) {
   const int W = L.width, H = L.height;
-  constexpr uint16_t kFar = 0xFFFF;
-  std::vector<uint16_t> d(size_t(W) * size_t(H));
-  auto at = [&](int i, int j) -> uint16_t& { return d[size_t(j) * size_t(W) + size_t(i)]; };
-  auto step = [](uint16_t v) { return v == kFar ? kFar : uint16_t(v + 1); };
-  for (int j = 0; j < H; ++j)
-    for (int i = 0; i < W; ++i) {
-      uint16_t v = (L.rgba[size_t(j) * size_t(W) + size_t(i)] >> 24) >= min_alpha ? 0 : kFar;
-      if (v != 0) {
-        if (i > 0) v = std::min(v, step(at(i - 1, j)));
-        if (j > 0)
-          for (int di = -1; di <= 1; ++di)
-            if (i + di >= 0 && i + di < W) v = std::min(v, step(at(i + di, j - 1)));
-      }
-      at(i, j) = v;
-    }
-  for (int j = H - 1; j >= 0; --j)
-    for (int i = W - 1; i >= 0; --i) {
-      uint16_t v = at(i, j);
-      if (i + 1 < W) v = std::min(v, step(at(i + 1, j)));
-      if (j + 1 < H)
-        for (int di = -1; di <= 1; ++di)
-          if (i + di >= 0 && i + di < W) v = std::min(v, step(at(i + di, j + 1)));
-      at(i, j) = v;
-    }
+  const size_t stride = size_t(W) + 2;
+  std::vector<uint8_t> d(stride * (size_t(H) + 2), 255);
+  auto step = [](int a, int b, int c, int e) { return uint8_t(std::min(255, 1 + std::min(std::min(a, b), std::min(c, e)))); };
+  for (int j = 0; j < H; ++j) {
+    uint8_t* r = d.data() + (size_t(j) + 1) * stride + 1;
+    const uint8_t* up = r - stride;
+    const uint32_t* t = L.rgba.data() + size_t(j) * size_t(W);
+    for (int i = 0; i < W; ++i) r[i] = (t[i] >> 24) >= min_alpha ? 0 : step(r[i - 1], up[i - 1], up[i], up[i + 1]);
+  }
+  for (int j = H - 1; j >= 0; --j) {
+    uint8_t* r = d.data() + (size_t(j) + 1) * stride + 1;
+    const uint8_t* down = r + stride;
+    for (int i = W - 1; i >= 0; --i) r[i] = std::min(r[i], step(r[i + 1], down[i - 1], down[i], down[i + 1]));
+  }
   const int bw = L.reach_columns(), bh = (H + kReachBlock - 1) / kReachBlock;
   std::vector<uint8_t> out(size_t(bw) * size_t(bh), 255);
-  for (int j = 0; j < H; ++j)
-    for (int i = 0; i < W; ++i) {
-      uint8_t& b = out[size_t(j / kReachBlock) * size_t(bw) + size_t(i / kReachBlock)];
-      b = uint8_t(std::min<int>(b, at(i, j)));
-    }
+  for (int j = 0; j < H; ++j) {
+    const uint8_t* r = d.data() + (size_t(j) + 1) * stride + 1;
+    uint8_t* o = out.data() + size_t(j / kReachBlock) * size_t(bw);
+    for (int i = 0; i < W; ++i) o[i / kReachBlock] = std::min(o[i / kReachBlock], r[i]);
+  }
   return out;
 }
 
