@@ -148,7 +148,7 @@ struct HoleMemo {
 }  // namespace
 
 NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, const RadianceMaps& maps,
-                            const Camera& camera, const NovelViewOptions& options) {
+                            const Camera& camera, const NovelViewOptions& options, NovelViewScratch* scratch) {
   NovelView nv;
   const int ss = options.supersample;
   if (ss < 1 || ss > 8) fail_input("novel view: supersample must be in 1..8");  // the CLI names its flag itself
@@ -160,7 +160,9 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
   Camera fine = camera;
   fine.width = camera.width * ss;
   fine.height = camera.height * ss;
-  RasterImages img = rasterize(scene, fine, ro);
+  NovelViewScratch own;
+  RasterImages& img = (scratch ? *scratch : own).raster;
+  rasterize(scene, fine, ro, img, AcceptAllFragments{});
   nv.raster_ms = watch.elapsed_ms();
   watch.restart();
 

@@ -544,17 +544,28 @@ std::vector<uint8_t> block_reach(const SampleLayer& L, uint32_t min_alpha) {
   const int W = L.width, H = L.height;
   const size_t stride = size_t(W) + 2;
   std::vector<uint8_t> d(stride * (size_t(H) + 2), 255);
-  auto step = [](int a, int b, int c, int e) { return uint8_t(std::min(255, 1 + std::min(std::min(a, b), std::min(c, e)))); };
+  // The running value stays in a register (no reload of the texel just stored).
+  auto step = [](int a, int b, int c, int e) { return std::min(255, 1 + std::min(std::min(a, b), std::min(c, e))); };
   for (int j = 0; j < H; ++j) {
     uint8_t* r = d.data() + (size_t(j) + 1) * stride + 1;
     const uint8_t* up = r - stride;
     const uint32_t* t = L.rgba.data() + size_t(j) * size_t(W);
-    for (int i = 0; i < W; ++i) r[i] = (t[i] >> 24) >= min_alpha ? 0 : step(r[i - 1], up[i - 1], up[i], up[i + 1]);
+    int prev = 255;
+    for (int i = 0; i < W; ++i) {
+      const int v = (t[i] >> 24) >= min_alpha ? 0 : step(prev, up[i - 1], up[i], up[i + 1]);
+      r[i] = uint8_t(v);
+      prev = v;
+    }
   }
   for (int j = H - 1; j >= 0; --j) {
     uint8_t* r = d.data() + (size_t(j) + 1) * stride + 1;
     const uint8_t* down = r + stride;
-    for (int i = W - 1; i >= 0; --i) r[i] = std::min(r[i], step(r[i + 1], down[i - 1], down[i], down[i + 1]));
+    int prev = 255;
+    for (int i = W - 1; i >= 0; --i) {
+      const int v = std::min(int(r[i]), step(prev, down[i - 1], down[i], down[i + 1]));
+      r[i] = uint8_t(v);
+      prev = v;
+    }
   }
   const int bw = L.reach_columns(), bh = (H + kReachBlock - 1) / kReachBlock;
   std::vector<uint8_t> out(size_t(bw) * size_t(bh), 255);

@@ -32,6 +32,7 @@
 #include "proxima/core/camera.h"
 #include "proxima/core/image.h"
 #include "proxima/gibr/radiance_map.h"
+#include "proxima/raster/rasterizer.h"
 #include "proxima/scene/scene.h"
 
 namespace proxima::gibr {
@@ -55,8 +56,16 @@ struct NovelView {
   double raster_ms = 0.0, blend_ms = 0.0;
 };
 
+// Buffers kept between frames: the fine raster's depth and triangle images. Passing the same
+// scratch to successive calls skips their allocation and clearing (every pixel is rewritten);
+// the results are the same.
+struct NovelViewScratch {
+  RasterImages raster;
+};
+
 // `scene` and `model` as used for the maps (model = extract_polygons(scene)).
 NovelView render_novel_view(const Scene& scene, const visibility::ModelPolygons& model, const RadianceMaps& maps,
-                            const Camera& camera, const NovelViewOptions& options = {});
+                            const Camera& camera, const NovelViewOptions& options = {},
+                            NovelViewScratch* scratch = nullptr);
 
 }  // namespace proxima::gibr
