@@ -50,26 +50,30 @@ struct RankedLayer {
 // texels around them: out[0] over the direct samples (alpha 0xFF), out[1] over direct and
 // exact-visible ones (alpha ≥ kExtrapolated), weights renormalized; ok[m] false when none of
 // the 2 × 2 holds such a sample.
-void sample_layer_both(const RankedLayer& L, vec2 tc, const float* lut, bool ok[2], vec3 out[2]) {
+// Branch-free over the 2 × 2 (a texel outside the rectangle or below the threshold adds weight 0,
+// which leaves the sums' bits as skipping it would: colors are finite and ≥ 0).
+inline void sample_layer_both(const RankedLayer& L, vec2 tc, const float* lut, bool ok[2], vec3 out[2]) {
   ok[0] = ok[1] = false;
   const float sx = tc.x - 0.5f - float(L.x0), sy = tc.y - 0.5f - float(L.y0);
   const float fx0 = std::floor(sx), fy0 = std::floor(sy);
   const int i0 = int(fx0), j0 = int(fy0);
   if (i0 < -1 || j0 < -1 || i0 >= L.width || j0 >= L.height) return;
   const float fx = sx - fx0, fy = sy - fy0;
+  const float wx[2] = {1.0f - fx, fx}, wy[2] = {1.0f - fy, fy};
   vec3 c[2] = {vec3(0.0f), vec3(0.0f)};
   float wsum[2] = {0.0f, 0.0f};
   for (int k = 0; k < 4; ++k) {
     const int i = i0 + (k & 1), j = j0 + (k >> 1);
-    if (i < 0 || j < 0 || i >= L.width || j >= L.height) continue;
-    const uint32_t t = L.rgba[size_t(j) * size_t(L.width) + size_t(i)];
-    if ((t >> 24) < kExtrapolated) continue;
-    const float w = ((k & 1) ? fx : 1.0f - fx) * ((k >> 1) ? fy : 1.0f - fy);
+    const bool in = unsigned(i) < unsigned(L.width) && unsigned(j) < unsigned(L.height);
+    const uint32_t t = L.rgba[in ? size_t(j) * size_t(L.width) + size_t(i) : 0];
+    const uint32_t a = in ? t >> 24 : 0u;
+    const float w = wx[k & 1] * wy[k >> 1];
+    const float w0 = a >= 0xFFu ? w : 0.0f, w1 = a >= kExtrapolated ? w : 0.0f;
     const vec3 v(lut[t & 0xFF], lut[(t >> 8) & 0xFF], lut[(t >> 16) & 0xFF]);
-    for (int m = (t >> 24) >= 0xFFu ? 0 : 1; m < 2; ++m) {
-      c[m] += w * v;
-      wsum[m] += w;
-    }
+    c[0] += w0 * v;
+    wsum[0] += w0;
+    c[1] += w1 * v;
+    wsum[1] += w1;
   }
   for (int m = 0; m < 2; ++m)
     if (!(wsum[m] <= 1e-6f)) ok[m] = true, out[m] = c[m] / wsum[m];
