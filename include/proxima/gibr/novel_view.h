@@ -43,7 +43,8 @@ struct NovelViewOptions {
   int supersample = 1;   // s×s samples per pixel (antialiasing), 1..8 (InputError otherwise)
   // false: the plain path — a pass over the layers per sample kind, every hole searched
   // afresh ring by ring over whole squares; the same bits, for tests and benchmarks of the
-  // fast one (both kinds in one pass, hole fills memoized, ring cells only).
+  // fast one (both kinds in one pass, layers far from the texel skipped by an integer test,
+  // hole fills memoized, ring cells only, rings started at the layer's reach: docs/gibr.md).
   bool fast = true;
 };
 
