@@ -199,6 +199,7 @@ Command register_gibr(CLI::App& root) {
             NovelViewOptions nvo1 = nvo;  // one sample per pixel: its cost, for comparison
             nvo1.supersample = 1;
             std::vector<double> frame_ms_1spp;
+            NovelViewScratch scratch, scratch1;  // raster buffers kept between frames, as a viewer would
             Stopwatch w;
             Pool all_v, all_i, sil_v, sil_i, seen_v, seen_i, silseen_v, silseen_i;
             // Error by region: which mapping saw the pixel's surface (2 bits: vis-map hole,
@@ -217,15 +218,15 @@ Command register_gibr(CLI::App& root) {
               // Timing: --fps-repeat renders of the same view, wall and process CPU time each.
               for (int r = 0; r < f.fps_repeat; ++r) {
                 const std::clock_t c0 = std::clock();
-                nv = render_novel_view(scene, model, vis_maps, cam, nvo);
+                nv = render_novel_view(scene, model, vis_maps, cam, nvo, &scratch);
                 frame_cpu_ms.push_back(1000.0 * double(std::clock() - c0) / CLOCKS_PER_SEC);
                 frame_ms.push_back(nv.raster_ms + nv.blend_ms);
                 if (nvo.supersample > 1) {
-                  const NovelView n1 = render_novel_view(scene, model, vis_maps, cam, nvo1);
+                  const NovelView n1 = render_novel_view(scene, model, vis_maps, cam, nvo1, &scratch1);
                   frame_ms_1spp.push_back(n1.raster_ms + n1.blend_ms);
                 }
               }
-              const NovelView ni = render_novel_view(scene, model, item_maps, cam, nvo);
+              const NovelView ni = render_novel_view(scene, model, item_maps, cam, nvo, &scratch);
               w.restart();
               const ImageF truth = render_photo(scene, rays, cam, f.model.supersample, derive_seed(f.common.seed, i, 2));
               truth_ms += w.elapsed_ms();

@@ -37,48 +37,71 @@ const float* srgb_lut() {
   return lut.data();
 }
 
+// A layer of a polygon in the frame's ranked order, flat: its rectangle and texels, its
+// photograph's eye (one indirection less per layer than through SampleLayer).
+struct RankedLayer {
+  int x0, y0, width, height;
+  const uint32_t* rgba;
+  vec3 eye;
+  const SampleLayer* layer;
+};
+
 // Bilinear samples of a layer at continuous texel coordinates, from one read of the 2 × 2
 // texels around them: out[0] over the direct samples (alpha 0xFF), out[1] over direct and
 // exact-visible ones (alpha ≥ kExtrapolated), weights renormalized; ok[m] false when none of
 // the 2 × 2 holds such a sample.
-void sample_layer_both(const SampleLayer& L, vec2 tc, const float* lut, bool ok[2], vec3 out[2]) {
+// Branch-free over the 2 × 2 (a texel outside the rectangle or below the threshold adds weight 0,
+// which leaves the sums' bits as skipping it would: colors are finite and ≥ 0).
+inline void sample_layer_both(const RankedLayer& L, vec2 tc, const float* lut, bool ok[2], vec3 out[2]) {
   ok[0] = ok[1] = false;
   const float sx = tc.x - 0.5f - float(L.x0), sy = tc.y - 0.5f - float(L.y0);
   const float fx0 = std::floor(sx), fy0 = std::floor(sy);
   const int i0 = int(fx0), j0 = int(fy0);
   if (i0 < -1 || j0 < -1 || i0 >= L.width || j0 >= L.height) return;
   const float fx = sx - fx0, fy = sy - fy0;
+  const float wx[2] = {1.0f - fx, fx}, wy[2] = {1.0f - fy, fy};
   vec3 c[2] = {vec3(0.0f), vec3(0.0f)};
   float wsum[2] = {0.0f, 0.0f};
   for (int k = 0; k < 4; ++k) {
     const int i = i0 + (k & 1), j = j0 + (k >> 1);
-    if (i < 0 || j < 0 || i >= L.width || j >= L.height) continue;
-    const uint32_t t = L.rgba[size_t(j) * size_t(L.width) + size_t(i)];
-    if ((t >> 24) < kExtrapolated) continue;
-    const float w = ((k & 1) ? fx : 1.0f - fx) * ((k >> 1) ? fy : 1.0f - fy);
+    const bool in = unsigned(i) < unsigned(L.width) && unsigned(j) < unsigned(L.height);
+    const uint32_t t = L.rgba[in ? size_t(j) * size_t(L.width) + size_t(i) : 0];
+    const uint32_t a = in ? t >> 24 : 0u;
+    const float w = wx[k & 1] * wy[k >> 1];
+    const float w0 = a >= 0xFFu ? w : 0.0f, w1 = a >= kExtrapolated ? w : 0.0f;
     const vec3 v(lut[t & 0xFF], lut[(t >> 8) & 0xFF], lut[(t >> 16) & 0xFF]);
-    for (int m = (t >> 24) >= 0xFFu ? 0 : 1; m < 2; ++m) {
-      c[m] += w * v;
-      wsum[m] += w;
-    }
+    c[0] += w0 * v;
+    wsum[0] += w0;
+    c[1] += w1 * v;
+    wsum[1] += w1;
   }
   for (int m = 0; m < 2; ++m)
     if (!(wsum[m] <= 1e-6f)) ok[m] = true, out[m] = c[m] / wsum[m];
 }
 
-// The sample with alpha ≥ min_alpha (> 0) nearest to texel (ci, cj) within `radius` rings
-// (ring by ring, row-major within a ring). Visits only the ring's cells inside the layer's
-// rectangle — O(r) per ring, not the whole square — in that same order.
+// The sample with alpha ≥ min_alpha (kExtrapolated or kMixed) nearest to texel (ci, cj) within
+// `radius` rings (ring by ring, row-major within a ring). Visits only the ring's cells inside the
+// layer's rectangle — O(r) per ring, not the whole square — in that same order, and starts at
+// the first ring that may hold a sample (SampleLayer::reach): for q, the texel of the rectangle
+// nearest to c = (ci, cj), every sample t has d(c, t) ≥ d(c, q) and, as d(q, t) ≥ reach of q's
+// block, d(c, t) ≥ reach − d(c, q) (d: chessboard distance). The rings skipped hold no sample, so
+// the result is the plain search's.
 bool nearest_sample(const SampleLayer& L, int ci, int cj, int radius, uint32_t min_alpha, vec3& out) {
   const int li = ci - L.x0, lj = cj - L.y0;  // layer-local
-  if (li + radius < 0 || lj + radius < 0 || li - radius >= L.width || lj - radius >= L.height) return false;
+  const int qi = std::clamp(li, 0, L.width - 1), qj = std::clamp(lj, 0, L.height - 1);
+  const int dq = std::max(std::abs(li - qi), std::abs(lj - qj));
+  int start = dq;
+  const std::vector<uint8_t>& reach = min_alpha >= kExtrapolated ? L.reach : L.reach_mixed;
+  if (!reach.empty() && min_alpha >= kMixed)
+    start = std::max(start, int(reach[size_t(qj / kReachBlock) * size_t(L.reach_columns()) + size_t(qi / kReachBlock)]) - dq);
+  if (start > radius) return false;
   auto hit = [&](int i, int j) {
     const uint32_t t = L.rgba[size_t(j) * size_t(L.width) + size_t(i)];
     if ((t >> 24) < min_alpha) return false;
     out = unpack_srgb8(t);
     return true;
   };
-  for (int r = 0; r <= radius; ++r) {
+  for (int r = start; r <= radius; ++r) {
     const int j0 = std::max(lj - r, 0), j1 = std::min(lj + r, L.height - 1);
     const int i0 = std::max(li - r, 0), i1 = std::min(li + r, L.width - 1);
     for (int j = j0; j <= j1; ++j) {
@@ -129,7 +152,7 @@ struct HoleMemo {
 }  // namespace
 
 NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, const RadianceMaps& maps,
-                            const Camera& camera, const NovelViewOptions& options) {
+                            const Camera& camera, const NovelViewOptions& options, NovelViewScratch* scratch) {
   NovelView nv;
   const int ss = options.supersample;
   if (ss < 1 || ss > 8) fail_input("novel view: supersample must be in 1..8");  // the CLI names its flag itself
@@ -141,7 +164,9 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
   Camera fine = camera;
   fine.width = camera.width * ss;
   fine.height = camera.height * ss;
-  RasterImages img = rasterize(scene, fine, ro);
+  NovelViewScratch own;
+  RasterImages& img = (scratch ? *scratch : own).raster;
+  rasterize(scene, fine, ro, img, AcceptAllFragments{});
   nv.raster_ms = watch.elapsed_ms();
   watch.restart();
 
@@ -169,13 +194,11 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
     std::sort(keyed.begin(), keyed.end());
     for (const auto& kv : keyed) order.push_back(kv.second);
   }
-  // The ranked layers flat, with their photographs' eyes (one indirection less per layer).
-  std::vector<const SampleLayer*> ranked(order.size());
-  std::vector<vec3> ranked_eye(order.size());
+  std::vector<RankedLayer> ranked(order.size());
   for (size_t p = 0; p < np; ++p)
     for (uint32_t o = offset[p]; o < offset[p + 1]; ++o) {
-      ranked[o] = &maps.layers[p][order[o]];
-      ranked_eye[o] = maps.cameras[ranked[o]->photo].position;
+      const SampleLayer& L = maps.layers[p][order[o]];
+      ranked[o] = {L.x0, L.y0, L.width, L.height, L.rgba.data(), maps.cameras[L.photo].position, &L};
     }
   const float* lut = srgb_lut();
 
@@ -204,13 +227,19 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
       vec3 sum1(0.0f);
       float wsum1 = 0.0f;
       int found1 = 0;
+      // The texel left of and above tc − ½ (as sample_layer_both's i0 + x0, j0 + y0 up to its
+      // float rounding, hence a margin of one): layers whose rectangle is clearly not near it
+      // are skipped before the sampler's float work.
+      const int ti = int(std::floor(tc.x - 0.5f)), tj = int(std::floor(tc.y - 0.5f));
       for (uint32_t o = offset[p]; o < offset[p + 1] && found < k; ++o) {
+        const RankedLayer& R = ranked[o];
+        if (ti - R.x0 < -2 || ti - R.x0 > R.width || tj - R.y0 < -2 || tj - R.y0 > R.height) continue;
         bool ok[2];
         vec3 c[2] = {vec3(0.0f), vec3(0.0f)};
-        sample_layer_both(*ranked[o], tc, lut, ok, c);
+        sample_layer_both(R, tc, lut, ok, c);
         const bool use1 = ok[1] && found1 < k;
         if (!ok[0] && !use1) continue;
-        const float cosv = glm::dot(glm::normalize(ranked_eye[o] - w), view);
+        const float cosv = glm::dot(glm::normalize(R.eye - w), view);
         const float wt = 1.0f / (1.0f - cosv + 1e-7f);
         if (ok[0]) sum += wt * c[0], wsum += wt, ++found;
         if (use1) sum1 += wt * c[1], wsum1 += wt, ++found1;
@@ -221,10 +250,10 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
       for (uint32_t o = offset[p]; o < offset[p + 1] && found < k; ++o) {
         bool ok[2];
         vec3 cc[2] = {vec3(0.0f), vec3(0.0f)};
-        sample_layer_both(*ranked[o], tc, lut, ok, cc);
+        sample_layer_both(ranked[o], tc, lut, ok, cc);
         if (!ok[pass]) continue;
         const vec3 c = cc[pass];
-        const float cosv = glm::dot(glm::normalize(ranked_eye[o] - w), view);
+        const float cosv = glm::dot(glm::normalize(ranked[o].eye - w), view);
         const float wt = 1.0f / (1.0f - cosv + 1e-7f);
         sum += wt * c;
         wsum += wt;
@@ -257,9 +286,9 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
     // Then the other photographs that saw P, closest direction first; last, the
     // mixed samples of texels no photograph saw in a pixel wholly on P.
     for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
-      got = search(*ranked[o], ci, cj, options.hole_radius, kExtrapolated, color);
+      got = search(*ranked[o].layer, ci, cj, options.hole_radius, kExtrapolated, color);
     for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)
-      got = ranked[o]->mixed > 0 && search(*ranked[o], ci, cj, options.hole_radius, kMixed, color);
+      got = ranked[o].layer->mixed > 0 && search(*ranked[o].layer, ci, cj, options.hole_radius, kMixed, color);
     filled = got;
     m = {p, best_i, ci, cj, got, color};
   };

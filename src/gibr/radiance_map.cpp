@@ -527,12 +527,62 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
     for (int j = 0; j < S.height; ++j)
       std::copy_n(L.rgba.begin() + long(size_t(j + fj0 - j0) * size_t(L.width) + size_t(fi0 - i0)), S.width,
                   S.rgba.begin() + long(size_t(j) * size_t(S.width)));
+    fill_reach(S);
     out.layers.push_back({p, std::move(S)});
   }
   return out;
 }
 
 }  // namespace
+
+namespace {
+
+// Chessboard distance from each texel of L to the nearest sample with alpha ≥ min_alpha, capped
+// at 255: the two-pass 3 × 3 transform (exact for this metric, and the cap commutes with its
+// min-plus steps) on a buffer with a 255 border, reduced to the least value per block.
+std::vector<uint8_t> block_reach(const SampleLayer& L, uint32_t min_alpha) {
+  const int W = L.width, H = L.height;
+  const size_t stride = size_t(W) + 2;
+  std::vector<uint8_t> d(stride * (size_t(H) + 2), 255);
+  // The running value stays in a register (no reload of the texel just stored).
+  auto step = [](int a, int b, int c, int e) { return std::min(255, 1 + std::min(std::min(a, b), std::min(c, e))); };
+  for (int j = 0; j < H; ++j) {
+    uint8_t* r = d.data() + (size_t(j) + 1) * stride + 1;
+    const uint8_t* up = r - stride;
+    const uint32_t* t = L.rgba.data() + size_t(j) * size_t(W);
+    int prev = 255;
+    for (int i = 0; i < W; ++i) {
+      const int v = (t[i] >> 24) >= min_alpha ? 0 : step(prev, up[i - 1], up[i], up[i + 1]);
+      r[i] = uint8_t(v);
+      prev = v;
+    }
+  }
+  for (int j = H - 1; j >= 0; --j) {
+    uint8_t* r = d.data() + (size_t(j) + 1) * stride + 1;
+    const uint8_t* down = r + stride;
+    int prev = 255;
+    for (int i = W - 1; i >= 0; --i) {
+      const int v = std::min(int(r[i]), step(prev, down[i - 1], down[i], down[i + 1]));
+      r[i] = uint8_t(v);
+      prev = v;
+    }
+  }
+  const int bw = L.reach_columns(), bh = (H + kReachBlock - 1) / kReachBlock;
+  std::vector<uint8_t> out(size_t(bw) * size_t(bh), 255);
+  for (int j = 0; j < H; ++j) {
+    const uint8_t* r = d.data() + (size_t(j) + 1) * stride + 1;
+    uint8_t* o = out.data() + size_t(j / kReachBlock) * size_t(bw);
+    for (int i = 0; i < W; ++i) o[i / kReachBlock] = std::min(o[i / kReachBlock], r[i]);
+  }
+  return out;
+}
+
+}  // namespace
+
+void fill_reach(SampleLayer& L) {
+  L.reach = block_reach(L, kExtrapolated);
+  L.reach_mixed = L.mixed > 0 ? block_reach(L, kMixed) : std::vector<uint8_t>{};
+}
 
 RadianceMaps build_radiance_maps(const ModelPolygons& model, double texel, std::span<const Camera> cameras,
                                  std::span<const ImageF> photos, std::span<const ImageU32> pixel_polygons,

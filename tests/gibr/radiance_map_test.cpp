@@ -11,6 +11,7 @@
 #include <set>
 
 #include "proxima/core/image_io.h"
+#include "proxima/core/rng.h"
 #include "proxima/gibr/novel_view.h"
 #include "proxima/gibr/photo_set.h"
 #include "proxima/scene/visibility_models.h"
@@ -396,6 +397,47 @@ TEST(GibrMapping, ExactTexelCenterTestSamplesEveryClearlyVisibleTexelBesideRegio
   EXPECT_GT(record_missed, 10u) << "the sub-cell record should miss some (of " << clear << ")";
   EXPECT_EQ(occluded, 0u) << "of " << exact_samples;
   EXPECT_GE(exact.stats.samples, record.stats.samples);
+}
+
+// fill_reach against brute force: per block, the least chessboard distance from its texels to a
+// sample of each threshold (capped at 255), on sparse random layers of odd sizes — one wider
+// than 255 texels with a single sample, so the cap and the blocks' far values are exercised.
+TEST(GibrMapping, ReachIsTheLeastChessboardDistanceToASamplePerBlock) {
+  Pcg32 rng(7);
+  for (int trial = 0; trial < 6; ++trial) {
+    SampleLayer L;
+    L.width = trial == 5 ? 300 : 5 + int(rng.next_below(40));
+    L.height = trial == 5 ? 3 : 3 + int(rng.next_below(30));
+    L.rgba.assign(size_t(L.width) * size_t(L.height), 0u);
+    const uint32_t alphas[4] = {0xFF, kUnmixed, kExtrapolated, kMixed};
+    const int n = trial == 5 ? 1 : 1 + int(rng.next_below(6));
+    for (int s = 0; s < n; ++s) {
+      const uint32_t a = trial == 5 ? 0xFF : alphas[rng.next_below(4)];
+      L.rgba[rng.next_below(uint32_t(L.rgba.size()))] = a << 24;
+      L.mixed += a == kMixed;
+    }
+    fill_reach(L);
+    for (uint32_t min_alpha : {kExtrapolated, kMixed}) {
+      const std::vector<uint8_t>& reach = min_alpha == kMixed ? L.reach_mixed : L.reach;
+      if (min_alpha == kMixed && L.mixed == 0) {
+        EXPECT_TRUE(reach.empty());
+        continue;
+      }
+      const int bw = L.reach_columns(), bh = (L.height + kReachBlock - 1) / kReachBlock;
+      ASSERT_EQ(reach.size(), size_t(bw) * size_t(bh));
+      for (int bj = 0; bj < bh; ++bj)
+        for (int bi = 0; bi < bw; ++bi) {
+          int best = 255;
+          for (int j = bj * kReachBlock; j < std::min(L.height, (bj + 1) * kReachBlock); ++j)
+            for (int i = bi * kReachBlock; i < std::min(L.width, (bi + 1) * kReachBlock); ++i)
+              for (int t = 0; t < L.height * L.width; ++t)
+                if ((L.rgba[size_t(t)] >> 24) >= min_alpha)
+                  best = std::min(best, std::max(std::abs(t % L.width - i), std::abs(t / L.width - j)));
+          EXPECT_EQ(int(reach[size_t(bj) * size_t(bw) + size_t(bi)]), best)
+              << "trial " << trial << ", block " << bi << "," << bj << ", alpha ≥ " << min_alpha;
+        }
+    }
+  }
 }
 }  // namespace
 }  // namespace proxima::gibr

@@ -32,6 +32,7 @@
 #include "proxima/core/camera.h"
 #include "proxima/core/image.h"
 #include "proxima/gibr/radiance_map.h"
+#include "proxima/raster/rasterizer.h"
 #include "proxima/scene/scene.h"
 
 namespace proxima::gibr {
@@ -42,7 +43,8 @@ struct NovelViewOptions {
   int supersample = 1;   // s×s samples per pixel (antialiasing), 1..8 (InputError otherwise)
   // false: the plain path — a pass over the layers per sample kind, every hole searched
   // afresh ring by ring over whole squares; the same bits, for tests and benchmarks of the
-  // fast one (both kinds in one pass, hole fills memoized, ring cells only).
+  // fast one (both kinds in one pass, layers far from the texel skipped by an integer test,
+  // hole fills memoized, ring cells only, rings started at the layer's reach: docs/gibr.md).
   bool fast = true;
 };
 
@@ -55,8 +57,16 @@ struct NovelView {
   double raster_ms = 0.0, blend_ms = 0.0;
 };
 
+// Buffers kept between frames: the fine raster's depth and triangle images. Passing the same
+// scratch to successive calls skips their allocation and clearing (every pixel is rewritten);
+// the results are the same.
+struct NovelViewScratch {
+  RasterImages raster;
+};
+
 // `scene` and `model` as used for the maps (model = extract_polygons(scene)).
 NovelView render_novel_view(const Scene& scene, const visibility::ModelPolygons& model, const RadianceMaps& maps,
-                            const Camera& camera, const NovelViewOptions& options = {});
+                            const Camera& camera, const NovelViewOptions& options = {},
+                            NovelViewScratch* scratch = nullptr);
 
 }  // namespace proxima::gibr

@@ -50,7 +50,13 @@ struct SampleLayer {
   int x0 = 0, y0 = 0, width = 0, height = 0;
   std::vector<uint32_t> rgba;  // r | g << 8 | b << 16 | a << 24
   size_t mixed = 0;            // kMixed samples (lets hole filling skip layers without any)
+  // Lower bounds for the hole fill's ring search (fill_reach; empty = none): per block of
+  // kReachBlock × kReachBlock texels of the rectangle (row-major, reach_columns() per row), the
+  // least Chebyshev distance in texels from a texel of the block to a sample with alpha ≥
+  // kExtrapolated (reach) or ≥ kMixed (reach_mixed, empty when mixed = 0), capped at 255.
+  std::vector<uint8_t> reach, reach_mixed;
 
+  int reach_columns() const;
   bool has(int i, int j) const {
     i -= x0;
     j -= y0;
@@ -67,6 +73,13 @@ inline constexpr uint32_t kUnmixed = 0xC0;
 // Alpha of a last-resort sample: an exact-visible texel with no pixel wholly on its polygon
 // within 2 px takes its own (mixed) pixel's color; used only to fill holes (novel_view.h).
 inline constexpr uint32_t kMixed = 0x40;
+
+// Side of the blocks of SampleLayer::reach.
+inline constexpr int kReachBlock = 4;
+inline int SampleLayer::reach_columns() const { return (width + kReachBlock - 1) / kReachBlock; }
+// Fills L.reach and L.reach_mixed from L.rgba (an exact chessboard distance transform, then the
+// least value of each block). build_radiance_maps calls it for every layer.
+void fill_reach(SampleLayer& L);
 
 struct RadianceStats {
   size_t photos = 0;
