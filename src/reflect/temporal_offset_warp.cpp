@@ -58,7 +58,16 @@ bool edge_triangle(const ReflectionDepthImage& key, const int corner_x[3], const
   return false;
 }
 
-bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance) {
+float blend_risk(const vec3 lr[], const float s[], const float w[], int n, vec3 value) {
+  float total = 0.0f;
+  for (int k = 0; k < n; ++k) total += w[k];
+  if (!(total > 0.0f)) return 0.0f;
+  vec3 risk(0.0f);
+  for (int k = 0; k < n; ++k) risk += (w[k] * s[k] / total) * glm::abs(lr[k] - value);
+  return std::max({risk.x, risk.y, risk.z});
+}
+
+bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance, float* risk) {
   const IntermediateReflection& image = *mesh.image;
   const int w = image.triangle.width(), h = image.triangle.height();
   const int cx = int(std::floor(q.x)), cy = int(std::floor(q.y));
@@ -89,6 +98,12 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance) {
       if (e0 < -slack || e1 < -slack || e2 < -slack) continue;
       const float b[3] = {std::max(e0, 0.0f), std::max(e1, 0.0f), std::max(e2, 0.0f)};
       radiance = reconstruct(v, b, edge_triangle(*mesh.key, cx3, cy3, mesh.edge_contrast));
+      if (risk) {
+        const vec3 lr[3] = {v[0].lr, v[1].lr, v[2].lr};
+        float s[3];
+        for (int k = 0; k < 3; ++k) s[k] = mesh.key->specular.at(cx3[k], cy3[k]);
+        *risk = blend_risk(lr, s, b, 3, radiance);
+      }
       return true;
     }
   return false;

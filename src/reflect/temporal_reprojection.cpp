@@ -48,13 +48,24 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
         out.flag[i] = uint8_t(kReuseUnreliable | (st == kWarpCurved ? kReuseCurved : 0) | (st == kWarpEdge ? kReuseEdge : 0));
         continue;
       }
-      if (mesh && warped_radiance_at(*mesh, q, out.radiance[i])) continue;
+      const bool gate = mesh && mesh->blend_error < kInf;
+      float risk = 0.0f;
+      if (mesh && warped_radiance_at(*mesh, q, out.radiance[i], gate ? &risk : nullptr)) {
+        if (risk > (gate ? mesh->blend_error : kInf)) {  // likely wrong: recompute (blend_risk)
+          out.radiance[i] = vec3(0.0f);
+          out.flag[i] = uint8_t(kReuseUnreliable | kReuseEdge);
+        }
+        continue;
+      }
       // Bilinear over the usable pixels of the 2×2 around q (the nearest is one of them).
       const float fx = q.x - 0.5f, fy = q.y - 0.5f;
       const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
       const float tx = fx - float(x0), ty = fy - float(y0);
       vec3 sum(0.0f), lo(kInf), hi(-kInf);
       float weight = 0.0f;
+      vec3 lrs[4];
+      float ss[4], ws[4];
+      int used = 0;
       for (int j = 0; j < 2; ++j)
         for (int k = 0; k < 2; ++k) {
           const int x = x0 + k, y = y0 + j;
@@ -65,6 +76,7 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
           sum += wt * lr;
           weight += wt;
           lo = glm::min(lo, key.specular.at(x, y) * lr), hi = glm::max(hi, key.specular.at(x, y) * lr);
+          lrs[used] = lr, ss[used] = key.specular.at(x, y), ws[used] = wt, ++used;
         }
       // The same edge rule as the mesh's: no blend across a reflected edge.
       const vec3 range = hi - lo;
@@ -75,6 +87,10 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
         out.radiance[i] = vec3(radiance.at(nx, ny, 0), radiance.at(nx, ny, 1), radiance.at(nx, ny, 2));
       } else if (weight > 0.0f) {
         out.radiance[i] = sum / weight;
+        if (gate && blend_risk(lrs, ss, ws, used, out.radiance[i]) > mesh->blend_error) {
+          out.radiance[i] = vec3(0.0f);
+          out.flag[i] = uint8_t(kReuseUnreliable | kReuseEdge);
+        }
       } else {
         out.radiance[i] = vec3(radiance.at(nx, ny, 0), radiance.at(nx, ny, 1), radiance.at(nx, ny, 2));
       }

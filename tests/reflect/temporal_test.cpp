@@ -297,7 +297,8 @@ TEST(TemporalReflections, CurvedMirrorPixelsAreUnreliablePlanarOnesAreNot) {
 // albedo 0.02 and 0.9: about 6 pixels each in the mirror): the reflected image is all sharp
 // edges. A reused sample "crosses an edge" when its Lr lies between the two sides' levels,
 // a blend no point sample of the scene has.
-TEST(TemporalReflections, EdgeRuleNeverReusesAcrossAReflectedEdge) {
+namespace {
+Scene striped_mirror() {
   Scene scene;
   scene.name = "striped-mirror";
   add_quad(scene, vec3(-2, 0, -2), vec3(0, 0, 4), vec3(4, 0, 0), add_diffuse(scene, vec3(0.5f), 1.0f), "mirror");
@@ -309,6 +310,12 @@ TEST(TemporalReflections, EdgeRuleNeverReusesAcrossAReflectedEdge) {
     add_quad(scene, vec3(x, -1, -2), vec3(width, 0, 0), vec3(0, 6, 0), k % 2 ? bright : dark, "stripe");
     x += width;
   }
+  return scene;
+}
+}  // namespace
+
+TEST(TemporalReflections, EdgeRuleNeverReusesAcrossAReflectedEdge) {
+  const Scene scene = striped_mirror();
   RayScene rays(scene);
   const ReflectionFrame frame0 = frame_at(scene, kKeyEye);
   const ReflectionDepthImage key = make_reflection_depth_image(frame0, trace_reflections(scene, rays, frame0), 1e3f);
@@ -403,6 +410,73 @@ TEST(TemporalReflections, EdgeRuleNeverReusesAcrossAReflectedEdge) {
     };
     EXPECT_EQ(frames(1), frames(2));
   }
+}
+
+TEST(TemporalReflections, BlendRiskIsTheExpectedErrorOfTheBlend) {
+  const vec3 lr[3] = {vec3(0.0f), vec3(0.0f), vec3(1.0f, 0.5f, 0.0f)};
+  const float s[3] = {1.0f, 1.0f, 1.0f};
+  const float at_corner[3] = {1.0f, 0.0f, 0.0f}, halfway[3] = {0.5f, 0.0f, 0.5f}, third[3] = {1.0f, 1.0f, 1.0f};
+  EXPECT_FLOAT_EQ(blend_risk(lr, s, at_corner, 3, lr[0]), 0.0f);  // on a sample: no doubt
+  // Halfway between 0 and 1: either side with probability ½, each ½ away.
+  EXPECT_FLOAT_EQ(blend_risk(lr, s, halfway, 3, vec3(0.5f, 0.25f, 0.0f)), 0.5f);
+  // Weights are normalised; 2/3 of the time 1/3 away, 1/3 of the time 2/3 away.
+  EXPECT_NEAR(blend_risk(lr, s, third, 3, vec3(1.0f / 3.0f, 1.0f / 6.0f, 0.0f)), 4.0f / 9.0f, 1e-6f);
+  const float dim[3] = {0.1f, 0.1f, 0.1f};  // s scales it: a faint reflection risks less
+  EXPECT_FLOAT_EQ(blend_risk(lr, dim, halfway, 3, vec3(0.5f, 0.25f, 0.0f)), 0.05f);
+  const vec3 flat[3] = {vec3(0.3f), vec3(0.3f), vec3(0.3f)};
+  EXPECT_FLOAT_EQ(blend_risk(flat, s, third, 3, vec3(0.3f)), 0.0f);
+}
+
+// blend_error ranks reused samples by the error their blend is likely to carry: on the
+// striped mirror a higher threshold recomputes fewer samples and removes more error per
+// recomputed sample (the first recomputes pay the most), and a low one nearly all of it.
+TEST(TemporalReflections, BlendErrorSpendsRecomputesWhereTheErrorIs) {
+  const Scene scene = striped_mirror();
+  RayScene rays(scene);
+  const ReflectionFrame frame0 = frame_at(scene, kKeyEye);
+  const ReflectionDepthImage key = make_reflection_depth_image(frame0, trace_reflections(scene, rays, frame0), 1e3f);
+  const ReflectionFrame frame1 = frame_at(scene, kKeyEye + kMove);
+  const OffsetBuffer offsets = best_match_search(key, frame1.camera.position, nullptr, {});
+  const TracedReflections truth = trace_reflections(scene, rays, frame1);
+  const ImageF reference = compose_reflections(frame1, truth.radiance);
+  struct Outcome {
+    double mae = 0.0;
+    uint64_t recomputed = 0, edge = 0;
+  };
+  auto run = [&](const WarpOptions& warp) {
+    const IntermediateReflection mid = warp_reflections(key, offsets, warp);
+    const WarpedMesh mesh{&key, &offsets, &mid, warp.edge_contrast, warp.edge_rule, warp.recompute_splats,
+                          warp.blend_error};
+    ReflectionReprojection r = reproject_reflections(frame1, key, mid.radiance, &mid.state, {}, &mesh);
+    for (size_t i = 0; i < r.flag.size(); ++i)
+      if (r.flag[i] != kReuseOk) r.radiance[i] = truth.radiance[i];
+    const ImageU8 all = mask_of(frame1, std::vector<uint8_t>(frame1.sample_count(), 1));
+    return Outcome{compare_images(compose_reflections(frame1, r.radiance), reference, &all).mae_avg, r.recompute(),
+                   r.edge};
+  };
+  WarpOptions edges, low, high;
+  edges.edge_contrast = 0.05f;
+  edges.edge_rule = ReflectedEdgeRule::kRecompute;
+  low.blend_error = 0.05f;
+  high.blend_error = 0.2f;
+  const Outcome off = run({}), o_edges = run(edges), o_low = run(low), o_high = run(high);
+  auto removed_per_sample = [&](const Outcome& o) {
+    return (off.mae - o.mae) / double(std::max<uint64_t>(o.recomputed - off.recomputed, 1));
+  };
+  std::printf("striped mirror: MAE off %.3f (%llu recomputed); edge 0.05 %.3f (+%llu, %.5f per sample); "
+              "blend error 0.05 %.3f (+%llu, %.5f), 0.2 %.3f (+%llu, %.5f)\n",
+              off.mae, static_cast<unsigned long long>(off.recomputed), o_edges.mae,
+              static_cast<unsigned long long>(o_edges.recomputed - off.recomputed), removed_per_sample(o_edges),
+              o_low.mae, static_cast<unsigned long long>(o_low.recomputed - off.recomputed), removed_per_sample(o_low),
+              o_high.mae, static_cast<unsigned long long>(o_high.recomputed - off.recomputed),
+              removed_per_sample(o_high));
+  EXPECT_EQ(off.edge, 0u);  // off by default
+  ASSERT_GT(o_high.edge, 0u);
+  EXPECT_EQ(o_low.recomputed, off.recomputed + o_low.edge);  // only its own flags added
+  EXPECT_LT(o_high.recomputed, o_low.recomputed);
+  EXPECT_GT(removed_per_sample(o_high), removed_per_sample(o_low));
+  EXPECT_LT(o_high.mae, 0.5 * off.mae);
+  EXPECT_LT(o_low.mae, 0.1 * off.mae);
 }
 
 // Key samples no warp triangle reached are splatted as lone points; with recompute_splats
