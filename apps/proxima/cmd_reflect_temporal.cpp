@@ -191,8 +191,9 @@ void add_temporal_reflect_flags(CLI::App* app, TemporalReflectFlags& f) {
   app->add_flag("--recompute-splats", f.recompute_splats,
                 "temporal: key samples no warp triangle reached (splatted as points) are unreliable, so recomputed");
   app->add_option("--blend-error", f.blend_error,
-                  "temporal: a reused pixel whose expected blend error (sum over the key samples it blends of "
-                  "weight x s x |Lr - value|, linear, any channel) exceeds this is recomputed; inf = off")
+                  "temporal: a reused pixel whose expected display error (0-255: sum over the key samples it blends "
+                  "of weight x |D(base + s*Lr_k) - D(base + s*value)|, D = sRGB, any channel) exceeds this is "
+                  "recomputed; inf = off")
       ->capture_default_str();
   app->add_flag("--match-extrapolate", f.match_extrapolate,
                 "temporal: the best match also tries the previous offset plus its last change (steady motion) "

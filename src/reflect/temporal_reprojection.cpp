@@ -48,10 +48,17 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
         out.flag[i] = uint8_t(kReuseUnreliable | (st == kWarpCurved ? kReuseCurved : 0) | (st == kWarpEdge ? kReuseEdge : 0));
         continue;
       }
+      // blend_error: a reused value likely to be wrong on the display is recomputed.
       const bool gate = mesh && mesh->blend_error < kInf;
-      float risk = 0.0f;
-      if (mesh && warped_radiance_at(*mesh, q, out.radiance[i], gate ? &risk : nullptr)) {
-        if (risk > (gate ? mesh->blend_error : kInf)) {  // likely wrong: recompute (blend_risk)
+      BlendSamples blend;
+      auto risky = [&](vec3 value) {
+        const uint32_t p = frame.pixel[i], sw = uint32_t(frame.sample_camera.width);
+        const vec3 base(frame.base.at(int(p % sw), int(p / sw), 0), frame.base.at(int(p % sw), int(p / sw), 1),
+                        frame.base.at(int(p % sw), int(p / sw), 2));
+        return blend_risk(blend, value, frame.specular[i], base) > mesh->blend_error;
+      };
+      if (mesh && warped_radiance_at(*mesh, q, out.radiance[i], gate ? &blend : nullptr)) {
+        if (gate && risky(out.radiance[i])) {
           out.radiance[i] = vec3(0.0f);
           out.flag[i] = uint8_t(kReuseUnreliable | kReuseEdge);
         }
@@ -63,9 +70,6 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
       const float tx = fx - float(x0), ty = fy - float(y0);
       vec3 sum(0.0f), lo(kInf), hi(-kInf);
       float weight = 0.0f;
-      vec3 lrs[4];
-      float ss[4], ws[4];
-      int used = 0;
       for (int j = 0; j < 2; ++j)
         for (int k = 0; k < 2; ++k) {
           const int x = x0 + k, y = y0 + j;
@@ -76,7 +80,7 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
           sum += wt * lr;
           weight += wt;
           lo = glm::min(lo, key.specular.at(x, y) * lr), hi = glm::max(hi, key.specular.at(x, y) * lr);
-          lrs[used] = lr, ss[used] = key.specular.at(x, y), ws[used] = wt, ++used;
+          blend.lr[blend.n] = lr, blend.w[blend.n] = wt, ++blend.n;
         }
       // The same edge rule as the mesh's: no blend across a reflected edge.
       const vec3 range = hi - lo;
@@ -87,7 +91,7 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
         out.radiance[i] = vec3(radiance.at(nx, ny, 0), radiance.at(nx, ny, 1), radiance.at(nx, ny, 2));
       } else if (weight > 0.0f) {
         out.radiance[i] = sum / weight;
-        if (gate && blend_risk(lrs, ss, ws, used, out.radiance[i]) > mesh->blend_error) {
+        if (gate && risky(out.radiance[i])) {
           out.radiance[i] = vec3(0.0f);
           out.flag[i] = uint8_t(kReuseUnreliable | kReuseEdge);
         }

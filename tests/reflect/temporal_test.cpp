@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "proxima/core/image_io.h"
 #include "proxima/core/parallel.h"
 #include "proxima/eval/image_error.h"
 #include "proxima/reflect/temporal_reuse.h"
@@ -413,18 +414,29 @@ TEST(TemporalReflections, EdgeRuleNeverReusesAcrossAReflectedEdge) {
 }
 
 TEST(TemporalReflections, BlendRiskIsTheExpectedErrorOfTheBlend) {
-  const vec3 lr[3] = {vec3(0.0f), vec3(0.0f), vec3(1.0f, 0.5f, 0.0f)};
-  const float s[3] = {1.0f, 1.0f, 1.0f};
-  const float at_corner[3] = {1.0f, 0.0f, 0.0f}, halfway[3] = {0.5f, 0.0f, 0.5f}, third[3] = {1.0f, 1.0f, 1.0f};
-  EXPECT_FLOAT_EQ(blend_risk(lr, s, at_corner, 3, lr[0]), 0.0f);  // on a sample: no doubt
-  // Halfway between 0 and 1: either side with probability ½, each ½ away.
-  EXPECT_FLOAT_EQ(blend_risk(lr, s, halfway, 3, vec3(0.5f, 0.25f, 0.0f)), 0.5f);
-  // Weights are normalised; 2/3 of the time 1/3 away, 1/3 of the time 2/3 away.
-  EXPECT_NEAR(blend_risk(lr, s, third, 3, vec3(1.0f / 3.0f, 1.0f / 6.0f, 0.0f)), 4.0f / 9.0f, 1e-6f);
-  const float dim[3] = {0.1f, 0.1f, 0.1f};  // s scales it: a faint reflection risks less
-  EXPECT_FLOAT_EQ(blend_risk(lr, dim, halfway, 3, vec3(0.5f, 0.25f, 0.0f)), 0.05f);
-  const vec3 flat[3] = {vec3(0.3f), vec3(0.3f), vec3(0.3f)};
-  EXPECT_FLOAT_EQ(blend_risk(flat, s, third, 3, vec3(0.3f)), 0.0f);
+  auto display = [](float linear) { return 255.0f * linear_to_srgb(linear); };
+  BlendSamples edge;
+  edge.n = 3;
+  edge.lr[0] = edge.lr[1] = vec3(0.0f), edge.lr[2] = vec3(1.0f, 0.5f, 0.0f);
+  auto weights = [&](float a, float b, float c) { edge.w[0] = a, edge.w[1] = b, edge.w[2] = c; };
+  weights(1.0f, 0.0f, 0.0f);  // on a sample: no doubt
+  EXPECT_FLOAT_EQ(blend_risk(edge, edge.lr[0], 1.0f, vec3(0.0f)), 0.0f);
+  // Halfway between black and white: either side with probability ½, D(½) and 255 − D(½) away.
+  weights(0.5f, 0.0f, 0.5f);
+  EXPECT_NEAR(blend_risk(edge, vec3(0.5f, 0.25f, 0.0f), 1.0f, vec3(0.0f)), 127.5f, 1e-3f);
+  // Weights are normalised: 2/3 of the time at 0, 1/3 at 1, value 1/3.
+  weights(1.0f, 1.0f, 1.0f);
+  EXPECT_NEAR(blend_risk(edge, vec3(1.0f / 3.0f, 1.0f / 6.0f, 0.0f), 1.0f, vec3(0.0f)),
+              2.0f / 3.0f * display(1.0f / 3.0f) + 1.0f / 3.0f * (255.0f - display(1.0f / 3.0f)), 1e-3f);
+  // s scales the reflection: a faint one risks less (and the display is non-linear).
+  weights(0.5f, 0.0f, 0.5f);
+  EXPECT_NEAR(blend_risk(edge, vec3(0.5f, 0.25f, 0.0f), 0.1f, vec3(0.0f)), 0.5f * display(0.1f), 1e-3f);
+  // Where the diffuse part already saturates the display, no reuse can be seen to be wrong.
+  EXPECT_FLOAT_EQ(blend_risk(edge, vec3(0.5f, 0.25f, 0.0f), 1.0f, vec3(1.0f)), 0.0f);
+  BlendSamples flat;
+  flat.n = 2;
+  flat.lr[0] = flat.lr[1] = vec3(0.3f), flat.w[0] = flat.w[1] = 1.0f;
+  EXPECT_FLOAT_EQ(blend_risk(flat, vec3(0.3f), 1.0f, vec3(0.1f)), 0.0f);
 }
 
 // blend_error ranks reused samples by the error their blend is likely to carry: on the
@@ -457,14 +469,14 @@ TEST(TemporalReflections, BlendErrorSpendsRecomputesWhereTheErrorIs) {
   WarpOptions edges, low, high;
   edges.edge_contrast = 0.05f;
   edges.edge_rule = ReflectedEdgeRule::kRecompute;
-  low.blend_error = 0.05f;
-  high.blend_error = 0.2f;
+  low.blend_error = 4.0f;  // display levels
+  high.blend_error = 40.0f;
   const Outcome off = run({}), o_edges = run(edges), o_low = run(low), o_high = run(high);
   auto removed_per_sample = [&](const Outcome& o) {
     return (off.mae - o.mae) / double(std::max<uint64_t>(o.recomputed - off.recomputed, 1));
   };
   std::printf("striped mirror: MAE off %.3f (%llu recomputed); edge 0.05 %.3f (+%llu, %.5f per sample); "
-              "blend error 0.05 %.3f (+%llu, %.5f), 0.2 %.3f (+%llu, %.5f)\n",
+              "blend error 4 %.3f (+%llu, %.5f), 40 %.3f (+%llu, %.5f)\n",
               off.mae, static_cast<unsigned long long>(off.recomputed), o_edges.mae,
               static_cast<unsigned long long>(o_edges.recomputed - off.recomputed), removed_per_sample(o_edges),
               o_low.mae, static_cast<unsigned long long>(o_low.recomputed - off.recomputed), removed_per_sample(o_low),
