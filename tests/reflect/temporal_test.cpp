@@ -391,11 +391,13 @@ TEST(TemporalReflections, EdgeRuleNeverReusesAcrossAReflectedEdge) {
   EXPECT_LT(o_near.mae, o_off.mae);
   EXPECT_LT(o_rec.mae, 0.5 * o_off.mae);
 
-  // Same bits for 1 and 2 threads with the rule on (and splats recomputed), through the
+  // Same bits for 1 and 2 threads with the rule on (and splats recomputed; blend_error), through the
   // whole method.
   WarpOptions splats = recompute;
   splats.recompute_splats = true;
-  for (const WarpOptions& warp : {nearest, recompute, splats}) {
+  WarpOptions risk;
+  risk.blend_error = 8.0f;
+  for (const WarpOptions& warp : {nearest, recompute, splats, risk}) {
     auto frames = [&](int threads) {
       ThreadLimit limit(threads);
       TemporalOptions options;
