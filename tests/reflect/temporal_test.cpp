@@ -313,17 +313,23 @@ Scene striped_mirror() {
   }
   return scene;
 }
+
+// Its key frame at kKeyEye and one camera step kMove: offsets, the traced truth.
+struct StripedStep {
+  Scene scene = striped_mirror();
+  RayScene rays{scene};
+  ReflectionFrame frame0 = frame_at(scene, kKeyEye);
+  ReflectionDepthImage key = make_reflection_depth_image(frame0, trace_reflections(scene, rays, frame0), 1e3f);
+  ReflectionFrame frame1 = frame_at(scene, kKeyEye + kMove);
+  OffsetBuffer offsets = best_match_search(key, frame1.camera.position, nullptr, {});
+  TracedReflections truth = trace_reflections(scene, rays, frame1);
+  ImageF reference = compose_reflections(frame1, truth.radiance);
+};
 }  // namespace
 
 TEST(TemporalReflections, EdgeRuleNeverReusesAcrossAReflectedEdge) {
-  const Scene scene = striped_mirror();
-  RayScene rays(scene);
-  const ReflectionFrame frame0 = frame_at(scene, kKeyEye);
-  const ReflectionDepthImage key = make_reflection_depth_image(frame0, trace_reflections(scene, rays, frame0), 1e3f);
-  const ReflectionFrame frame1 = frame_at(scene, kKeyEye + kMove);
-  const OffsetBuffer offsets = best_match_search(key, frame1.camera.position, nullptr, {});
-  const TracedReflections truth = trace_reflections(scene, rays, frame1);
-  const ImageF reference = compose_reflections(frame1, truth.radiance);
+  const StripedStep step;
+  const auto& [scene, rays, frame0, key, frame1, offsets, truth, reference] = step;
 
   // The two sides' levels from the traced frame: the dark stripes' brightest Lr and the
   // bright ones' darkest (albedo ratio 45; the light varies far less across the wall).
@@ -445,14 +451,8 @@ TEST(TemporalReflections, BlendRiskIsTheExpectedErrorOfTheBlend) {
 // striped mirror a higher threshold recomputes fewer samples and removes more error per
 // recomputed sample (the first recomputes pay the most), and a low one nearly all of it.
 TEST(TemporalReflections, BlendErrorSpendsRecomputesWhereTheErrorIs) {
-  const Scene scene = striped_mirror();
-  RayScene rays(scene);
-  const ReflectionFrame frame0 = frame_at(scene, kKeyEye);
-  const ReflectionDepthImage key = make_reflection_depth_image(frame0, trace_reflections(scene, rays, frame0), 1e3f);
-  const ReflectionFrame frame1 = frame_at(scene, kKeyEye + kMove);
-  const OffsetBuffer offsets = best_match_search(key, frame1.camera.position, nullptr, {});
-  const TracedReflections truth = trace_reflections(scene, rays, frame1);
-  const ImageF reference = compose_reflections(frame1, truth.radiance);
+  const StripedStep step;
+  const auto& [scene, rays, frame0, key, frame1, offsets, truth, reference] = step;
   struct Outcome {
     double mae = 0.0;
     uint64_t recomputed = 0, edge = 0;
