@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 
+#include "proxima/core/image_io.h"
 #include "proxima/core/parallel.h"
 
 namespace proxima {
@@ -58,7 +59,22 @@ bool edge_triangle(const ReflectionDepthImage& key, const int corner_x[3], const
   return false;
 }
 
-bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance) {
+float blend_risk(const BlendSamples& blend, vec3 value, float s, vec3 base) {
+  auto display = [&](vec3 lr, int c) { return linear_to_srgb(std::clamp(base[c] + s * lr[c], 0.0f, 1.0f)); };
+  float total = 0.0f;
+  for (int k = 0; k < blend.n; ++k) total += blend.w[k];
+  if (!(total > 0.0f)) return 0.0f;
+  float most = 0.0f;
+  for (int c = 0; c < 3; ++c) {
+    const float at = display(value, c);
+    float sum = 0.0f;
+    for (int k = 0; k < blend.n; ++k) sum += blend.w[k] * std::abs(display(blend.lr[k], c) - at);
+    most = std::max(most, sum / total);
+  }
+  return 255.0f * most;
+}
+
+bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance, BlendSamples* blend) {
   const IntermediateReflection& image = *mesh.image;
   const int w = image.triangle.width(), h = image.triangle.height();
   const int cx = int(std::floor(q.x)), cy = int(std::floor(q.y));
@@ -89,6 +105,10 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance) {
       if (e0 < -slack || e1 < -slack || e2 < -slack) continue;
       const float b[3] = {std::max(e0, 0.0f), std::max(e1, 0.0f), std::max(e2, 0.0f)};
       radiance = reconstruct(v, b, edge_triangle(*mesh.key, cx3, cy3, mesh.edge_contrast));
+      if (blend) {
+        blend->n = 3;
+        for (int k = 0; k < 3; ++k) blend->lr[k] = v[k].lr, blend->w[k] = b[k];
+      }
       return true;
     }
   return false;

@@ -48,7 +48,22 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
         out.flag[i] = uint8_t(kReuseUnreliable | (st == kWarpCurved ? kReuseCurved : 0) | (st == kWarpEdge ? kReuseEdge : 0));
         continue;
       }
-      if (mesh && warped_radiance_at(*mesh, q, out.radiance[i])) continue;
+      // blend_error: a reused value likely to be wrong on the display is recomputed.
+      const bool gate = mesh && mesh->blend_error < kInf;
+      BlendSamples blend;
+      auto risky = [&](vec3 value) {
+        const uint32_t p = frame.pixel[i], sw = uint32_t(frame.sample_camera.width);
+        const vec3 base(frame.base.at(int(p % sw), int(p / sw), 0), frame.base.at(int(p % sw), int(p / sw), 1),
+                        frame.base.at(int(p % sw), int(p / sw), 2));
+        return blend_risk(blend, value, frame.specular[i], base) > mesh->blend_error;
+      };
+      if (mesh && warped_radiance_at(*mesh, q, out.radiance[i], gate ? &blend : nullptr)) {
+        if (gate && risky(out.radiance[i])) {
+          out.radiance[i] = vec3(0.0f);
+          out.flag[i] = uint8_t(kReuseUnreliable | kReuseEdge);
+        }
+        continue;
+      }
       // Bilinear over the usable pixels of the 2×2 around q (the nearest is one of them).
       const float fx = q.x - 0.5f, fy = q.y - 0.5f;
       const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
@@ -65,6 +80,7 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
           sum += wt * lr;
           weight += wt;
           lo = glm::min(lo, key.specular.at(x, y) * lr), hi = glm::max(hi, key.specular.at(x, y) * lr);
+          blend.lr[blend.n] = lr, blend.w[blend.n] = wt, ++blend.n;
         }
       // The same edge rule as the mesh's: no blend across a reflected edge.
       const vec3 range = hi - lo;
@@ -75,6 +91,10 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
         out.radiance[i] = vec3(radiance.at(nx, ny, 0), radiance.at(nx, ny, 1), radiance.at(nx, ny, 2));
       } else if (weight > 0.0f) {
         out.radiance[i] = sum / weight;
+        if (gate && risky(out.radiance[i])) {
+          out.radiance[i] = vec3(0.0f);
+          out.flag[i] = uint8_t(kReuseUnreliable | kReuseEdge);
+        }
       } else {
         out.radiance[i] = vec3(radiance.at(nx, ny, 0), radiance.at(nx, ny, 1), radiance.at(nx, ny, 2));
       }

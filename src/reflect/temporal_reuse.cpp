@@ -83,7 +83,8 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
     const IntermediateReflection mid = warp_reflections(state.key, offsets, options.warp);
     st.warp_ms = watch.elapsed_ms();
     watch.restart();
-    const WarpedMesh mesh{&state.key, &offsets, &mid, options.warp.edge_contrast, options.warp.edge_rule};
+    const WarpedMesh mesh{&state.key, &offsets, &mid, options.warp.edge_contrast, options.warp.edge_rule,
+                          options.warp.recompute_splats, options.warp.blend_error};
     ReflectionReprojection r =
         reproject_reflections(frame, state.key, mid.radiance, &mid.state, options.reproject, &mesh);
     st.reproject_ms = watch.elapsed_ms();

@@ -51,7 +51,9 @@ TEST(TemporalCli, BadInputIsExitCodeTwoAndWritesNothing) {
                                   base + "--path 0 --compare --reference-rays -1 --out " + out.string(),
                                   base + "--path 0 --breakdown --out " + out.string(),
                                   base + "--path 0 --edge-contrast -1 --out " + out.string(),
-                                  base + "--path 0 --edge-rule blend --out " + out.string()}) {
+                                  base + "--path 0 --edge-rule blend --out " + out.string(),
+                                  base + "--path 0 --blend-error -0.1 --out " + out.string(),
+                                  base + "--path 0 --blend-error nan --out " + out.string()}) {
     const RunResult r = run_cli(args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
     EXPECT_NE(r.output.find("--"), std::string::npos) << r.output;  // names the flag

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "proxima/core/image_io.h"
 #include "proxima/core/parallel.h"
 #include "proxima/eval/image_error.h"
 #include "proxima/reflect/temporal_reuse.h"
@@ -297,7 +298,8 @@ TEST(TemporalReflections, CurvedMirrorPixelsAreUnreliablePlanarOnesAreNot) {
 // albedo 0.02 and 0.9: about 6 pixels each in the mirror): the reflected image is all sharp
 // edges. A reused sample "crosses an edge" when its Lr lies between the two sides' levels,
 // a blend no point sample of the scene has.
-TEST(TemporalReflections, EdgeRuleNeverReusesAcrossAReflectedEdge) {
+namespace {
+Scene striped_mirror() {
   Scene scene;
   scene.name = "striped-mirror";
   add_quad(scene, vec3(-2, 0, -2), vec3(0, 0, 4), vec3(4, 0, 0), add_diffuse(scene, vec3(0.5f), 1.0f), "mirror");
@@ -309,13 +311,25 @@ TEST(TemporalReflections, EdgeRuleNeverReusesAcrossAReflectedEdge) {
     add_quad(scene, vec3(x, -1, -2), vec3(width, 0, 0), vec3(0, 6, 0), k % 2 ? bright : dark, "stripe");
     x += width;
   }
-  RayScene rays(scene);
-  const ReflectionFrame frame0 = frame_at(scene, kKeyEye);
-  const ReflectionDepthImage key = make_reflection_depth_image(frame0, trace_reflections(scene, rays, frame0), 1e3f);
-  const ReflectionFrame frame1 = frame_at(scene, kKeyEye + kMove);
-  const OffsetBuffer offsets = best_match_search(key, frame1.camera.position, nullptr, {});
-  const TracedReflections truth = trace_reflections(scene, rays, frame1);
-  const ImageF reference = compose_reflections(frame1, truth.radiance);
+  return scene;
+}
+
+// Its key frame at kKeyEye and one camera step kMove: offsets, the traced truth.
+struct StripedStep {
+  Scene scene = striped_mirror();
+  RayScene rays{scene};
+  ReflectionFrame frame0 = frame_at(scene, kKeyEye);
+  ReflectionDepthImage key = make_reflection_depth_image(frame0, trace_reflections(scene, rays, frame0), 1e3f);
+  ReflectionFrame frame1 = frame_at(scene, kKeyEye + kMove);
+  OffsetBuffer offsets = best_match_search(key, frame1.camera.position, nullptr, {});
+  TracedReflections truth = trace_reflections(scene, rays, frame1);
+  ImageF reference = compose_reflections(frame1, truth.radiance);
+};
+}  // namespace
+
+TEST(TemporalReflections, EdgeRuleNeverReusesAcrossAReflectedEdge) {
+  const StripedStep step;
+  const auto& [scene, rays, frame0, key, frame1, offsets, truth, reference] = step;
 
   // The two sides' levels from the traced frame: the dark stripes' brightest Lr and the
   // bright ones' darkest (albedo ratio 45; the light varies far less across the wall).
@@ -383,11 +397,13 @@ TEST(TemporalReflections, EdgeRuleNeverReusesAcrossAReflectedEdge) {
   EXPECT_LT(o_near.mae, o_off.mae);
   EXPECT_LT(o_rec.mae, 0.5 * o_off.mae);
 
-  // Same bits for 1 and 2 threads with the rule on (and splats recomputed), through the
+  // Same bits for 1 and 2 threads with the rule on (and splats recomputed; blend_error), through the
   // whole method.
   WarpOptions splats = recompute;
   splats.recompute_splats = true;
-  for (const WarpOptions& warp : {nearest, recompute, splats}) {
+  WarpOptions risk;
+  risk.blend_error = 8.0f;
+  for (const WarpOptions& warp : {nearest, recompute, splats, risk}) {
     auto frames = [&](int threads) {
       ThreadLimit limit(threads);
       TemporalOptions options;
@@ -403,6 +419,78 @@ TEST(TemporalReflections, EdgeRuleNeverReusesAcrossAReflectedEdge) {
     };
     EXPECT_EQ(frames(1), frames(2));
   }
+}
+
+TEST(TemporalReflections, BlendRiskIsTheExpectedErrorOfTheBlend) {
+  auto display = [](float linear) { return 255.0f * linear_to_srgb(linear); };
+  BlendSamples edge;
+  edge.n = 3;
+  edge.lr[0] = edge.lr[1] = vec3(0.0f), edge.lr[2] = vec3(1.0f, 0.5f, 0.0f);
+  auto weights = [&](float a, float b, float c) { edge.w[0] = a, edge.w[1] = b, edge.w[2] = c; };
+  weights(1.0f, 0.0f, 0.0f);  // on a sample: no doubt
+  EXPECT_FLOAT_EQ(blend_risk(edge, edge.lr[0], 1.0f, vec3(0.0f)), 0.0f);
+  // Halfway between black and white: either side with probability ½, D(½) and 255 − D(½) away.
+  weights(0.5f, 0.0f, 0.5f);
+  EXPECT_NEAR(blend_risk(edge, vec3(0.5f, 0.25f, 0.0f), 1.0f, vec3(0.0f)), 127.5f, 1e-3f);
+  // Weights are normalised: 2/3 of the time at 0, 1/3 at 1, value 1/3.
+  weights(1.0f, 1.0f, 1.0f);
+  EXPECT_NEAR(blend_risk(edge, vec3(1.0f / 3.0f, 1.0f / 6.0f, 0.0f), 1.0f, vec3(0.0f)),
+              2.0f / 3.0f * display(1.0f / 3.0f) + 1.0f / 3.0f * (255.0f - display(1.0f / 3.0f)), 1e-3f);
+  // s scales the reflection: a faint one risks less (and the display is non-linear).
+  weights(0.5f, 0.0f, 0.5f);
+  EXPECT_NEAR(blend_risk(edge, vec3(0.5f, 0.25f, 0.0f), 0.1f, vec3(0.0f)), 0.5f * display(0.1f), 1e-3f);
+  // Where the diffuse part already saturates the display, no reuse can be seen to be wrong.
+  EXPECT_FLOAT_EQ(blend_risk(edge, vec3(0.5f, 0.25f, 0.0f), 1.0f, vec3(1.0f)), 0.0f);
+  BlendSamples flat;
+  flat.n = 2;
+  flat.lr[0] = flat.lr[1] = vec3(0.3f), flat.w[0] = flat.w[1] = 1.0f;
+  EXPECT_FLOAT_EQ(blend_risk(flat, vec3(0.3f), 1.0f, vec3(0.1f)), 0.0f);
+}
+
+// blend_error ranks reused samples by the error their blend is likely to carry: on the
+// striped mirror a higher threshold recomputes fewer samples and removes more error per
+// recomputed sample (the first recomputes pay the most), and a low one nearly all of it.
+TEST(TemporalReflections, BlendErrorSpendsRecomputesWhereTheErrorIs) {
+  const StripedStep step;
+  const auto& [scene, rays, frame0, key, frame1, offsets, truth, reference] = step;
+  struct Outcome {
+    double mae = 0.0;
+    uint64_t recomputed = 0, edge = 0;
+  };
+  auto run = [&](const WarpOptions& warp) {
+    const IntermediateReflection mid = warp_reflections(key, offsets, warp);
+    const WarpedMesh mesh{&key, &offsets, &mid, warp.edge_contrast, warp.edge_rule, warp.recompute_splats,
+                          warp.blend_error};
+    ReflectionReprojection r = reproject_reflections(frame1, key, mid.radiance, &mid.state, {}, &mesh);
+    for (size_t i = 0; i < r.flag.size(); ++i)
+      if (r.flag[i] != kReuseOk) r.radiance[i] = truth.radiance[i];
+    const ImageU8 all = mask_of(frame1, std::vector<uint8_t>(frame1.sample_count(), 1));
+    return Outcome{compare_images(compose_reflections(frame1, r.radiance), reference, &all).mae_avg, r.recompute(),
+                   r.edge};
+  };
+  WarpOptions edges, low, high;
+  edges.edge_contrast = 0.05f;
+  edges.edge_rule = ReflectedEdgeRule::kRecompute;
+  low.blend_error = 4.0f;  // display levels
+  high.blend_error = 40.0f;
+  const Outcome off = run({}), o_edges = run(edges), o_low = run(low), o_high = run(high);
+  auto removed_per_sample = [&](const Outcome& o) {
+    return (off.mae - o.mae) / double(std::max<uint64_t>(o.recomputed - off.recomputed, 1));
+  };
+  std::printf("striped mirror: MAE off %.3f (%llu recomputed); edge 0.05 %.3f (+%llu, %.5f per sample); "
+              "blend error 4 %.3f (+%llu, %.5f), 40 %.3f (+%llu, %.5f)\n",
+              off.mae, static_cast<unsigned long long>(off.recomputed), o_edges.mae,
+              static_cast<unsigned long long>(o_edges.recomputed - off.recomputed), removed_per_sample(o_edges),
+              o_low.mae, static_cast<unsigned long long>(o_low.recomputed - off.recomputed), removed_per_sample(o_low),
+              o_high.mae, static_cast<unsigned long long>(o_high.recomputed - off.recomputed),
+              removed_per_sample(o_high));
+  EXPECT_EQ(off.edge, 0u);  // off by default
+  ASSERT_GT(o_high.edge, 0u);
+  EXPECT_EQ(o_low.recomputed, off.recomputed + o_low.edge);  // only its own flags added
+  EXPECT_LT(o_high.recomputed, o_low.recomputed);
+  EXPECT_GT(removed_per_sample(o_high), removed_per_sample(o_low));
+  EXPECT_LT(o_high.mae, 0.5 * off.mae);
+  EXPECT_LT(o_low.mae, 0.1 * off.mae);
 }
 
 // Key samples no warp triangle reached are splatted as lone points; with recompute_splats

@@ -50,7 +50,25 @@ struct WarpOptions {
   ReflectedEdgeRule edge_rule = ReflectedEdgeRule::kNearest;
   bool recompute_splats = false;      // splatted points (no triangle reached them) are unreliable:
                                       // their value is a lone sample read by the bilinear fallback
+  float blend_error = kInf;           // off by default: a reused sample whose expected display error
+                                      // (blend_risk, 0–255) exceeds this is recomputed (kReuseEdge)
 };
+
+// The key samples a reused value blends and their weights: a warp triangle's three corners
+// (barycentrics) or the reprojection's bilinear fallback (up to four pixels).
+struct BlendSamples {
+  vec3 lr[4];
+  float w[4];
+  int n = 0;
+};
+
+// The expected display error (0–255 per channel, sRGB of the clamped value, as
+// eval/image_error measures) of reusing `value` in the composite base + s·Lr: the max over
+// channels of Σ w_k·|D(base + s·Lr_k) − D(base + s·value)| / Σ w_k — the error if the true
+// reflection were sample k with probability w_k. A point-sampled reflected edge between
+// samples is as likely on either side; near a sample, between similar samples, or where the
+// display saturates or the reflection is faint, the risk is small.
+float blend_risk(const BlendSamples& blend, vec3 value, float s, vec3 base);
 
 // True when the corners' s·Lr (s = key.specular) differ by more than `contrast` in a channel.
 bool edge_triangle(const ReflectionDepthImage& key, const int corner_x[3], const int corner_y[3], float contrast);
@@ -88,12 +106,14 @@ struct WarpedMesh {
   ReflectedEdgeRule edge_rule = ReflectedEdgeRule::kNearest;
   bool recompute_splats = false;      // splatted points (no triangle reached them) are unreliable:
                                       // their value is a lone sample read by the bilinear fallback
+  float blend_error = kInf;           // WarpOptions::blend_error of the warp
 };
 
 // s.Lr of the warped mesh at continuous key-grid position q: the reliable triangles stored
 // in the 3×3 pixels around q, in a fixed order, evaluated at q itself. Reading the mesh
 // rather than the image's pixel centres resamples the key frame once, not twice (warp, then
-// bilinear reprojection). False when none of them contains q.
-bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance);
+// bilinear reprojection). False when none of them contains q. With `blend`, also the
+// triangle's corners and their weights at q.
+bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance, BlendSamples* blend = nullptr);
 
 }  // namespace proxima
