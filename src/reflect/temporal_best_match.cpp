@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "proxima/core/image_rgb.h"
 #include "proxima/core/parallel.h"
@@ -17,10 +20,16 @@ constexpr size_t kRowGrain = 4;
 constexpr float kExactMatch = 1e-4f;
 
 
+// The 8-neighbourhood of a square in scan order (dy = −1..1, dx = −1..1, centre left out):
+// the order of the descent's tie-breaks.
+constexpr int kRing[8][2] = {{-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
+
 struct Search {
   const ReflectionDepthImage& key;
   vec3 eye;
   int w, h;
+  const float* position = key.position.data().data();
+  const float* normal = key.normal.data().data();
 
   bool same(int x, int y, uint32_t object) const {
     return x >= 0 && y >= 0 && x < w && y < h && key.object.at(x, y) == object;
@@ -28,11 +37,68 @@ struct Search {
   float distance(int x, int y, vec3 r) const {
     return match_distance(rgb_at(key.position, x, y), rgb_at(key.normal, x, y), r, eye);
   }
-  // Pixels of another reflector (or none) are outside the search space.
-  float distance_in(int x, int y, uint32_t object, vec3 r) const {
-    return same(x, y, object) ? distance(x, y, r) : kInf;
-  }
+  // match_distance of the 8 neighbours of (cx, cy) in kRing order; +inf for pixels of
+  // another reflector (or none): outside the search space. The same operations as
+  // match_distance lane by lane (IEEE single precision, no fused ops): the same bits.
+  void ring(int cx, int cy, uint32_t object, vec3 r, float out[8]) const;
 };
+
+#if defined(__SSE2__)
+// Four candidates at once; lanes are independent, each the exact sequence of match_distance.
+__m128 match_distance4(const float* const w[4], const float* const n[4], vec3 r, vec3 eye) {
+  const __m128 wx = _mm_setr_ps(w[0][0], w[1][0], w[2][0], w[3][0]);
+  const __m128 wy = _mm_setr_ps(w[0][1], w[1][1], w[2][1], w[3][1]);
+  const __m128 wz = _mm_setr_ps(w[0][2], w[1][2], w[2][2], w[3][2]);
+  const __m128 nx = _mm_setr_ps(n[0][0], n[1][0], n[2][0], n[3][0]);
+  const __m128 ny = _mm_setr_ps(n[0][1], n[1][1], n[2][1], n[3][1]);
+  const __m128 nz = _mm_setr_ps(n[0][2], n[1][2], n[2][2], n[3][2]);
+  const __m128 rx = _mm_set1_ps(r.x), ry = _mm_set1_ps(r.y), rz = _mm_set1_ps(r.z);
+  const __m128 ex = _mm_set1_ps(eye.x), ey = _mm_set1_ps(eye.y), ez = _mm_set1_ps(eye.z);
+  auto dot = [](__m128 ax, __m128 ay, __m128 az, __m128 bx, __m128 by, __m128 bz) {
+    return _mm_add_ps(_mm_add_ps(_mm_mul_ps(ax, bx), _mm_mul_ps(ay, by)), _mm_mul_ps(az, bz));
+  };
+  // m = r − (2·dot(r − w, n))·n
+  const __m128 k = _mm_mul_ps(_mm_set1_ps(2.0f), dot(_mm_sub_ps(rx, wx), _mm_sub_ps(ry, wy), _mm_sub_ps(rz, wz), nx, ny, nz));
+  const __m128 mx = _mm_sub_ps(rx, _mm_mul_ps(k, nx)), my = _mm_sub_ps(ry, _mm_mul_ps(k, ny)),
+               mz = _mm_sub_ps(rz, _mm_mul_ps(k, nz));
+  const __m128 ax = _mm_sub_ps(wx, mx), ay = _mm_sub_ps(wy, my), az = _mm_sub_ps(wz, mz);
+  const __m128 len = _mm_sqrt_ps(dot(ax, ay, az, ax, ay, az));
+  const __m128 dx = _mm_div_ps(ax, len), dy = _mm_div_ps(ay, len), dz = _mm_div_ps(az, len);
+  const __m128 qx = _mm_sub_ps(ex, mx), qy = _mm_sub_ps(ey, my), qz = _mm_sub_ps(ez, mz);
+  const __m128 t = dot(qx, qy, qz, dx, dy, dz);
+  const __m128 fx = _mm_sub_ps(qx, _mm_mul_ps(t, dx)), fy = _mm_sub_ps(qy, _mm_mul_ps(t, dy)),
+               fz = _mm_sub_ps(qz, _mm_mul_ps(t, dz));
+  const __m128 behind = _mm_cmple_ps(t, _mm_setzero_ps());
+  const __m128 d = _mm_or_ps(_mm_and_ps(behind, _mm_sqrt_ps(dot(qx, qy, qz, qx, qy, qz))),
+                             _mm_andnot_ps(behind, _mm_sqrt_ps(dot(fx, fy, fz, fx, fy, fz))));
+  // Degenerate axis (len not > 0): the distance to W itself.
+  const __m128 gx = _mm_sub_ps(ex, wx), gy = _mm_sub_ps(ey, wy), gz = _mm_sub_ps(ez, wz);
+  const __m128 ok = _mm_cmpgt_ps(len, _mm_setzero_ps());
+  return _mm_or_ps(_mm_and_ps(ok, d), _mm_andnot_ps(ok, _mm_sqrt_ps(dot(gx, gy, gz, gx, gy, gz))));
+}
+#endif
+
+void Search::ring(int cx, int cy, uint32_t object, vec3 r, float out[8]) const {
+  bool in[8];
+  const float* wp[8];
+  const float* np[8];
+  for (int k = 0; k < 8; ++k) {
+    const int x = cx + kRing[k][0], y = cy + kRing[k][1];
+    in[k] = same(x, y, object);
+    const size_t i = in[k] ? (size_t(y) * size_t(w) + size_t(x)) * 3 : (size_t(cy) * size_t(w) + size_t(cx)) * 3;
+    wp[k] = position + i;
+    np[k] = normal + i;
+  }
+#if defined(__SSE2__)
+  _mm_storeu_ps(out, match_distance4(wp, np, r, eye));
+  _mm_storeu_ps(out + 4, match_distance4(wp + 4, np + 4, r, eye));
+#else
+  for (int k = 0; k < 8; ++k)
+    out[k] = match_distance(vec3(wp[k][0], wp[k][1], wp[k][2]), vec3(np[k][0], np[k][1], np[k][2]), r, eye);
+#endif
+  for (int k = 0; k < 8; ++k)
+    if (!in[k]) out[k] = kInf;
+}
 
 // Vertex of a parabola through (−1, a), (0, b), (1, c), clamped to ±0.5; 0 if not convex.
 float parabola_vertex(float a, float b, float c) {
@@ -94,34 +160,25 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
         }
         bool converged = false;
         // The last step's 3×3 distances (centre included): on convergence they are the end
-        // point's neighbours, which the sub-pixel fit reads again; after a step of (sx, sy)
-        // the cells both squares share are not evaluated again (the same values: same bits).
+        // point's neighbours, which the sub-pixel fit reads again. Each step evaluates its
+        // whole ring at once (SIMD): cells shared with the previous square get the same bits.
         float around[3][3] = {};
         around[1][1] = former;
-        int sx = 3, sy = 3;  // no previous square yet (every cell falls outside it)
         for (int step = 0; step < max_steps; ++step) {
+          float d8[8];
+          s.ring(cx, cy, object, r, d8);
           int bx = cx, by = cy;
           float best = kInf;
-          float next[3][3];
-          next[1][1] = former;
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-              if (!dx && !dy) continue;
-              const int ox = dx + sx, oy = dy + sy;  // the cell in the previous square
-              const float d = ox >= -1 && ox <= 1 && oy >= -1 && oy <= 1
-                                  ? around[oy + 1][ox + 1]
-                                  : s.distance_in(cx + dx, cy + dy, object, r);
-              next[dy + 1][dx + 1] = d;
-              if (d < best) best = d, bx = cx + dx, by = cy + dy;
-            }
-          std::copy(&next[0][0], &next[0][0] + 9, &around[0][0]);
+          for (int k = 0; k < 8; ++k) {
+            around[kRing[k][1] + 1][kRing[k][0] + 1] = d8[k];
+            if (d8[k] < best) best = d8[k], bx = cx + kRing[k][0], by = cy + kRing[k][1];
+          }
+          around[1][1] = former;
           if (!(best < former)) {  // local minimum (ties stop too: no cycles)
             converged = true;
             break;
           }
           former = best;
-          sx = bx - cx;
-          sy = by - cy;
           cx = bx;
           cy = by;
           ++row_steps[size_t(y)];

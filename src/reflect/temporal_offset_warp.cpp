@@ -96,13 +96,34 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance) {
 
 IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const OffsetBuffer& offsets,
                                         const WarpOptions& options) {
-  const int w = key.object.width(), h = key.object.height();
   IntermediateReflection out;
-  out.radiance = ImageF(w, h, 3, 0.0f);
-  out.depth = ImageF(w, h, 1, kInf);
-  out.state = ImageU8(w, h, 1, kWarpEmpty);
-  out.triangle = ImageU32(w, h, 1, kNoWarpTriangle);
+  warp_reflections_into(key, offsets, options, out);
+  return out;
+}
 
+void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& offsets, const WarpOptions& options,
+                           IntermediateReflection& out) {
+  const int w = key.object.width(), h = key.object.height();
+  if (out.state.width() == w && out.state.height() == h) {
+    // A pixel is written with its state, never kWarpEmpty: the empty pixels hold the
+    // defaults already, so only the others are reset (not four whole images per frame).
+    uint8_t* state = out.state.data().data();
+    for (size_t i = 0, n = size_t(w) * size_t(h); i < n; ++i)
+      if (state[i] != kWarpEmpty) {
+        const int x = int(i % size_t(w)), y = int(i / size_t(w));
+        for (int c = 0; c < 3; ++c) out.radiance.at(x, y, c) = 0.0f;
+        out.depth.at(x, y) = kInf;
+        out.triangle.at(x, y) = kNoWarpTriangle;
+        state[i] = kWarpEmpty;
+      }
+  } else {
+    out.radiance = ImageF(w, h, 3, 0.0f);
+    out.depth = ImageF(w, h, 1, kInf);
+    out.state = ImageU8(w, h, 1, kWarpEmpty);
+    out.triangle = ImageU32(w, h, 1, kNoWarpTriangle);
+  }
+  out.triangles = out.stretched = out.curved = out.discontinuous = out.edges = 0;
+  // Read on reflective pixels only, each set below: a reused buffer keeps stale entries elsewhere.
   out.vertex.resize(size_t(w) * size_t(h));
   // Per row the span [first, last] of reflective pixels (empty: first > last): the scans
   // below skip the rest of the row, which holds no vertex.
@@ -195,8 +216,8 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
           band_tris[size_t(band)].push_back({id, state, edge && !edge_recompute});
       }
 
-  parallel_for(size_t(bands), 1, [&](size_t first, size_t last) {
-    for (size_t band = first; band < last; ++band) {
+  parallel_for(size_t(bands), 1, [&](size_t band_begin, size_t band_end) {
+    for (size_t band = band_begin; band < band_end; ++band) {
       const int y_lo = int(band) * kBandRows, y_hi = std::min(h, y_lo + kBandRows);
       for (const Tri& t : band_tris[band]) {
         const uint32_t quad = t.id / 2u, half = t.id % 2u;
@@ -253,7 +274,6 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
       for (int c = 0; c < 3; ++c) out.radiance.at(px, py, c) = v.lr[c];
       out.state.at(px, py) = !flat(x, y) ? kWarpCurved : options.recompute_splats ? kWarpUnreliable : kWarpReliable;
     }
-  return out;
 }
 
 }  // namespace proxima

@@ -78,6 +78,11 @@ struct IntermediateReflection {
 IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const OffsetBuffer& offsets,
                                         const WarpOptions& options);
 
+// The same into `out`, reusing its buffers from an earlier warp of the same size (per frame
+// only its written pixels are reset, not four whole images): the same result.
+void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& offsets, const WarpOptions& options,
+                           IntermediateReflection& out);
+
 // The warped mesh, for reading it at any point of the key grid.
 struct WarpedMesh {
   const ReflectionDepthImage* key = nullptr;
