@@ -14,11 +14,10 @@ namespace proxima {
 
 namespace {
 
-constexpr size_t kRowGrain = 4;
+constexpr size_t kPixelGrain = 1024;  // reflective pixels per parallel chunk
 // Squared distance below this fraction of its neighbours' counts as an exact match (the
 // parabola would move it by < ~0.01 px).
 constexpr float kExactMatch = 1e-4f;
-
 
 // The 8-neighbourhood of a square in scan order (dy = −1..1, dx = −1..1, centre left out):
 // the order of the descent's tie-breaks.
@@ -58,7 +57,8 @@ __m128 match_distance4(const float* const w[4], const float* const n[4], vec3 r,
     return _mm_add_ps(_mm_add_ps(_mm_mul_ps(ax, bx), _mm_mul_ps(ay, by)), _mm_mul_ps(az, bz));
   };
   // m = r − (2·dot(r − w, n))·n
-  const __m128 k = _mm_mul_ps(_mm_set1_ps(2.0f), dot(_mm_sub_ps(rx, wx), _mm_sub_ps(ry, wy), _mm_sub_ps(rz, wz), nx, ny, nz));
+  const __m128 k = _mm_mul_ps(_mm_set1_ps(2.0f),
+                              dot(_mm_sub_ps(rx, wx), _mm_sub_ps(ry, wy), _mm_sub_ps(rz, wz), nx, ny, nz));
   const __m128 mx = _mm_sub_ps(rx, _mm_mul_ps(k, nx)), my = _mm_sub_ps(ry, _mm_mul_ps(k, ny)),
                mz = _mm_sub_ps(rz, _mm_mul_ps(k, nz));
   const __m128 ax = _mm_sub_ps(wx, mx), ay = _mm_sub_ps(wy, my), az = _mm_sub_ps(wz, mz);
@@ -85,7 +85,8 @@ void Search::ring(int cx, int cy, uint32_t object, vec3 r, float out[8]) const {
   for (int k = 0; k < 8; ++k) {
     const int x = cx + kRing[k][0], y = cy + kRing[k][1];
     in[k] = same(x, y, object);
-    const size_t i = in[k] ? (size_t(y) * size_t(w) + size_t(x)) * 3 : (size_t(cy) * size_t(w) + size_t(cx)) * 3;
+    const size_t i =
+        in[k] ? (size_t(y) * size_t(w) + size_t(x)) * 3 : (size_t(cy) * size_t(w) + size_t(cx)) * 3;
     wp[k] = position + i;
     np[k] = normal + i;
   }
@@ -130,102 +131,106 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
   out.offset.assign(size_t(w) * size_t(h), vec2(0.0f));
   out.valid.assign(size_t(w) * size_t(h), 0);
   const bool warm = previous && previous->width == w && previous->height == h;
-  const bool extrapolate = warm && options.extrapolate && earlier && earlier->width == w && earlier->height == h;
+  const bool extrapolate =
+      warm && options.extrapolate && earlier && earlier->width == w && earlier->height == h;
   const int max_steps = options.max_steps > 0 ? options.max_steps : w + h;
   const float focal = focal_length_px(key.camera);
   const Search s{key, eye, w, h};
-  std::vector<uint64_t> row_steps(size_t(h), 0), row_invalid(size_t(h), 0), row_searched(size_t(h), 0);
+  // The key's reflective pixels and their R (make_reflection_depth_image), in fixed chunks.
+  const size_t n = key.pixels.size();
+  const size_t chunks = (n + kPixelGrain - 1) / kPixelGrain;
+  std::vector<uint64_t> chunk_steps(chunks, 0), chunk_invalid(chunks, 0);
 
-  parallel_for(size_t(h), kRowGrain, [&](size_t y0, size_t y1) {
-    for (int y = int(y0); y < int(y1); ++y)
-      for (int x = 0; x < w; ++x) {
-        const uint32_t object = key.object.at(x, y);
-        if (object == kNoReflector) continue;
-        ++row_searched[size_t(y)];
-        const size_t i = size_t(y) * size_t(w) + size_t(x);
-        const vec3 r = key_reflected_point(key, x, y);
-        int cx = x, cy = y;
-        if (warm) {  // INVALID pixels too: their end point saves the next walk
-          const int px = x + int(std::lround(previous->offset[i].x)), py = y + int(std::lround(previous->offset[i].y));
-          if (s.same(px, py, object)) cx = px, cy = py;
-        }
-        float former = s.distance(cx, cy, r);
-        if (extrapolate) {  // steady motion: the offset moves on by its last change
-          const vec2 guess = 2.0f * previous->offset[i] - earlier->offset[i];
-          const int gx = x + int(std::lround(guess.x)), gy = y + int(std::lround(guess.y));
-          if ((gx != cx || gy != cy) && s.same(gx, gy, object)) {
-            const float d = s.distance(gx, gy, r);
-            if (d < former) former = d, cx = gx, cy = gy;
-          }
-        }
-        bool converged = false;
-        // The last step's 3×3 distances (centre included): on convergence they are the end
-        // point's neighbours, which the sub-pixel fit reads again. Each step evaluates its
-        // whole ring at once (SIMD): cells shared with the previous square get the same bits.
-        float around[3][3] = {};
-        around[1][1] = former;
-        for (int step = 0; step < max_steps; ++step) {
-          float d8[8];
-          s.ring(cx, cy, object, r, d8);
-          int bx = cx, by = cy;
-          float best = kInf;
-          for (int k = 0; k < 8; ++k) {
-            around[kRing[k][1] + 1][kRing[k][0] + 1] = d8[k];
-            if (d8[k] < best) best = d8[k], bx = cx + kRing[k][0], by = cy + kRing[k][1];
-          }
-          around[1][1] = former;
-          if (!(best < former)) {  // local minimum (ties stop too: no cycles)
-            converged = true;
-            break;
-          }
-          former = best;
-          cx = bx;
-          cy = by;
-          ++row_steps[size_t(y)];
-        }
-        bool ok = converged;
-        if (ok) {
-          // On the silhouette border the true minimum may lie outside the reflector: keep
-          // the match only if the reflected ray through W_c misses E_cur by ≤ tolerance
-          // key pixels (distance scaled back to W_c by similar triangles).
-          bool border = false;
-          for (int dy = -1; dy <= 1 && !border; ++dy)
-            for (int dx = -1; dx <= 1; ++dx)
-              if (!s.same(cx + dx, cy + dy, object)) border = true;
-          if (border) {
-            const vec3 wc = rgb_at(key.position, cx, cy), nc = rgb_at(key.normal, cx, cy);
-            const vec3 m = r - 2.0f * glm::dot(r - wc, nc) * nc;
-            const float scale = glm::length(wc - m) / std::max(glm::length(eye - m), 1e-6f);
-            const float miss_px = former * scale * focal / std::max(key.depth.at(cx, cy), 1e-6f);
-            ok = miss_px <= options.border_tolerance_px;
-          }
-        }
-        if (!ok) {
-          ++row_invalid[size_t(y)];
-          out.offset[i] = vec2(float(cx - x), float(cy - y));
-          continue;
-        }
-        vec2 sub(0.0f);
-        if (options.subpixel) {
-          auto sq = [&](int dx, int dy) { return around[dy + 1][dx + 1] * around[dy + 1][dx + 1]; };
-          const float b = former * former;
-          const float l = sq(-1, 0), rr = sq(1, 0), u = sq(0, -1), dn = sq(0, 1);
-          // An (almost) exact match stays put: near a zero of the distance its square is
-          // far from a parabola where the reflection is close (small s.r).
-          auto exact = [&](float p, float q) { return b <= kExactMatch * std::min(p, q); };
-          if (std::isfinite(l) && std::isfinite(rr) && !exact(l, rr)) sub.x = parabola_vertex(l, b, rr);
-          if (std::isfinite(u) && std::isfinite(dn) && !exact(u, dn)) sub.y = parabola_vertex(u, b, dn);
-        }
-        out.offset[i] = vec2(float(cx - x), float(cy - y)) + sub;
-        out.valid[i] = 1;
+  parallel_for(n, kPixelGrain, [&](size_t j0, size_t j1) {
+    const size_t chunk = j0 / kPixelGrain;
+    for (size_t j = j0; j < j1; ++j) {
+      const size_t i = key.pixels[j];
+      const int x = int(i % size_t(w)), y = int(i / size_t(w));
+      const uint32_t object = key.object.at(x, y);
+      const vec3 r = key.reflected[j];
+      int cx = x, cy = y;
+      if (warm) {  // INVALID pixels too: their end point saves the next walk
+        const int px = x + int(std::lround(previous->offset[i].x)),
+                  py = y + int(std::lround(previous->offset[i].y));
+        if (s.same(px, py, object)) cx = px, cy = py;
       }
+      float former = s.distance(cx, cy, r);
+      if (extrapolate) {  // steady motion: the offset moves on by its last change
+        const vec2 guess = 2.0f * previous->offset[i] - earlier->offset[i];
+        const int gx = x + int(std::lround(guess.x)), gy = y + int(std::lround(guess.y));
+        if ((gx != cx || gy != cy) && s.same(gx, gy, object)) {
+          const float d = s.distance(gx, gy, r);
+          if (d < former) former = d, cx = gx, cy = gy;
+        }
+      }
+      bool converged = false;
+      // The last step's 3×3 distances (centre included): on convergence they are the end
+      // point's neighbours, which the sub-pixel fit reads again. Each step evaluates its
+      // whole ring at once (SIMD): cells shared with the previous square get the same bits.
+      float around[3][3] = {};
+      around[1][1] = former;
+      for (int step = 0; step < max_steps; ++step) {
+        float d8[8];
+        s.ring(cx, cy, object, r, d8);
+        int bx = cx, by = cy;
+        float best = kInf;
+        for (int k = 0; k < 8; ++k) {
+          around[kRing[k][1] + 1][kRing[k][0] + 1] = d8[k];
+          if (d8[k] < best) best = d8[k], bx = cx + kRing[k][0], by = cy + kRing[k][1];
+        }
+        around[1][1] = former;
+        if (!(best < former)) {  // local minimum (ties stop too: no cycles)
+          converged = true;
+          break;
+        }
+        former = best;
+        cx = bx;
+        cy = by;
+        ++chunk_steps[chunk];
+      }
+      bool ok = converged;
+      if (ok) {
+        // On the silhouette border the true minimum may lie outside the reflector: keep
+        // the match only if the reflected ray through W_c misses E_cur by ≤ tolerance
+        // key pixels (distance scaled back to W_c by similar triangles).
+        bool border = false;
+        for (int dy = -1; dy <= 1 && !border; ++dy)
+          for (int dx = -1; dx <= 1; ++dx)
+            if (!s.same(cx + dx, cy + dy, object)) border = true;
+        if (border) {
+          const vec3 wc = rgb_at(key.position, cx, cy), nc = rgb_at(key.normal, cx, cy);
+          const vec3 m = r - 2.0f * glm::dot(r - wc, nc) * nc;
+          const float scale = glm::length(wc - m) / std::max(glm::length(eye - m), 1e-6f);
+          const float miss_px = former * scale * focal / std::max(key.depth.at(cx, cy), 1e-6f);
+          ok = miss_px <= options.border_tolerance_px;
+        }
+      }
+      if (!ok) {
+        ++chunk_invalid[chunk];
+        out.offset[i] = vec2(float(cx - x), float(cy - y));
+        continue;
+      }
+      vec2 sub(0.0f);
+      if (options.subpixel) {
+        auto sq = [&](int dx, int dy) { return around[dy + 1][dx + 1] * around[dy + 1][dx + 1]; };
+        const float b = former * former;
+        const float l = sq(-1, 0), rr = sq(1, 0), u = sq(0, -1), dn = sq(0, 1);
+        // An (almost) exact match stays put: near a zero of the distance its square is
+        // far from a parabola where the reflection is close (small s.r).
+        auto exact = [&](float p, float q) { return b <= kExactMatch * std::min(p, q); };
+        if (std::isfinite(l) && std::isfinite(rr) && !exact(l, rr)) sub.x = parabola_vertex(l, b, rr);
+        if (std::isfinite(u) && std::isfinite(dn) && !exact(u, dn)) sub.y = parabola_vertex(u, b, dn);
+      }
+      out.offset[i] = vec2(float(cx - x), float(cy - y)) + sub;
+      out.valid[i] = 1;
+    }
   });
   if (stats) {
     *stats = {};
-    for (int y = 0; y < h; ++y) {
-      stats->searched += row_searched[size_t(y)];
-      stats->invalid += row_invalid[size_t(y)];
-      stats->steps += row_steps[size_t(y)];
+    stats->searched = n;
+    for (size_t c = 0; c < chunks; ++c) {
+      stats->invalid += chunk_invalid[c];
+      stats->steps += chunk_steps[c];
     }
   }
   return out;
