@@ -29,9 +29,11 @@ struct Search {
   int w, h;
   const float* position = key.position.data().data();
   const float* normal = key.normal.data().data();
+  const uint32_t* objects = key.object.data().data();
 
   bool same(int x, int y, uint32_t object) const {
-    return x >= 0 && y >= 0 && x < w && y < h && key.object.at(x, y) == object;
+    return unsigned(x) < unsigned(w) && unsigned(y) < unsigned(h) &&
+           objects[size_t(y) * size_t(w) + size_t(x)] == object;
   }
   float distance(int x, int y, vec3 r) const {
     return match_distance(rgb_at(key.position, x, y), rgb_at(key.normal, x, y), r, eye);
@@ -39,7 +41,8 @@ struct Search {
   // match_distance of the 8 neighbours of (cx, cy) in kRing order; +inf for pixels of
   // another reflector (or none): outside the search space. The same operations as
   // match_distance lane by lane (IEEE single precision, no fused ops): the same bits.
-  void ring(int cx, int cy, uint32_t object, vec3 r, float out[8]) const;
+  // Returns whether all 8 are on the reflector.
+  bool ring(int cx, int cy, uint32_t object, vec3 r, float out[8]) const;
 };
 
 #if defined(__SSE2__)
@@ -78,7 +81,7 @@ __m128 match_distance4(const float* const w[4], const float* const n[4], vec3 r,
 }
 #endif
 
-void Search::ring(int cx, int cy, uint32_t object, vec3 r, float out[8]) const {
+bool Search::ring(int cx, int cy, uint32_t object, vec3 r, float out[8]) const {
   bool in[8];
   const float* wp[8];
   const float* np[8];
@@ -97,8 +100,10 @@ void Search::ring(int cx, int cy, uint32_t object, vec3 r, float out[8]) const {
   for (int k = 0; k < 8; ++k)
     out[k] = match_distance(vec3(wp[k][0], wp[k][1], wp[k][2]), vec3(np[k][0], np[k][1], np[k][2]), r, eye);
 #endif
+  bool all = true;
   for (int k = 0; k < 8; ++k)
-    if (!in[k]) out[k] = kInf;
+    if (!in[k]) out[k] = kInf, all = false;
+  return all;
 }
 
 // Vertex of a parabola through (−1, a), (0, b), (1, c), clamped to ±0.5; 0 if not convex.
@@ -163,7 +168,7 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
           if (d < former) former = d, cx = gx, cy = gy;
         }
       }
-      bool converged = false;
+      bool converged = false, inside = true;  // inside: the last ring was all on the reflector
       // The last step's 3×3 distances (centre included): on convergence they are the end
       // point's neighbours, which the sub-pixel fit reads again. Each step evaluates its
       // whole ring at once (SIMD): cells shared with the previous square get the same bits.
@@ -171,7 +176,7 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
       around[1][1] = former;
       for (int step = 0; step < max_steps; ++step) {
         float d8[8];
-        s.ring(cx, cy, object, r, d8);
+        inside = s.ring(cx, cy, object, r, d8);
         int bx = cx, by = cy;
         float best = kInf;
         for (int k = 0; k < 8; ++k) {
@@ -193,11 +198,8 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
         // On the silhouette border the true minimum may lie outside the reflector: keep
         // the match only if the reflected ray through W_c misses E_cur by ≤ tolerance
         // key pixels (distance scaled back to W_c by similar triangles).
-        bool border = false;
-        for (int dy = -1; dy <= 1 && !border; ++dy)
-          for (int dx = -1; dx <= 1; ++dx)
-            if (!s.same(cx + dx, cy + dy, object)) border = true;
-        if (border) {
+        // (the end point's 3×3 is on the reflector but for the ring's cells outside)
+        if (!inside) {
           const vec3 wc = rgb_at(key.position, cx, cy), nc = rgb_at(key.normal, cx, cy);
           const vec3 m = r - 2.0f * glm::dot(r - wc, nc) * nc;
           const float scale = glm::length(wc - m) / std::max(glm::length(eye - m), 1e-6f);

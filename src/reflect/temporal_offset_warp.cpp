@@ -31,6 +31,15 @@ Vertex warp_vertex(const ReflectionDepthImage& key, const OffsetBuffer& offsets,
                 vec3(key.radiance.at(x, y, 0), key.radiance.at(x, y, 1), key.radiance.at(x, y, 2))};
 }
 
+// True when an edge function is below −kEdgeSlack·max(1, |area2|) ≥ −kEdgeSlack·√|area2|
+// (rounded square root and product are monotone): the slack test fails, without its square
+// root. NaN never counts as a miss, as in the slack test.
+bool clear_miss(float e0, float e1, float e2, float area2) {
+  const float a = std::abs(area2);
+  const float bound = kEdgeSlack * (a < 1.0f ? 1.0f : a);
+  return e0 < -bound || e1 < -bound || e2 < -bound;
+}
+
 // Lr at barycentrics b (unnormalised, ≥ 0, not all 0): the blend, or on an edge triangle
 // the corner with the largest weight (ties: the first), so no value between the sides.
 vec3 reconstruct(const Vertex v[3], const float b[3], bool nearest) {
@@ -76,17 +85,20 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance) {
       const int qx = int(quad % uint32_t(w)), qy = int(quad / uint32_t(w));
       Vertex v[3];
       int cx3[3], cy3[3];
+      vec2 p[3];  // the test reads the packed positions; the whole vertices only on a hit
       for (int k = 0; k < 3; ++k) {
         cx3[k] = qx + kCorner[half][k][0], cy3[k] = qy + kCorner[half][k][1];
-        v[k] = image.vertex[size_t(cy3[k]) * size_t(w) + size_t(cx3[k])];
+        p[k] = image.point[size_t(cy3[k]) * size_t(w) + size_t(cx3[k])];
       }
-      const float area2 = cross2(v[1].p - v[0].p, v[2].p - v[0].p);
+      const float area2 = cross2(p[1] - p[0], p[2] - p[0]);
       if (std::abs(area2) < 1e-12f) continue;
-      float e0 = cross2(v[2].p - v[1].p, q - v[1].p), e1 = cross2(v[0].p - v[2].p, q - v[2].p),
-            e2 = cross2(v[1].p - v[0].p, q - v[0].p);
+      float e0 = cross2(p[2] - p[1], q - p[1]), e1 = cross2(p[0] - p[2], q - p[2]), e2 = cross2(p[1] - p[0], q - p[0]);
       if (area2 < 0.0f) e0 = -e0, e1 = -e1, e2 = -e2;
-      const float slack = kEdgeSlack * std::sqrt(std::abs(area2));
+      if (clear_miss(e0, e1, e2, area2)) continue;
+      const float slack = e0 >= 0.0f && e1 >= 0.0f && e2 >= 0.0f ? 0.0f  // inside: no slack needed
+                                                                  : kEdgeSlack * std::sqrt(std::abs(area2));
       if (e0 < -slack || e1 < -slack || e2 < -slack) continue;
+      for (int k = 0; k < 3; ++k) v[k] = image.vertex[size_t(cy3[k]) * size_t(w) + size_t(cx3[k])];
       const float b[3] = {std::max(e0, 0.0f), std::max(e1, 0.0f), std::max(e2, 0.0f)};
       radiance = reconstruct(v, b, edge_triangle(*mesh.key, cx3, cy3, mesh.edge_contrast));
       return true;
@@ -125,11 +137,14 @@ void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& 
   out.triangles = out.stretched = out.curved = out.discontinuous = out.edges = 0;
   // Read on reflective pixels only, each set below: a reused buffer keeps stale entries elsewhere.
   out.vertex.resize(size_t(w) * size_t(h));
+  out.point.resize(size_t(w) * size_t(h));
   // The key's reflective pixels in row-major order: the loops below visit only these (every
   // vertex, every triangle's first corner), not whole rows of other pixels.
   const std::vector<uint32_t>& pixels = key.pixels;
-  for (const uint32_t i : pixels)
+  for (const uint32_t i : pixels) {
     out.vertex[i] = warp_vertex(key, offsets, int(i % uint32_t(w)), int(i / uint32_t(w)));
+    out.point[i] = out.vertex[i].p;
+  }
   auto vertex = [&](int x, int y) -> const Vertex& { return out.vertex[size_t(y) * size_t(w) + size_t(x)]; };
   auto valid = [&](int x, int y) {
     return key.object.at(x, y) != kNoReflector && offsets.valid[size_t(y) * size_t(w) + size_t(x)];

@@ -71,6 +71,7 @@ struct IntermediateReflection {
   ImageU32 triangle;  // that triangle: 2·(y·width + x) + half of its grid quad, or kNoWarpTriangle
   std::vector<WarpVertex> vertex;  // per key pixel (row-major), set on reflective pixels only:
                                    // computed once, read by every triangle that uses it
+  std::vector<vec2> point;         // vertex[i].p packed (what a triangle test reads), likewise
   uint64_t triangles = 0, stretched = 0, curved = 0, discontinuous = 0, edges = 0;
 };
 
