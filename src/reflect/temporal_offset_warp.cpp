@@ -82,13 +82,13 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance) {
       if (std::find(tried, tried + n_tried, id) != tried + n_tried) continue;
       tried[n_tried++] = id;
       const uint32_t quad = id / 2u, half = id % 2u;
-      const int qx = int(quad % uint32_t(w)), qy = int(quad / uint32_t(w));
-      Vertex v[3];
-      int cx3[3], cy3[3];
-      vec2 p[3];  // the test reads the packed positions; the whole vertices only on a hit
+      // The test reads the packed positions (corner index = quad + dy·w + dx, no division);
+      // the whole vertices and the corners' coordinates only on a hit.
+      size_t corner[3];
+      vec2 p[3];
       for (int k = 0; k < 3; ++k) {
-        cx3[k] = qx + kCorner[half][k][0], cy3[k] = qy + kCorner[half][k][1];
-        p[k] = image.point[size_t(cy3[k]) * size_t(w) + size_t(cx3[k])];
+        corner[k] = size_t(quad) + size_t(kCorner[half][k][1]) * size_t(w) + size_t(kCorner[half][k][0]);
+        p[k] = image.point[corner[k]];
       }
       const float area2 = cross2(p[1] - p[0], p[2] - p[0]);
       if (std::abs(area2) < 1e-12f) continue;
@@ -98,7 +98,13 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance) {
       const float slack = e0 >= 0.0f && e1 >= 0.0f && e2 >= 0.0f ? 0.0f  // inside: no slack needed
                                                                   : kEdgeSlack * std::sqrt(std::abs(area2));
       if (e0 < -slack || e1 < -slack || e2 < -slack) continue;
-      for (int k = 0; k < 3; ++k) v[k] = image.vertex[size_t(cy3[k]) * size_t(w) + size_t(cx3[k])];
+      const int qx = int(quad % uint32_t(w)), qy = int(quad / uint32_t(w));
+      Vertex v[3];
+      int cx3[3], cy3[3];
+      for (int k = 0; k < 3; ++k) {
+        cx3[k] = qx + kCorner[half][k][0], cy3[k] = qy + kCorner[half][k][1];
+        v[k] = image.vertex[corner[k]];
+      }
       const float b[3] = {std::max(e0, 0.0f), std::max(e1, 0.0f), std::max(e2, 0.0f)};
       radiance = reconstruct(v, b, edge_triangle(*mesh.key, cx3, cy3, mesh.edge_contrast));
       return true;
