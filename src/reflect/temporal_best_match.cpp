@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "proxima/core/image_rgb.h"
 #include "proxima/core/parallel.h"
@@ -11,28 +14,97 @@ namespace proxima {
 
 namespace {
 
-constexpr size_t kRowGrain = 4;
+constexpr size_t kPixelGrain = 1024;  // reflective pixels per parallel chunk
 // Squared distance below this fraction of its neighbours' counts as an exact match (the
 // parabola would move it by < ~0.01 px).
 constexpr float kExactMatch = 1e-4f;
 
+// The 8-neighbourhood of a square in scan order (dy = −1..1, dx = −1..1, centre left out):
+// the order of the descent's tie-breaks.
+constexpr int kRing[8][2] = {{-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
 
 struct Search {
   const ReflectionDepthImage& key;
   vec3 eye;
   int w, h;
+  const float* position = key.position.data().data();
+  const float* normal = key.normal.data().data();
+  const uint32_t* objects = key.object.data().data();
 
   bool same(int x, int y, uint32_t object) const {
-    return x >= 0 && y >= 0 && x < w && y < h && key.object.at(x, y) == object;
+    return unsigned(x) < unsigned(w) && unsigned(y) < unsigned(h) &&
+           objects[size_t(y) * size_t(w) + size_t(x)] == object;
   }
   float distance(int x, int y, vec3 r) const {
     return match_distance(rgb_at(key.position, x, y), rgb_at(key.normal, x, y), r, eye);
   }
-  // Pixels of another reflector (or none) are outside the search space.
-  float distance_in(int x, int y, uint32_t object, vec3 r) const {
-    return same(x, y, object) ? distance(x, y, r) : kInf;
-  }
+  // match_distance of the 8 neighbours of (cx, cy) in kRing order; +inf for pixels of
+  // another reflector (or none): outside the search space. The same operations as
+  // match_distance lane by lane (IEEE single precision, no fused ops): the same bits.
+  // Returns whether all 8 are on the reflector.
+  bool ring(int cx, int cy, uint32_t object, vec3 r, float out[8]) const;
 };
+
+#if defined(__SSE2__)
+// Four candidates at once; lanes are independent, each the exact sequence of match_distance.
+__m128 match_distance4(const float* const w[4], const float* const n[4], vec3 r, vec3 eye) {
+  const __m128 wx = _mm_setr_ps(w[0][0], w[1][0], w[2][0], w[3][0]);
+  const __m128 wy = _mm_setr_ps(w[0][1], w[1][1], w[2][1], w[3][1]);
+  const __m128 wz = _mm_setr_ps(w[0][2], w[1][2], w[2][2], w[3][2]);
+  const __m128 nx = _mm_setr_ps(n[0][0], n[1][0], n[2][0], n[3][0]);
+  const __m128 ny = _mm_setr_ps(n[0][1], n[1][1], n[2][1], n[3][1]);
+  const __m128 nz = _mm_setr_ps(n[0][2], n[1][2], n[2][2], n[3][2]);
+  const __m128 rx = _mm_set1_ps(r.x), ry = _mm_set1_ps(r.y), rz = _mm_set1_ps(r.z);
+  const __m128 ex = _mm_set1_ps(eye.x), ey = _mm_set1_ps(eye.y), ez = _mm_set1_ps(eye.z);
+  auto dot = [](__m128 ax, __m128 ay, __m128 az, __m128 bx, __m128 by, __m128 bz) {
+    return _mm_add_ps(_mm_add_ps(_mm_mul_ps(ax, bx), _mm_mul_ps(ay, by)), _mm_mul_ps(az, bz));
+  };
+  // m = r − (2·dot(r − w, n))·n
+  const __m128 k = _mm_mul_ps(_mm_set1_ps(2.0f),
+                              dot(_mm_sub_ps(rx, wx), _mm_sub_ps(ry, wy), _mm_sub_ps(rz, wz), nx, ny, nz));
+  const __m128 mx = _mm_sub_ps(rx, _mm_mul_ps(k, nx)), my = _mm_sub_ps(ry, _mm_mul_ps(k, ny)),
+               mz = _mm_sub_ps(rz, _mm_mul_ps(k, nz));
+  const __m128 ax = _mm_sub_ps(wx, mx), ay = _mm_sub_ps(wy, my), az = _mm_sub_ps(wz, mz);
+  const __m128 len = _mm_sqrt_ps(dot(ax, ay, az, ax, ay, az));
+  const __m128 dx = _mm_div_ps(ax, len), dy = _mm_div_ps(ay, len), dz = _mm_div_ps(az, len);
+  const __m128 qx = _mm_sub_ps(ex, mx), qy = _mm_sub_ps(ey, my), qz = _mm_sub_ps(ez, mz);
+  const __m128 t = dot(qx, qy, qz, dx, dy, dz);
+  const __m128 fx = _mm_sub_ps(qx, _mm_mul_ps(t, dx)), fy = _mm_sub_ps(qy, _mm_mul_ps(t, dy)),
+               fz = _mm_sub_ps(qz, _mm_mul_ps(t, dz));
+  const __m128 behind = _mm_cmple_ps(t, _mm_setzero_ps());
+  const __m128 d = _mm_or_ps(_mm_and_ps(behind, _mm_sqrt_ps(dot(qx, qy, qz, qx, qy, qz))),
+                             _mm_andnot_ps(behind, _mm_sqrt_ps(dot(fx, fy, fz, fx, fy, fz))));
+  // Degenerate axis (len not > 0): the distance to W itself.
+  const __m128 gx = _mm_sub_ps(ex, wx), gy = _mm_sub_ps(ey, wy), gz = _mm_sub_ps(ez, wz);
+  const __m128 ok = _mm_cmpgt_ps(len, _mm_setzero_ps());
+  return _mm_or_ps(_mm_and_ps(ok, d), _mm_andnot_ps(ok, _mm_sqrt_ps(dot(gx, gy, gz, gx, gy, gz))));
+}
+#endif
+
+bool Search::ring(int cx, int cy, uint32_t object, vec3 r, float out[8]) const {
+  bool in[8];
+  const float* wp[8];
+  const float* np[8];
+  for (int k = 0; k < 8; ++k) {
+    const int x = cx + kRing[k][0], y = cy + kRing[k][1];
+    in[k] = same(x, y, object);
+    const size_t i =
+        in[k] ? (size_t(y) * size_t(w) + size_t(x)) * 3 : (size_t(cy) * size_t(w) + size_t(cx)) * 3;
+    wp[k] = position + i;
+    np[k] = normal + i;
+  }
+#if defined(__SSE2__)
+  _mm_storeu_ps(out, match_distance4(wp, np, r, eye));
+  _mm_storeu_ps(out + 4, match_distance4(wp + 4, np + 4, r, eye));
+#else
+  for (int k = 0; k < 8; ++k)
+    out[k] = match_distance(vec3(wp[k][0], wp[k][1], wp[k][2]), vec3(np[k][0], np[k][1], np[k][2]), r, eye);
+#endif
+  bool all = true;
+  for (int k = 0; k < 8; ++k)
+    if (!in[k]) out[k] = kInf, all = false;
+  return all;
+}
 
 // Vertex of a parabola through (−1, a), (0, b), (1, c), clamped to ±0.5; 0 if not convex.
 float parabola_vertex(float a, float b, float c) {
@@ -64,111 +136,103 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
   out.offset.assign(size_t(w) * size_t(h), vec2(0.0f));
   out.valid.assign(size_t(w) * size_t(h), 0);
   const bool warm = previous && previous->width == w && previous->height == h;
-  const bool extrapolate = warm && options.extrapolate && earlier && earlier->width == w && earlier->height == h;
+  const bool extrapolate =
+      warm && options.extrapolate && earlier && earlier->width == w && earlier->height == h;
   const int max_steps = options.max_steps > 0 ? options.max_steps : w + h;
   const float focal = focal_length_px(key.camera);
   const Search s{key, eye, w, h};
-  std::vector<uint64_t> row_steps(size_t(h), 0), row_invalid(size_t(h), 0), row_searched(size_t(h), 0);
+  // The key's reflective pixels and their R (make_reflection_depth_image), in fixed chunks.
+  const size_t n = key.pixels.size();
+  const size_t chunks = (n + kPixelGrain - 1) / kPixelGrain;
+  std::vector<uint64_t> chunk_steps(chunks, 0), chunk_invalid(chunks, 0);
 
-  parallel_for(size_t(h), kRowGrain, [&](size_t y0, size_t y1) {
-    for (int y = int(y0); y < int(y1); ++y)
-      for (int x = 0; x < w; ++x) {
-        const uint32_t object = key.object.at(x, y);
-        if (object == kNoReflector) continue;
-        ++row_searched[size_t(y)];
-        const size_t i = size_t(y) * size_t(w) + size_t(x);
-        const vec3 r = key_reflected_point(key, x, y);
-        int cx = x, cy = y;
-        if (warm) {  // INVALID pixels too: their end point saves the next walk
-          const int px = x + int(std::lround(previous->offset[i].x)), py = y + int(std::lround(previous->offset[i].y));
-          if (s.same(px, py, object)) cx = px, cy = py;
-        }
-        float former = s.distance(cx, cy, r);
-        if (extrapolate) {  // steady motion: the offset moves on by its last change
-          const vec2 guess = 2.0f * previous->offset[i] - earlier->offset[i];
-          const int gx = x + int(std::lround(guess.x)), gy = y + int(std::lround(guess.y));
-          if ((gx != cx || gy != cy) && s.same(gx, gy, object)) {
-            const float d = s.distance(gx, gy, r);
-            if (d < former) former = d, cx = gx, cy = gy;
-          }
-        }
-        bool converged = false;
-        // The last step's 3×3 distances (centre included): on convergence they are the end
-        // point's neighbours, which the sub-pixel fit reads again; after a step of (sx, sy)
-        // the cells both squares share are not evaluated again (the same values: same bits).
-        float around[3][3] = {};
-        around[1][1] = former;
-        int sx = 3, sy = 3;  // no previous square yet (every cell falls outside it)
-        for (int step = 0; step < max_steps; ++step) {
-          int bx = cx, by = cy;
-          float best = kInf;
-          float next[3][3];
-          next[1][1] = former;
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-              if (!dx && !dy) continue;
-              const int ox = dx + sx, oy = dy + sy;  // the cell in the previous square
-              const float d = ox >= -1 && ox <= 1 && oy >= -1 && oy <= 1
-                                  ? around[oy + 1][ox + 1]
-                                  : s.distance_in(cx + dx, cy + dy, object, r);
-              next[dy + 1][dx + 1] = d;
-              if (d < best) best = d, bx = cx + dx, by = cy + dy;
-            }
-          std::copy(&next[0][0], &next[0][0] + 9, &around[0][0]);
-          if (!(best < former)) {  // local minimum (ties stop too: no cycles)
-            converged = true;
-            break;
-          }
-          former = best;
-          sx = bx - cx;
-          sy = by - cy;
-          cx = bx;
-          cy = by;
-          ++row_steps[size_t(y)];
-        }
-        bool ok = converged;
-        if (ok) {
-          // On the silhouette border the true minimum may lie outside the reflector: keep
-          // the match only if the reflected ray through W_c misses E_cur by ≤ tolerance
-          // key pixels (distance scaled back to W_c by similar triangles).
-          bool border = false;
-          for (int dy = -1; dy <= 1 && !border; ++dy)
-            for (int dx = -1; dx <= 1; ++dx)
-              if (!s.same(cx + dx, cy + dy, object)) border = true;
-          if (border) {
-            const vec3 wc = rgb_at(key.position, cx, cy), nc = rgb_at(key.normal, cx, cy);
-            const vec3 m = r - 2.0f * glm::dot(r - wc, nc) * nc;
-            const float scale = glm::length(wc - m) / std::max(glm::length(eye - m), 1e-6f);
-            const float miss_px = former * scale * focal / std::max(key.depth.at(cx, cy), 1e-6f);
-            ok = miss_px <= options.border_tolerance_px;
-          }
-        }
-        if (!ok) {
-          ++row_invalid[size_t(y)];
-          out.offset[i] = vec2(float(cx - x), float(cy - y));
-          continue;
-        }
-        vec2 sub(0.0f);
-        if (options.subpixel) {
-          auto sq = [&](int dx, int dy) { return around[dy + 1][dx + 1] * around[dy + 1][dx + 1]; };
-          const float b = former * former;
-          const float l = sq(-1, 0), rr = sq(1, 0), u = sq(0, -1), dn = sq(0, 1);
-          // An (almost) exact match stays put: near a zero of the distance its square is
-          // far from a parabola where the reflection is close (small s.r).
-          auto exact = [&](float p, float q) { return b <= kExactMatch * std::min(p, q); };
-          if (std::isfinite(l) && std::isfinite(rr) && !exact(l, rr)) sub.x = parabola_vertex(l, b, rr);
-          if (std::isfinite(u) && std::isfinite(dn) && !exact(u, dn)) sub.y = parabola_vertex(u, b, dn);
-        }
-        out.offset[i] = vec2(float(cx - x), float(cy - y)) + sub;
-        out.valid[i] = 1;
+  parallel_for(n, kPixelGrain, [&](size_t j0, size_t j1) {
+    const size_t chunk = j0 / kPixelGrain;
+    for (size_t j = j0; j < j1; ++j) {
+      const size_t i = key.pixels[j];
+      const int x = int(i % size_t(w)), y = int(i / size_t(w));
+      const uint32_t object = key.object.at(x, y);
+      const vec3 r = key.reflected[j];
+      int cx = x, cy = y;
+      if (warm) {  // INVALID pixels too: their end point saves the next walk
+        const int px = x + int(std::lround(previous->offset[i].x)),
+                  py = y + int(std::lround(previous->offset[i].y));
+        if (s.same(px, py, object)) cx = px, cy = py;
       }
+      float former = s.distance(cx, cy, r);
+      if (extrapolate) {  // steady motion: the offset moves on by its last change
+        const vec2 guess = 2.0f * previous->offset[i] - earlier->offset[i];
+        const int gx = x + int(std::lround(guess.x)), gy = y + int(std::lround(guess.y));
+        if ((gx != cx || gy != cy) && s.same(gx, gy, object)) {
+          const float d = s.distance(gx, gy, r);
+          if (d < former) former = d, cx = gx, cy = gy;
+        }
+      }
+      bool converged = false, inside = true;  // inside: the last ring was all on the reflector
+      // The last step's 3×3 distances (centre included): on convergence they are the end
+      // point's neighbours, which the sub-pixel fit reads again. Each step evaluates its
+      // whole ring at once (SIMD): cells shared with the previous square get the same bits.
+      float around[3][3] = {};
+      around[1][1] = former;
+      for (int step = 0; step < max_steps; ++step) {
+        float d8[8];
+        inside = s.ring(cx, cy, object, r, d8);
+        int bx = cx, by = cy;
+        float best = kInf;
+        for (int k = 0; k < 8; ++k) {
+          around[kRing[k][1] + 1][kRing[k][0] + 1] = d8[k];
+          if (d8[k] < best) best = d8[k], bx = cx + kRing[k][0], by = cy + kRing[k][1];
+        }
+        around[1][1] = former;
+        if (!(best < former)) {  // local minimum (ties stop too: no cycles)
+          converged = true;
+          break;
+        }
+        former = best;
+        cx = bx;
+        cy = by;
+        ++chunk_steps[chunk];
+      }
+      bool ok = converged;
+      if (ok) {
+        // On the silhouette border the true minimum may lie outside the reflector: keep
+        // the match only if the reflected ray through W_c misses E_cur by ≤ tolerance
+        // key pixels (distance scaled back to W_c by similar triangles).
+        // (the end point's 3×3 is on the reflector but for the ring's cells outside)
+        if (!inside) {
+          const vec3 wc = rgb_at(key.position, cx, cy), nc = rgb_at(key.normal, cx, cy);
+          const vec3 m = r - 2.0f * glm::dot(r - wc, nc) * nc;
+          const float scale = glm::length(wc - m) / std::max(glm::length(eye - m), 1e-6f);
+          const float miss_px = former * scale * focal / std::max(key.depth.at(cx, cy), 1e-6f);
+          ok = miss_px <= options.border_tolerance_px;
+        }
+      }
+      if (!ok) {
+        ++chunk_invalid[chunk];
+        out.offset[i] = vec2(float(cx - x), float(cy - y));
+        continue;
+      }
+      vec2 sub(0.0f);
+      if (options.subpixel) {
+        auto sq = [&](int dx, int dy) { return around[dy + 1][dx + 1] * around[dy + 1][dx + 1]; };
+        const float b = former * former;
+        const float l = sq(-1, 0), rr = sq(1, 0), u = sq(0, -1), dn = sq(0, 1);
+        // An (almost) exact match stays put: near a zero of the distance its square is
+        // far from a parabola where the reflection is close (small s.r).
+        auto exact = [&](float p, float q) { return b <= kExactMatch * std::min(p, q); };
+        if (std::isfinite(l) && std::isfinite(rr) && !exact(l, rr)) sub.x = parabola_vertex(l, b, rr);
+        if (std::isfinite(u) && std::isfinite(dn) && !exact(u, dn)) sub.y = parabola_vertex(u, b, dn);
+      }
+      out.offset[i] = vec2(float(cx - x), float(cy - y)) + sub;
+      out.valid[i] = 1;
+    }
   });
   if (stats) {
     *stats = {};
-    for (int y = 0; y < h; ++y) {
-      stats->searched += row_searched[size_t(y)];
-      stats->invalid += row_invalid[size_t(y)];
-      stats->steps += row_steps[size_t(y)];
+    stats->searched = n;
+    for (size_t c = 0; c < chunks; ++c) {
+      stats->invalid += chunk_invalid[c];
+      stats->steps += chunk_steps[c];
     }
   }
   return out;

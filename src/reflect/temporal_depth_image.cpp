@@ -80,6 +80,14 @@ ReflectionDepthImage make_reflection_depth_image(const ReflectionFrame& frame, c
     const int x = int(frame.pixel[i] % uint32_t(w)), y = int(frame.pixel[i] / uint32_t(w));
     key.spread.at(x, y) = mirror_spread(key, x, y);
   }
+  key.pixels.reserve(frame.sample_count());
+  key.reflected.reserve(frame.sample_count());
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (key.object.at(x, y) != kNoReflector) {
+        key.pixels.push_back(uint32_t(y) * uint32_t(w) + uint32_t(x));
+        key.reflected.push_back(key_reflected_point(key, x, y));
+      }
   return key;
 }
 

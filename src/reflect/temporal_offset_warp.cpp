@@ -32,6 +32,15 @@ Vertex warp_vertex(const ReflectionDepthImage& key, const OffsetBuffer& offsets,
                 vec3(key.radiance.at(x, y, 0), key.radiance.at(x, y, 1), key.radiance.at(x, y, 2))};
 }
 
+// True when an edge function is below −kEdgeSlack·max(1, |area2|) ≥ −kEdgeSlack·√|area2|
+// (rounded square root and product are monotone): the slack test fails, without its square
+// root. NaN never counts as a miss, as in the slack test.
+bool clear_miss(float e0, float e1, float e2, float area2) {
+  const float a = std::abs(area2);
+  const float bound = kEdgeSlack * (a < 1.0f ? 1.0f : a);
+  return e0 < -bound || e1 < -bound || e2 < -bound;
+}
+
 // Lr at barycentrics b (unnormalised, ≥ 0, not all 0): the blend, or on an edge triangle
 // the corner with the largest weight (ties: the first), so no value between the sides.
 vec3 reconstruct(const Vertex v[3], const float b[3], bool nearest) {
@@ -89,20 +98,29 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance, BlendSam
       if (std::find(tried, tried + n_tried, id) != tried + n_tried) continue;
       tried[n_tried++] = id;
       const uint32_t quad = id / 2u, half = id % 2u;
+      // The test reads the packed positions (corner index = quad + dy·w + dx, no division);
+      // the whole vertices and the corners' coordinates only on a hit.
+      size_t corner[3];
+      vec2 p[3];
+      for (int k = 0; k < 3; ++k) {
+        corner[k] = size_t(quad) + size_t(kCorner[half][k][1]) * size_t(w) + size_t(kCorner[half][k][0]);
+        p[k] = image.point[corner[k]];
+      }
+      const float area2 = cross2(p[1] - p[0], p[2] - p[0]);
+      if (std::abs(area2) < 1e-12f) continue;
+      float e0 = cross2(p[2] - p[1], q - p[1]), e1 = cross2(p[0] - p[2], q - p[2]), e2 = cross2(p[1] - p[0], q - p[0]);
+      if (area2 < 0.0f) e0 = -e0, e1 = -e1, e2 = -e2;
+      if (clear_miss(e0, e1, e2, area2)) continue;
+      const float slack = e0 >= 0.0f && e1 >= 0.0f && e2 >= 0.0f ? 0.0f  // inside: no slack needed
+                                                                  : kEdgeSlack * std::sqrt(std::abs(area2));
+      if (e0 < -slack || e1 < -slack || e2 < -slack) continue;
       const int qx = int(quad % uint32_t(w)), qy = int(quad / uint32_t(w));
       Vertex v[3];
       int cx3[3], cy3[3];
       for (int k = 0; k < 3; ++k) {
         cx3[k] = qx + kCorner[half][k][0], cy3[k] = qy + kCorner[half][k][1];
-        v[k] = image.vertex[size_t(cy3[k]) * size_t(w) + size_t(cx3[k])];
+        v[k] = image.vertex[corner[k]];
       }
-      const float area2 = cross2(v[1].p - v[0].p, v[2].p - v[0].p);
-      if (std::abs(area2) < 1e-12f) continue;
-      float e0 = cross2(v[2].p - v[1].p, q - v[1].p), e1 = cross2(v[0].p - v[2].p, q - v[2].p),
-            e2 = cross2(v[1].p - v[0].p, q - v[0].p);
-      if (area2 < 0.0f) e0 = -e0, e1 = -e1, e2 = -e2;
-      const float slack = kEdgeSlack * std::sqrt(std::abs(area2));
-      if (e0 < -slack || e1 < -slack || e2 < -slack) continue;
       const float b[3] = {std::max(e0, 0.0f), std::max(e1, 0.0f), std::max(e2, 0.0f)};
       radiance = reconstruct(v, b, edge_triangle(*mesh.key, cx3, cy3, mesh.edge_contrast));
       if (blend) {
@@ -116,24 +134,43 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance, BlendSam
 
 IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const OffsetBuffer& offsets,
                                         const WarpOptions& options) {
-  const int w = key.object.width(), h = key.object.height();
   IntermediateReflection out;
-  out.radiance = ImageF(w, h, 3, 0.0f);
-  out.depth = ImageF(w, h, 1, kInf);
-  out.state = ImageU8(w, h, 1, kWarpEmpty);
-  out.triangle = ImageU32(w, h, 1, kNoWarpTriangle);
+  warp_reflections_into(key, offsets, options, out);
+  return out;
+}
 
-  out.vertex.resize(size_t(w) * size_t(h));
-  // Per row the span [first, last] of reflective pixels (empty: first > last): the scans
-  // below skip the rest of the row, which holds no vertex.
-  std::vector<int> first(size_t(h), w), last(size_t(h), -1);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      if (key.object.at(x, y) != kNoReflector) {
-        out.vertex[size_t(y) * size_t(w) + size_t(x)] = warp_vertex(key, offsets, x, y);
-        first[size_t(y)] = std::min(first[size_t(y)], x);
-        last[size_t(y)] = x;
+void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& offsets, const WarpOptions& options,
+                           IntermediateReflection& out) {
+  const int w = key.object.width(), h = key.object.height();
+  if (out.state.width() == w && out.state.height() == h) {
+    // A pixel is written with its state, never kWarpEmpty: the empty pixels hold the
+    // defaults already, so only the others are reset (not four whole images per frame).
+    uint8_t* state = out.state.data().data();
+    for (size_t i = 0, n = size_t(w) * size_t(h); i < n; ++i)
+      if (state[i] != kWarpEmpty) {
+        const int x = int(i % size_t(w)), y = int(i / size_t(w));
+        for (int c = 0; c < 3; ++c) out.radiance.at(x, y, c) = 0.0f;
+        out.depth.at(x, y) = kInf;
+        out.triangle.at(x, y) = kNoWarpTriangle;
+        state[i] = kWarpEmpty;
       }
+  } else {
+    out.radiance = ImageF(w, h, 3, 0.0f);
+    out.depth = ImageF(w, h, 1, kInf);
+    out.state = ImageU8(w, h, 1, kWarpEmpty);
+    out.triangle = ImageU32(w, h, 1, kNoWarpTriangle);
+  }
+  out.triangles = out.stretched = out.curved = out.discontinuous = out.edges = 0;
+  // Read on reflective pixels only, each set below: a reused buffer keeps stale entries elsewhere.
+  out.vertex.resize(size_t(w) * size_t(h));
+  out.point.resize(size_t(w) * size_t(h));
+  // The key's reflective pixels in row-major order: the loops below visit only these (every
+  // vertex, every triangle's first corner), not whole rows of other pixels.
+  const std::vector<uint32_t>& pixels = key.pixels;
+  for (const uint32_t i : pixels) {
+    out.vertex[i] = warp_vertex(key, offsets, int(i % uint32_t(w)), int(i / uint32_t(w)));
+    out.point[i] = out.vertex[i].p;
+  }
   auto vertex = [&](int x, int y) -> const Vertex& { return out.vertex[size_t(y) * size_t(w) + size_t(x)]; };
   auto valid = [&](int x, int y) {
     return key.object.at(x, y) != kNoReflector && offsets.valid[size_t(y) * size_t(w) + size_t(x)];
@@ -155,14 +192,13 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
     return most;
   };
   std::vector<uint8_t> is_flat(size_t(w) * size_t(h), 1);
-  for (int y = 0; y < h; ++y)
-    for (int x = first[size_t(y)]; x <= last[size_t(y)]; ++x) {
-      if (key.object.at(x, y) == kNoReflector) continue;
-      const float spread = key.spread.at(x, y);
-      is_flat[size_t(y) * size_t(w) + size_t(x)] = spread <= options.spread_limit ||
-                                                   spread * pixel_angle <= key.lobe.at(x, y) ||
-                                                   contrast(x, y) <= options.curved_contrast;
-    }
+  for (const uint32_t i : pixels) {
+    const int x = int(i % uint32_t(w)), y = int(i / uint32_t(w));
+    const float spread = key.spread.at(x, y);
+    is_flat[size_t(y) * size_t(w) + size_t(x)] = spread <= options.spread_limit ||
+                                                 spread * pixel_angle <= key.lobe.at(x, y) ||
+                                                 contrast(x, y) <= options.curved_contrast;
+  }
   auto flat = [&](int x, int y) { return is_flat[size_t(y) * size_t(w) + size_t(x)] != 0; };
   const float jump = 1.0f + options.depth_discontinuity;
   auto continuous = [&](std::array<float, 3> v) {
@@ -174,14 +210,16 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
   // Bin each into the row bands its bounding box touches (sequential: a fixed order).
   struct Tri {
     uint32_t id;
+    int qx, qy;     // its quad (id decoded once)
     uint8_t state;  // WarpState its pixels get
     bool nearest;   // an edge triangle under ReflectedEdgeRule::kNearest
   };
   const int bands = (h + kBandRows - 1) / kBandRows;
   std::vector<std::vector<Tri>> band_tris(size_t(std::max(bands, 1)));
-  for (int y = 0; y + 1 < h; ++y)
-    for (int x = first[size_t(y)]; x <= std::min(last[size_t(y)], w - 2); ++x)  // (x, y): both halves' corner
-      for (int half = 0; half < 2; ++half) {
+  for (const uint32_t i : pixels) {  // (x, y): both halves' first corner, reflective
+    const int x = int(i % uint32_t(w)), y = int(i / uint32_t(w));
+    if (y + 1 >= h || x + 1 >= w) continue;
+    for (int half = 0; half < 2; ++half) {
         int cx[3], cy[3];
         for (int k = 0; k < 3; ++k) cx[k] = x + kCorner[half][k][0], cy[k] = y + kCorner[half][k][1];
         if (!valid(cx[0], cy[0]) || !valid(cx[1], cy[1]) || !valid(cx[2], cy[2])) continue;
@@ -212,15 +250,16 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
         if (r0 > r1) continue;
         const uint32_t id = 2u * (uint32_t(y) * uint32_t(w) + uint32_t(x)) + uint32_t(half);
         for (int band = r0 / kBandRows; band <= r1 / kBandRows; ++band)
-          band_tris[size_t(band)].push_back({id, state, edge && !edge_recompute});
-      }
+          band_tris[size_t(band)].push_back({id, x, y, state, edge && !edge_recompute});
+    }
+  }
 
-  parallel_for(size_t(bands), 1, [&](size_t first, size_t last) {
-    for (size_t band = first; band < last; ++band) {
+  parallel_for(size_t(bands), 1, [&](size_t band_begin, size_t band_end) {
+    for (size_t band = band_begin; band < band_end; ++band) {
       const int y_lo = int(band) * kBandRows, y_hi = std::min(h, y_lo + kBandRows);
       for (const Tri& t : band_tris[band]) {
-        const uint32_t quad = t.id / 2u, half = t.id % 2u;
-        const int qx = int(quad % uint32_t(w)), qy = int(quad / uint32_t(w));
+        const uint32_t half = t.id % 2u;
+        const int qx = t.qx, qy = t.qy;
         Vertex v[3];
         for (int k = 0; k < 3; ++k) v[k] = vertex(qx + kCorner[half][k][0], qy + kCorner[half][k][1]);
         const uint32_t object = key.object.at(qx, qy);
@@ -233,6 +272,7 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
         const int px0 = std::max(0, int(std::ceil(xmin - 0.5f - kEdgeSlack)));
         const int px1 = std::min(w - 1, int(std::floor(xmax - 0.5f + kEdgeSlack)));
         const float slack = kEdgeSlack * std::sqrt(std::abs(area2));  // in edge-function units
+        const float inv = 1.0f / std::abs(area2);
         for (int py = py0; py <= py1; ++py)
           for (int px = px0; px <= px1; ++px) {
             // Offsets stay on their reflector, so a pixel only takes its own reflector's
@@ -245,7 +285,6 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
                   e2 = cross2(v[1].p - v[0].p, p - v[0].p);
             if (area2 < 0.0f) e0 = -e0, e1 = -e1, e2 = -e2;
             if (e0 < -slack || e1 < -slack || e2 < -slack) continue;
-            const float inv = 1.0f / std::abs(area2);
             const float b[3] = {std::max(e0, 0.0f) * inv, std::max(e1, 0.0f) * inv, std::max(e2, 0.0f) * inv};
             const float sum = b[0] + b[1] + b[2];
             const float z = (b[0] * v[0].z + b[1] * v[1].z + b[2] * v[2].z) / sum;
@@ -261,19 +300,18 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
   });
   // Valid samples no triangle reached (one-pixel-wide parts of a reflector, corners next
   // to a dropped triangle) still land as points on the pixel nearest their warped position.
-  for (int y = 0; y < h; ++y)
-    for (int x = first[size_t(y)]; x <= last[size_t(y)]; ++x) {
-      if (!valid(x, y)) continue;
-      const Vertex v = vertex(x, y);
-      const int px = int(std::floor(v.p.x)), py = int(std::floor(v.p.y));
-      if (px < 0 || py < 0 || px >= w || py >= h || out.state.at(px, py) != kWarpEmpty ||
-          key.object.at(px, py) != key.object.at(x, y))
-        continue;
-      out.depth.at(px, py) = v.z;
-      for (int c = 0; c < 3; ++c) out.radiance.at(px, py, c) = v.lr[c];
-      out.state.at(px, py) = !flat(x, y) ? kWarpCurved : options.recompute_splats ? kWarpUnreliable : kWarpReliable;
-    }
-  return out;
+  for (const uint32_t i : pixels) {
+    const int x = int(i % uint32_t(w)), y = int(i / uint32_t(w));
+    if (!valid(x, y)) continue;
+    const Vertex v = vertex(x, y);
+    const int px = int(std::floor(v.p.x)), py = int(std::floor(v.p.y));
+    if (px < 0 || py < 0 || px >= w || py >= h || out.state.at(px, py) != kWarpEmpty ||
+        key.object.at(px, py) != key.object.at(x, y))
+      continue;
+    out.depth.at(px, py) = v.z;
+    for (int c = 0; c < 3; ++c) out.radiance.at(px, py, c) = v.lr[c];
+    out.state.at(px, py) = !flat(x, y) ? kWarpCurved : options.recompute_splats ? kWarpUnreliable : kWarpReliable;
+  }
 }
 
 }  // namespace proxima

@@ -80,7 +80,8 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
     st.invalid_offsets = ms.invalid;
     st.match_steps = ms.steps;
     watch.restart();
-    const IntermediateReflection mid = warp_reflections(state.key, offsets, options.warp);
+    warp_reflections_into(state.key, offsets, options.warp, state.warp);
+    const IntermediateReflection& mid = state.warp;
     st.warp_ms = watch.elapsed_ms();
     watch.restart();
     const WarpedMesh mesh{&state.key, &offsets, &mid, options.warp.edge_contrast, options.warp.edge_rule,

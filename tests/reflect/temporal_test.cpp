@@ -519,7 +519,9 @@ TEST(TemporalReflections, RecomputeSplatsMarksSplattedPointsUnreliable) {
   // Everything the triangles drew is unchanged.
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < kSize; ++x)
-      if (off.triangle.at(x, y) != kNoWarpTriangle) ASSERT_EQ(mid.state.at(x, y), off.state.at(x, y));
+      if (off.triangle.at(x, y) != kNoWarpTriangle) {
+        ASSERT_EQ(mid.state.at(x, y), off.state.at(x, y));
+      }
 }
 
 }  // namespace proxima

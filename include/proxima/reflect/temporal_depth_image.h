@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "proxima/core/camera.h"
 #include "proxima/core/image.h"
@@ -29,6 +30,10 @@ struct ReflectionDepthImage {
   ImageF spread;      // how strongly the reflector bends the reflection here (mirror_spread)
   ImageF lobe;        // glossy lobe half-angle (radians), 0 on mirrors
   size_t reflective_pixels = 0;
+  // Per key frame, for the steps every other frame runs: the reflective pixels (y·width + x,
+  // row-major) and their reflected points R (key_reflected_point), in that order.
+  std::vector<uint32_t> pixels;
+  std::vector<vec3> reflected;
 };
 
 // Mirror direction at a key pixel: reflect(W − E_old, s.n), unit.

@@ -89,12 +89,18 @@ struct IntermediateReflection {
   ImageU32 triangle;  // that triangle: 2·(y·width + x) + half of its grid quad, or kNoWarpTriangle
   std::vector<WarpVertex> vertex;  // per key pixel (row-major), set on reflective pixels only:
                                    // computed once, read by every triangle that uses it
+  std::vector<vec2> point;         // vertex[i].p packed (what a triangle test reads), likewise
   uint64_t triangles = 0, stretched = 0, curved = 0, discontinuous = 0, edges = 0;
 };
 
 // Deterministic for any thread count (fixed row bands, triangles in a fixed order per band).
 IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const OffsetBuffer& offsets,
                                         const WarpOptions& options);
+
+// The same into `out`, reusing its buffers from an earlier warp of the same size (per frame
+// only its written pixels are reset, not four whole images): the same result.
+void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& offsets, const WarpOptions& options,
+                           IntermediateReflection& out);
 
 // The warped mesh, for reading it at any point of the key grid.
 struct WarpedMesh {

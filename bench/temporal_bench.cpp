@@ -1,0 +1,111 @@
+// Google Benchmark micro-benchmarks of the fixed per-frame steps of temporal reflection
+// reuse (issue 8): best match (Algorithm 9), grid-mesh offset warp and depth reprojection,
+// on living-room / walk as `proxima reflect --method temporal` renders it (500 frames, 8
+// lobe rays): key frame 100, warm-started through frames 101–104, timed on frame 105 (10% reflective pixels).
+// Arg: image side; `rules`: 1 = --spread-limit 8 --curved-contrast 0.05 --edge-contrast
+// 0.05 --edge-rule recompute --recompute-splats. 1 thread. The figures in docs/RESULTS.md
+// come from `proxima reflect --compare`; these are for profiling.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <map>
+#include <memory>
+#include <utility>
+
+#include "proxima/core/parallel.h"
+#include "proxima/reflect/temporal_reuse.h"
+#include "proxima/scene/builtin_scenes.h"
+#include "proxima/scene/camera_path.h"
+
+namespace {
+
+using namespace proxima;
+
+constexpr int kFrames = 500, kKeyFrame = 100, kWarmFrames = 4;
+
+struct Walk {
+  Walk(int side, bool rules) {
+    if (rules) {
+      options.warp.spread_limit = 8.0f;
+      options.warp.curved_contrast = 0.05f;
+      options.warp.edge_contrast = 0.05f;
+      options.warp.edge_rule = ReflectedEdgeRule::kRecompute;
+      options.warp.recompute_splats = true;
+    }
+    options.keyframe_threshold = 2.0f;  // keep the one key frame
+    ThreadLimit limit(2);
+    const CameraPath& path = scene.camera_paths.front();
+    const float t0 = path.keys.front().time, t1 = path.keys.back().time;
+    const float far = std::max(10.0f, 4.0f * scene_bounds(scene).diagonal());
+    ReflectionOptions ro;
+    ro.supersample = 1;
+    ro.glossy_rays = 8;
+    for (int f = kKeyFrame; f <= kKeyFrame + kWarmFrames + 1; ++f) {
+      const float t = t0 + float(f) * (t1 - t0) / float(kFrames - 1);
+      frame = prepare_reflection_frame(scene, camera_at_time(path, t, side, side, 0.01f, far), ro);
+      if (f <= kKeyFrame + kWarmFrames) temporal_reflections(scene, rays, frame, state, options);
+    }
+    offsets = best_match_search(state.key, frame.camera.position, &state.previous, options.match);
+    mid = warp_reflections(state.key, offsets, options.warp);
+  }
+  Scene scene = make_builtin_scene("living-room");
+  RayScene rays{scene};
+  TemporalOptions options;
+  TemporalState state;
+  ReflectionFrame frame;  // the timed frame
+  OffsetBuffer offsets;
+  IntermediateReflection mid;
+};
+
+const Walk& walk(int side, bool rules) {
+  static std::map<std::pair<int, bool>, std::unique_ptr<Walk>> cache;
+  auto& w = cache[{side, rules}];
+  if (!w) w = std::make_unique<Walk>(side, rules);
+  return *w;
+}
+
+void BM_TemporalBestMatch(benchmark::State& state) {
+  const Walk& w = walk(int(state.range(0)), state.range(1) != 0);
+  ThreadLimit limit(1);
+  BestMatchStats stats;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(
+        best_match_search(w.state.key, w.frame.camera.position, &w.state.previous, w.options.match, &stats));
+  state.counters["steps_per_px"] = double(stats.steps) / double(std::max<uint64_t>(stats.searched, 1));
+  state.counters["reflective"] = double(stats.searched);
+}
+
+void BM_TemporalWarp(benchmark::State& state) {
+  const Walk& w = walk(int(state.range(0)), state.range(1) != 0);
+  ThreadLimit limit(1);
+  IntermediateReflection mid;  // reused frame to frame, as temporal_reflections does
+  for (auto _ : state) {
+    warp_reflections_into(w.state.key, w.offsets, w.options.warp, mid);
+    benchmark::DoNotOptimize(mid.triangles);
+  }
+  state.counters["triangles"] = double(mid.triangles);
+  state.counters["discontinuous"] = double(mid.discontinuous);
+}
+
+void BM_TemporalReproject(benchmark::State& state) {
+  const Walk& w = walk(int(state.range(0)), state.range(1) != 0);
+  ThreadLimit limit(1);
+  const WarpedMesh mesh{&w.state.key, &w.offsets, &w.mid, w.options.warp.edge_contrast, w.options.warp.edge_rule};
+  for (auto _ : state)
+    benchmark::DoNotOptimize(
+        reproject_reflections(w.frame, w.state.key, w.mid.radiance, &w.mid.state, w.options.reproject, &mesh));
+}
+
+void BM_TemporalTrace(benchmark::State& state) {  // full reflection ray tracing of the frame, for scale
+  const Walk& w = walk(int(state.range(0)), state.range(1) != 0);
+  ThreadLimit limit(1);
+  for (auto _ : state) benchmark::DoNotOptimize(trace_reflections(w.scene, w.rays, w.frame));
+}
+
+#define TEMPORAL_ARGS ArgsProduct({{256, 512}, {0, 1}})->ArgNames({"side", "rules"})->Unit(benchmark::kMillisecond)
+BENCHMARK(BM_TemporalBestMatch)->TEMPORAL_ARGS;
+BENCHMARK(BM_TemporalWarp)->TEMPORAL_ARGS;
+BENCHMARK(BM_TemporalReproject)->TEMPORAL_ARGS;
+BENCHMARK(BM_TemporalTrace)->ArgsProduct({{256, 512}, {0}})->ArgNames({"side", "rules"})->Unit(benchmark::kMillisecond);
+
+}  // namespace
