@@ -35,6 +35,7 @@ Technique gibr_technique(std::shared_ptr<ViewerScene> vs, const TechniqueSetting
   struct State {
     TechniqueSettings settings;
     std::optional<gibr::GibrModel> model;
+    gibr::NovelViewScratch scratch;  // the raster's buffers, kept between frames
     bool announced = false;
     std::string error;  // a failed build: shown instead of frames
   };
@@ -79,7 +80,7 @@ Technique gibr_technique(std::shared_ptr<ViewerScene> vs, const TechniqueSetting
     const gibr::GibrModel& g = *st->model;
     gibr::NovelViewOptions nvo;
     nvo.k = s.gibr_k;
-    gibr::NovelView nv = gibr::render_novel_view(g.scene, g.model, g.maps, camera, nvo);
+    gibr::NovelView nv = gibr::render_novel_view(g.scene, g.model, g.maps, camera, nvo, &st->scratch);
     out.steps.push_back({"rasterize", nv.raster_ms});
     out.steps.push_back({"blend + holes", nv.blend_ms});
     char note[96];
