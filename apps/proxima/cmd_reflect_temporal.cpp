@@ -193,7 +193,7 @@ void add_temporal_reflect_flags(CLI::App* app, TemporalReflectFlags& f) {
   app->add_option("--blend-error", f.blend_error,
                   "temporal: a reused pixel whose expected display error (0-255: sum over the key samples it blends "
                   "of weight x |D(base + s*Lr_k) - D(base + s*value)|, D = sRGB, any channel) exceeds this is "
-                  "recomputed; inf = off")
+                  "recomputed; inf = off (the thesis' method; docs/temporal.md)")
       ->capture_default_str();
   app->add_flag("--match-extrapolate", f.match_extrapolate,
                 "temporal: the best match also tries the previous offset plus its last change (steady motion) "
