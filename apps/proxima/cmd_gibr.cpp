@@ -85,6 +85,9 @@ Command register_gibr(CLI::App& root) {
   app->add_option("--frames", f.frames, "novel views rendered and compared")->capture_default_str();
   app->add_option("--photo-width", f.model.photo_width, "photograph width in pixels")->capture_default_str();
   app->add_option("--photo-height", f.model.photo_height, "photograph height in pixels")->capture_default_str();
+  app->add_option("--camera-file", f.model.camera_file,
+                  "photographs from this camera file (JSON, docs/gibr.md; e.g. a run's photos/cameras.json or real "
+                  "photographs of the model) instead of rendering --photos of them");
   app->add_option("--texel", f.model.texel, "radiance-map texel size in meters (default: per scene, docs/gibr.md)");
   app->add_option("--period", f.model.period, "texture repeat in meters (default: per scene)");
   app->add_option("--k", f.k, "photographs blended per pixel")->capture_default_str();

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "proxima/core/error.h"
+#include "proxima/core/image_io.h"
 #include "proxima/core/parallel.h"
 #include "proxima/core/rng.h"
 #include "proxima/core/timer.h"
@@ -40,6 +41,22 @@ void check_options(const Scene& scene, const GibrModelOptions& o) {
                   "--photo-width/--photo-height");
 }
 
+// The camera file's cameras and images (linear RGB), each image checked against its camera.
+void load_photos(const std::filesystem::path& camera_file, GibrModel& g) {
+  const std::vector<CalibratedPhoto> photos = read_camera_file(camera_file);
+  if (photos.empty()) fail_input(camera_file.string() + ": the camera file lists no photographs");
+  for (const CalibratedPhoto& p : photos) {
+    const std::filesystem::path image = camera_file.parent_path() / p.image;
+    ImageF linear = read_image_linear(image, 3);
+    if (linear.width() != p.camera.width || linear.height() != p.camera.height)
+      fail_input(image.string() + ": " + std::to_string(linear.width()) + "×" + std::to_string(linear.height()) +
+                 " pixels, but " + camera_file.string() + " gives its camera " + std::to_string(p.camera.width) +
+                 "×" + std::to_string(p.camera.height));
+    g.cameras.push_back(p.camera);
+    g.photos.push_back(std::move(linear));
+  }
+}
+
 }  // namespace
 
 GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) {
@@ -57,16 +74,20 @@ GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) 
   g.far = std::max(10.0f, 4.0f * scene_bounds(g.scene).diagonal());
   g.rays = std::make_unique<RayScene>(g.scene);
 
-  PhotoPoseOptions ppo;
-  ppo.count = o.photos;
-  ppo.width = o.photo_width;
-  ppo.height = o.photo_height;
-  ppo.seed = o.seed;
-  g.cameras = photo_poses(*g.rays, model_scene.camera_paths.front(), ppo, 0.01f, g.far);
   Stopwatch w;
-  g.photos.resize(g.cameras.size());
-  for (size_t i = 0; i < g.cameras.size(); ++i)
-    g.photos[i] = render_photo(g.scene, *g.rays, g.cameras[i], o.supersample, derive_seed(o.seed, i, 1));
+  if (!o.camera_file.empty()) {
+    load_photos(o.camera_file, g);
+  } else {
+    PhotoPoseOptions ppo;
+    ppo.count = o.photos;
+    ppo.width = o.photo_width;
+    ppo.height = o.photo_height;
+    ppo.seed = o.seed;
+    g.cameras = photo_poses(*g.rays, model_scene.camera_paths.front(), ppo, 0.01f, g.far);
+    g.photos.resize(g.cameras.size());
+    for (size_t i = 0; i < g.cameras.size(); ++i)
+      g.photos[i] = render_photo(g.scene, *g.rays, g.cameras[i], o.supersample, derive_seed(o.seed, i, 1));
+  }
   g.stats.photos_ms = w.elapsed_ms();
 
   // Phase 1: spatial subdivision.

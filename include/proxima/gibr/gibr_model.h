@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -41,6 +42,10 @@ struct GibrModelOptions {
   bool unmix = true;                    // unmix_silhouette_pixels (needs the sub-pixel record)
   bool item_buffer = false;             // also map through item buffers (the baseline)
   uint64_t seed = 1;
+  // Non-empty: the photographs are the images of this camera file (photo_set.h; e.g. real
+  // photographs of the model), not rendered; `photos`, `photo_width` / `photo_height` are
+  // then unused and `supersample` only tells the unmixing how finely the images average.
+  std::filesystem::path camera_file;
 };
 
 struct GibrModelStats {
@@ -65,7 +70,8 @@ struct GibrModel {
   GibrModelStats stats;
 };
 
-// Builds the model. Invalid options (photos outside 1..10000, supersample outside 1..8, a
+// Builds the model. A camera file that is missing or malformed, or whose images are
+// unreadable or not the size its cameras say, throws InputError naming the file. Invalid options (photos outside 1..10000, supersample outside 1..8, a
 // negative texel or period, a bad photograph size, a texel too small for the model) or a
 // scene without a camera path throw InputError naming the `proxima gibr` flag, before any
 // work. Deterministic for a seed, at any thread count.
