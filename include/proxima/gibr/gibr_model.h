@@ -71,10 +71,10 @@ struct GibrModel {
 };
 
 // Builds the model. A camera file that is missing or malformed, or whose images are
-// unreadable or not the size its cameras say, throws InputError naming the file. Invalid options (photos outside 1..10000, supersample outside 1..8, a
-// negative texel or period, a bad photograph size, a texel too small for the model) or a
-// scene without a camera path throw InputError naming the `proxima gibr` flag, before any
-// work. Deterministic for a seed, at any thread count.
+// unreadable or not the size its cameras say, throws InputError naming the file. Invalid
+// options (photos outside 1..10000, supersample outside 1..8, a negative texel or period, a
+// bad photograph size, a texel too small for the model) or a scene without a camera path
+// throw InputError naming the `proxima gibr` flag, before any work. Deterministic for a seed, at any thread count.
 GibrModel build_gibr_model(const Scene& scene, const GibrModelOptions& options = {});
 
 }  // namespace proxima::gibr
