@@ -54,6 +54,7 @@ void validate(const TemporalReflectRun& r) {
   if (!(t.curved_contrast >= 0.0f)) fail_input("--curved-contrast: must be ≥ 0");
   if (!(t.edge_contrast >= 0.0f)) fail_input("--edge-contrast: must be ≥ 0 (inf = off)");
   if (!(t.blend_error >= 0.0f)) fail_input("--blend-error: must be ≥ 0 (inf = off)");
+  if (!(t.keyframe_cost >= 0.0f && t.keyframe_cost < kInf)) fail_input("--keyframe-cost: must be finite and ≥ 0 (0 = off)");
   if (t.edge_rule != "nearest" && t.edge_rule != "recompute") fail_input("--edge-rule: must be nearest or recompute");
   if (t.image_frame < -1) fail_input("--image-frame: must be ≥ -1");
   if (!(t.depth_discontinuity > 0.0f) || !std::isfinite(t.depth_discontinuity))
@@ -195,6 +196,11 @@ void add_temporal_reflect_flags(CLI::App* app, TemporalReflectFlags& f) {
                   "of weight x |D(base + s*Lr_k) - D(base + s*value)|, D = sRGB, any channel) exceeds this is "
                   "recomputed; inf = off (the thesis' method; docs/temporal.md)")
       ->capture_default_str();
+  app->add_option("--keyframe-cost", f.keyframe_cost,
+                  "temporal: also start a key frame once a reuse frame's work (traced rays + this many rays per "
+                  "reflective key pixel for best match, warp and reprojection) reaches the average work per frame "
+                  "since the last key frame, full trace = 1; 0 = off (the thesis' threshold policy alone)")
+      ->capture_default_str();
   app->add_flag("--match-extrapolate", f.match_extrapolate,
                 "temporal: the best match also tries the previous offset plus its last change (steady motion) "
                 "and starts from the closer of the two");
@@ -246,6 +252,7 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   to.warp.edge_contrast = tf.edge_contrast;
   to.warp.recompute_splats = tf.recompute_splats;
   to.warp.blend_error = tf.blend_error;
+  to.keyframe_cost = tf.keyframe_cost;
   to.warp.edge_rule = tf.edge_rule == "recompute" ? ReflectedEdgeRule::kRecompute : ReflectedEdgeRule::kNearest;
   to.warp.depth_discontinuity = tf.depth_discontinuity;
   to.match.extrapolate = tf.match_extrapolate;
@@ -423,6 +430,7 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   m["edge_rule_recompute"] = tf.edge_rule == "recompute" ? 1.0 : 0.0;
   m["recompute_splats"] = tf.recompute_splats ? 1.0 : 0.0;
   m["blend_error"] = tf.blend_error;
+  m["keyframe_cost"] = tf.keyframe_cost;
   m["edge_pct_avg"] = edge_pct.avg();            // of those, on reflected edges (--edge-rule recompute)
   m["traced_pct_avg"] = traced_pct.avg();        // every frame, key frames at 100%
   m["keyframe_interval_avg"] = intervals.avg();

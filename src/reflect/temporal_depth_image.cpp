@@ -40,20 +40,38 @@ float mirror_spread(const ReflectionDepthImage& key, int x, int y) {
 
 ReflectionDepthImage make_reflection_depth_image(const ReflectionFrame& frame, const TracedReflections& traced,
                                                  float max_distance) {
+  ReflectionDepthImage key;
+  make_reflection_depth_image_into(frame, traced, max_distance, key);
+  return key;
+}
+
+void make_reflection_depth_image_into(const ReflectionFrame& frame, const TracedReflections& traced,
+                                      float max_distance, ReflectionDepthImage& key) {
   if (frame.supersample != 1) throw std::logic_error("reflection depth image: frame must have supersample 1");
   if (traced.radiance.size() != frame.sample_count()) throw std::logic_error("reflection depth image: trace mismatch");
   const int w = frame.camera.width, h = frame.camera.height;
-  ReflectionDepthImage key;
+  if (key.object.width() == w && key.object.height() == h) {
+    // Back to the empty image: only the earlier key frame's reflective pixels hold values.
+    for (const uint32_t i : key.pixels) {
+      const int x = int(i % uint32_t(w)), y = int(i / uint32_t(w));
+      key.object.at(x, y) = kNoReflector;
+      key.depth.at(x, y) = kInf;
+      key.specular.at(x, y) = key.distance.at(x, y) = key.spread.at(x, y) = key.lobe.at(x, y) = 0.0f;
+      for (int c = 0; c < 3; ++c) key.position.at(x, y, c) = key.normal.at(x, y, c) = key.radiance.at(x, y, c) = 0.0f;
+    }
+  } else {
+    key.object = ImageU32(w, h, 1, kNoReflector);
+    key.position = ImageF(w, h, 3, 0.0f);
+    key.normal = ImageF(w, h, 3, 0.0f);
+    key.depth = ImageF(w, h, 1, kInf);
+    key.specular = ImageF(w, h, 1, 0.0f);
+    key.radiance = ImageF(w, h, 3, 0.0f);
+    key.distance = ImageF(w, h, 1, 0.0f);
+    key.spread = ImageF(w, h, 1, 0.0f);
+    key.lobe = ImageF(w, h, 1, 0.0f);
+  }
+  key.reflected.clear();
   key.camera = frame.camera;
-  key.object = ImageU32(w, h, 1, kNoReflector);
-  key.position = ImageF(w, h, 3, 0.0f);
-  key.normal = ImageF(w, h, 3, 0.0f);
-  key.depth = ImageF(w, h, 1, kInf);
-  key.specular = ImageF(w, h, 1, 0.0f);
-  key.radiance = ImageF(w, h, 3, 0.0f);
-  key.distance = ImageF(w, h, 1, 0.0f);
-  key.spread = ImageF(w, h, 1, 0.0f);
-  key.lobe = ImageF(w, h, 1, 0.0f);
   key.reflective_pixels = frame.sample_count();
   const vec3 forward = camera_forward(frame.camera);
   for (size_t i = 0; i < frame.sample_count(); ++i) {
@@ -80,15 +98,11 @@ ReflectionDepthImage make_reflection_depth_image(const ReflectionFrame& frame, c
     const int x = int(frame.pixel[i] % uint32_t(w)), y = int(frame.pixel[i] / uint32_t(w));
     key.spread.at(x, y) = mirror_spread(key, x, y);
   }
-  key.pixels.reserve(frame.sample_count());
-  key.reflected.reserve(frame.sample_count());
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      if (key.object.at(x, y) != kNoReflector) {
-        key.pixels.push_back(uint32_t(y) * uint32_t(w) + uint32_t(x));
-        key.reflected.push_back(key_reflected_point(key, x, y));
-      }
-  return key;
+  // Row-major: the samples' pixels sorted (one sample per pixel), not a scan of the image.
+  key.pixels.assign(frame.pixel.begin(), frame.pixel.end());
+  if (!std::is_sorted(key.pixels.begin(), key.pixels.end())) std::sort(key.pixels.begin(), key.pixels.end());
+  key.reflected.reserve(key.pixels.size());
+  for (const uint32_t i : key.pixels) key.reflected.push_back(key_reflected_point(key, int(i % uint32_t(w)), int(i / uint32_t(w))));
 }
 
 }  // namespace proxima

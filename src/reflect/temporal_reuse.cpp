@@ -13,13 +13,18 @@ namespace {
 // behaves like a direction in the match distance, finite for the warp's depth test.
 constexpr float kEscapeDistanceScale = 100.0f;
 
-// Traces the flagged samples and fills their radiance in.
-void recompute(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame, ReflectionReprojection& r) {
+// Traces the flagged samples and fills their radiance in; returns how many rays it traced.
+uint64_t recompute(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame, ReflectionReprojection& r) {
   std::vector<uint32_t> todo;
+  uint64_t traced_rays = 0;
   for (size_t i = 0; i < r.flag.size(); ++i)
-    if (r.flag[i] != kReuseOk) todo.push_back(uint32_t(i));
+    if (r.flag[i] != kReuseOk) {
+      todo.push_back(uint32_t(i));
+      traced_rays += frame.first_ray[i + 1] - frame.first_ray[i];
+    }
   const std::vector<vec3> traced = trace_reflection_subset(scene, rays, frame, todo);
   for (size_t k = 0; k < todo.size(); ++k) r.radiance[todo[k]] = traced[k];
+  return traced_rays;
 }
 
 }  // namespace
@@ -54,6 +59,7 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
   if (frame.supersample != 1) throw std::logic_error("temporal reflections: frame must have supersample 1");
   TemporalFrameStats st;
   st.reflective = frame.sample_count();
+  st.rays = frame.direction.size();
   const bool size_changed =
       state.key.camera.width != frame.camera.width || state.key.camera.height != frame.camera.height;
   std::vector<vec3> radiance;
@@ -61,12 +67,15 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
     // Key frame: trace everything, keep the reflection depth image.
     Stopwatch watch;
     TracedReflections traced = trace_reflections(scene, rays, frame);
-    state.key = make_reflection_depth_image(frame, traced, kEscapeDistanceScale * frame.scene_diagonal);
+    make_reflection_depth_image_into(frame, traced, kEscapeDistanceScale * frame.scene_diagonal, state.key);
     state.previous = {};
     state.earlier = {};
     state.need_key = false;
     state.frames_since_key = 0;
+    state.cycle_work = 1.0;
     st.key = true;
+    st.traced_rays = st.rays;
+    st.work = 1.0;
     st.key_ms = watch.elapsed_ms();
     radiance = std::move(traced.radiance);
     if (flags) flags->assign(frame.sample_count(), kReuseOk);
@@ -95,13 +104,21 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
     st.edge = r.edge;
     st.recomputed = r.recompute();
     watch.restart();
-    recompute(scene, rays, frame, r);
+    st.traced_rays = recompute(scene, rays, frame, r);
     st.recompute_ms = watch.elapsed_ms();
     if (options.match.extrapolate) state.earlier = std::move(state.previous);
     state.previous = std::move(offsets);
     ++state.frames_since_key;
     // §5.4.4: too much recomputed → the next frame refreshes the key frame.
     state.need_key = st.stale_fraction() > double(options.keyframe_threshold);
+    // The cost rule: the next reuse frame is likely to cost about this one's work; once that
+    // reaches the cycle's average, ending the cycle lowers the long-run work per frame.
+    if (st.rays > 0)
+      st.work = (double(st.traced_rays) + double(options.keyframe_cost) * double(state.key.pixels.size())) /
+                double(st.rays);
+    state.cycle_work += st.work;
+    if (options.keyframe_cost > 0.0f && st.work >= state.cycle_work / double(state.frames_since_key + 1))
+      state.need_key = true;
     radiance = std::move(r.radiance);
     if (flags) *flags = std::move(r.flag);
   }

@@ -225,6 +225,62 @@ TEST(TemporalReflections, KeyFramePolicyFollowsTheThreshold) {
   EXPECT_TRUE(st.key);
 }
 
+// The cost rule: a reuse frame whose work reaches the cycle's average work ends the cycle.
+TEST(TemporalReflections, KeyFrameCostRuleEndsTheCycleWhenReuseStopsPaying) {
+  const Scene scene = floor_mirror(true);
+  RayScene rays(scene);
+  TemporalOptions options;
+  options.keyframe_threshold = 1.0f;  // the threshold never fires: only the cost rule
+  auto second_frame = [&](float cost, TemporalFrameStats& st) {
+    options.keyframe_cost = cost;
+    TemporalState state;
+    temporal_reflections(scene, rays, frame_at(scene, kKeyEye), state, options, &st);
+    EXPECT_TRUE(st.key);
+    EXPECT_EQ(st.work, 1.0);
+    temporal_reflections(scene, rays, frame_at(scene, kKeyEye + vec3(0.05f, 0, 0)), state, options, &st);
+    EXPECT_FALSE(st.key);
+    EXPECT_GT(st.rays, st.traced_rays);
+    EXPECT_NEAR(st.work, (double(st.traced_rays) + double(cost) * double(state.key.pixels.size())) / double(st.rays),
+                1e-12);
+    return state.need_key;
+  };
+  TemporalFrameStats st;
+  // Cheap fixed steps: the reuse frame's work is far below the cycle's average (1 + work) / 2.
+  EXPECT_FALSE(second_frame(0.01f, st));
+  EXPECT_LT(st.work, 0.5);
+  // Fixed steps dearer than tracing every ray: reuse does not pay, the next frame is a key frame.
+  EXPECT_TRUE(second_frame(2.0f, st));
+  EXPECT_GT(st.work, 1.0);
+  // Off: only the threshold decides.
+  EXPECT_FALSE(second_frame(0.0f, st));
+}
+
+// A key frame built into the last one's buffers equals one built from scratch.
+TEST(TemporalReflections, DepthImageIntoReusedBuffersEqualsAFreshOne) {
+  const Scene scene = floor_mirror(true);
+  RayScene rays(scene);
+  const ReflectionFrame a = frame_at(scene, kKeyEye), b = frame_at(scene, kKeyEye + vec3(0.4f, 0.2f, -0.3f));
+  const float far = 100.0f * a.scene_diagonal;
+  ReflectionDepthImage reused;
+  make_reflection_depth_image_into(a, trace_reflections(scene, rays, a), far, reused);
+  const TracedReflections tb = trace_reflections(scene, rays, b);
+  make_reflection_depth_image_into(b, tb, far, reused);
+  const ReflectionDepthImage fresh = make_reflection_depth_image(b, tb, far);
+  ASSERT_NE(a.sample_count(), b.sample_count());  // the reset matters: another set of pixels
+  EXPECT_EQ(reused.pixels, fresh.pixels);
+  EXPECT_EQ(reused.reflected, fresh.reflected);
+  auto same = [](const auto& x, const auto& y) { return std::ranges::equal(x.data(), y.data()); };
+  EXPECT_TRUE(same(reused.object, fresh.object));
+  EXPECT_TRUE(same(reused.position, fresh.position));
+  EXPECT_TRUE(same(reused.normal, fresh.normal));
+  EXPECT_TRUE(same(reused.depth, fresh.depth));
+  EXPECT_TRUE(same(reused.specular, fresh.specular));
+  EXPECT_TRUE(same(reused.radiance, fresh.radiance));
+  EXPECT_TRUE(same(reused.distance, fresh.distance));
+  EXPECT_TRUE(same(reused.spread, fresh.spread));
+  EXPECT_TRUE(same(reused.lobe, fresh.lobe));
+}
+
 // A chrome ball (radius 0.25 m, 0.9 m above the floor mirror): its pixels minify the room,
 // so a sub-pixel shift changes what they show; the warp must mark them unreliable (they
 // are recomputed), while the planar floor mirror around it stays reliable.

@@ -55,4 +55,11 @@ float mirror_spread(const ReflectionDepthImage& key, int x, int y);
 ReflectionDepthImage make_reflection_depth_image(const ReflectionFrame& frame, const TracedReflections& traced,
                                                  float max_distance);
 
+// The same into `key`, reusing its images when they have the frame's size: only the pixels
+// the earlier key frame wrote (its `pixels`) are reset, not nine whole images. Fresh large
+// allocations cost more than the rest of the build on machines where page faults are slow
+// (docs/temporal.md, "Speed of the per-frame steps"). The same result.
+void make_reflection_depth_image_into(const ReflectionFrame& frame, const TracedReflections& traced,
+                                      float max_distance, ReflectionDepthImage& key);
+
 }  // namespace proxima

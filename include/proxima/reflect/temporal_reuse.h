@@ -28,6 +28,11 @@ struct TemporalOptions {
   WarpOptions warp;
   ReprojectOptions reproject;
   float keyframe_threshold = 0.3f;  // stale_fraction above which the next frame is a key frame
+  // Not in the thesis: the cost rule (docs/temporal.md) also starts a key frame once a reuse
+  // frame's work reaches the average work per frame since the last key frame — from then on
+  // a new cycle is cheaper on average. Work counts traced rays, and the fixed steps (best
+  // match, warp, reprojection) as this many rays per reflective key pixel; 0 = off.
+  float keyframe_cost = 0.0f;
 };
 
 // What persists between frames.
@@ -38,12 +43,15 @@ struct TemporalState {
   IntermediateReflection warp;  // the last warp: its buffers are reused by the next
   bool need_key = true;    // the next frame is a key frame
   int frames_since_key = 0;
+  double cycle_work = 0.0;  // Σ work / full-trace work of the frames since the key frame, it included
 };
 
 struct TemporalFrameStats {
   bool key = false;
   uint64_t reflective = 0;   // reflective samples of the frame
   uint64_t recomputed = 0;   // traced on a non-key frame (disoccluded + unreliable)
+  uint64_t rays = 0, traced_rays = 0;  // the frame's reflection rays; of those, traced (all on a key frame)
+  double work = 0.0;         // the frame's work over a full trace's (TemporalOptions::keyframe_cost)
   uint64_t disoccluded = 0, unreliable = 0, invalid_offsets = 0;
   uint64_t curved = 0;       // of the unreliable: on a strongly curved reflector (kReuseCurved)
   uint64_t edge = 0;         // of the unreliable: on an edge of the reflected image (kReuseEdge)
