@@ -53,7 +53,9 @@ TEST(TemporalCli, BadInputIsExitCodeTwoAndWritesNothing) {
                                   base + "--path 0 --edge-contrast -1 --out " + out.string(),
                                   base + "--path 0 --edge-rule blend --out " + out.string(),
                                   base + "--path 0 --blend-error -0.1 --out " + out.string(),
-                                  base + "--path 0 --blend-error nan --out " + out.string()}) {
+                                  base + "--path 0 --blend-error nan --out " + out.string(),
+                                  base + "--path 0 --keyframe-cost -1 --out " + out.string(),
+                                  base + "--path 0 --keyframe-cost inf --out " + out.string()}) {
     const RunResult r = run_cli(args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
     EXPECT_NE(r.output.find("--"), std::string::npos) << r.output;  // names the flag
@@ -110,8 +112,9 @@ TEST(TemporalCli, EdgeRuleRecomputeIsReported) {
 // --match-extrapolate is reported with the best match's descent steps per reflective pixel
 // (no key frame after the first, so later frames have two previous offset buffers).
 TEST(TemporalCli, MatchExtrapolateIsReported) {
-  const nlohmann::json plain = compare_metrics("--threshold 1");
-  const nlohmann::json m = compare_metrics("--threshold 1 --match-extrapolate");
+  // One key frame: the threshold never fires and the cost rule is off.
+  const nlohmann::json plain = compare_metrics("--threshold 1 --keyframe-cost 0");
+  const nlohmann::json m = compare_metrics("--threshold 1 --keyframe-cost 0 --match-extrapolate");
   ASSERT_FALSE(plain.is_null());
   ASSERT_FALSE(m.is_null());
   EXPECT_EQ(plain["match_extrapolate"].get<double>(), 0.0);
