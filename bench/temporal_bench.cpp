@@ -3,7 +3,8 @@
 // on living-room / walk as `proxima reflect --method temporal` renders it (500 frames, 8
 // lobe rays): key frame 100, warm-started through frames 101–104, timed on frame 105 (10% reflective pixels).
 // Arg: image side; `rules`: 1 = --spread-limit 8 --curved-contrast 0.05 --edge-contrast
-// 0.05 --edge-rule recompute --recompute-splats. 1 thread. The figures in docs/RESULTS.md
+// 0.05 --edge-rule recompute --recompute-splats; reprojection's `blend`: the mesh's
+// blend_error (0 = off; 8 = the CLI's default --blend-error, which times the risk test). 1 thread. The figures in docs/RESULTS.md
 // come from `proxima reflect --compare`; these are for profiling.
 #include <benchmark/benchmark.h>
 
@@ -90,10 +91,17 @@ void BM_TemporalWarp(benchmark::State& state) {
 void BM_TemporalReproject(benchmark::State& state) {
   const Walk& w = walk(int(state.range(0)), state.range(1) != 0);
   ThreadLimit limit(1);
-  const WarpedMesh mesh{&w.state.key, &w.offsets, &w.mid, w.options.warp.edge_contrast, w.options.warp.edge_rule};
-  for (auto _ : state)
-    benchmark::DoNotOptimize(
-        reproject_reflections(w.frame, w.state.key, w.mid.radiance, &w.mid.state, w.options.reproject, &mesh));
+  const float blend_error = state.range(2) > 0 ? float(state.range(2)) : kInf;
+  const WarpedMesh mesh{&w.state.key, &w.offsets, &w.mid, w.options.warp.edge_contrast, w.options.warp.edge_rule,
+                        w.options.warp.recompute_splats, blend_error};
+  uint64_t recompute = 0;
+  for (auto _ : state) {
+    const ReflectionReprojection r =
+        reproject_reflections(w.frame, w.state.key, w.mid.radiance, &w.mid.state, w.options.reproject, &mesh);
+    recompute = r.recompute();
+    benchmark::DoNotOptimize(recompute);
+  }
+  state.counters["recompute"] = double(recompute);
 }
 
 void BM_TemporalTrace(benchmark::State& state) {  // full reflection ray tracing of the frame, for scale
@@ -102,10 +110,13 @@ void BM_TemporalTrace(benchmark::State& state) {  // full reflection ray tracing
   for (auto _ : state) benchmark::DoNotOptimize(trace_reflections(w.scene, w.rays, w.frame));
 }
 
-#define TEMPORAL_ARGS ArgsProduct({{256, 512}, {0, 1}})->ArgNames({"side", "rules"})->Unit(benchmark::kMillisecond)
+#define TEMPORAL_ARGS ArgsProduct({{256, 512, 1024}, {0, 1}})->ArgNames({"side", "rules"})->Unit(benchmark::kMillisecond)
 BENCHMARK(BM_TemporalBestMatch)->TEMPORAL_ARGS;
 BENCHMARK(BM_TemporalWarp)->TEMPORAL_ARGS;
-BENCHMARK(BM_TemporalReproject)->TEMPORAL_ARGS;
-BENCHMARK(BM_TemporalTrace)->ArgsProduct({{256, 512}, {0}})->ArgNames({"side", "rules"})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TemporalReproject)
+    ->ArgsProduct({{256, 512, 1024}, {0, 1}, {0, 8}})
+    ->ArgNames({"side", "rules", "blend"})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TemporalTrace)->ArgsProduct({{256, 512, 1024}, {0}})->ArgNames({"side", "rules"})->Unit(benchmark::kMillisecond);
 
 }  // namespace

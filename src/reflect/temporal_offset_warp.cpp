@@ -83,17 +83,85 @@ float blend_risk(const BlendSamples& blend, vec3 value, float s, vec3 base) {
   return 255.0f * most;
 }
 
+namespace {
+
+// linear_to_srgb on [0, 1] by linear interpolation in a table of kSrgbSteps + 1 exact values:
+// off by at most kSrgbError. The chord's error is ≤ h²/8·max|D''| per step h = 1/4096
+// (D'' = −0.256·l^−1.58 from l = 0.0031308 up: 1.7·10⁻⁵), ≤ h·ΔD'/4 on the step holding the
+// linear segment's kink (slopes 12.92 vs 12.70: 1.4·10⁻⁵), plus float rounding (≤ 10⁻⁶);
+// the bound is 3× the sum, checked by a test against every 2⁻¹⁸ step.
+constexpr int kSrgbSteps = 4096;
+constexpr float kSrgbError = 1e-4f;
+
+const float* srgb_table() {
+  static const std::array<float, kSrgbSteps + 1> table = [] {
+    std::array<float, kSrgbSteps + 1> t{};
+    for (int j = 0; j <= kSrgbSteps; ++j) t[size_t(j)] = linear_to_srgb(float(j) / float(kSrgbSteps));
+    return t;
+  }();
+  return table.data();
+}
+
+// x in [0, 1] (not NaN).
+float srgb_approx(const float* table, float x) {
+  const float t = x * float(kSrgbSteps);
+  const int j = std::min(int(t), kSrgbSteps - 1);
+  return table[j] + (t - float(j)) * (table[j + 1] - table[j]);
+}
+
+}  // namespace
+
+float linear_to_srgb_approx(float l) { return srgb_approx(srgb_table(), l); }
+
+float linear_to_srgb_approx_error() { return kSrgbError; }
+
+bool blend_risk_exceeds(const BlendSamples& blend, vec3 value, float s, vec3 base, float limit) {
+  // The risk from the table instead of powf is off by at most 255·2·kSrgbError (each term's
+  // two display values by kSrgbError, a weighted mean of non-negative weights, a max over
+  // channels) plus the float rounding of ≤ 4-term sums (~10⁻⁶·255): the margin is twice
+  // that. Outside it the decision is the exact one; inside it (and for NaN, negative
+  // weights, or no weight) the exact risk decides.
+  constexpr float kMargin = 2.0f * 255.0f * 2.0f * kSrgbError;
+  const float* table = srgb_table();
+  float total = 0.0f;
+  bool usable = true;
+  for (int k = 0; k < blend.n; ++k) total += blend.w[k], usable = usable && blend.w[k] >= 0.0f;
+  if (usable && total > 0.0f && total < kInf) {
+    auto display = [&](vec3 lr, int c, bool& ok) {
+      const float x = base[c] + s * lr[c];
+      ok = ok && x == x;
+      return srgb_approx(table, x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f);
+    };
+    bool ok = true;
+    float most = 0.0f;
+    for (int c = 0; c < 3; ++c) {
+      const float at = display(value, c, ok);
+      float sum = 0.0f;
+      for (int k = 0; k < blend.n; ++k) sum += blend.w[k] * std::abs(display(blend.lr[k], c, ok) - at);
+      most = std::max(most, sum / total);
+    }
+    const float risk = 255.0f * most;
+    if (ok && risk < limit - kMargin) return false;
+    if (ok && risk > limit + kMargin && risk < kInf) return true;
+  }
+  return blend_risk(blend, value, s, base) > limit;
+}
+
 bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance, BlendSamples* blend) {
   const IntermediateReflection& image = *mesh.image;
   const int w = image.triangle.width(), h = image.triangle.height();
   const int cx = int(std::floor(q.x)), cy = int(std::floor(q.y));
+  const uint8_t* state = image.state.data().data();
+  const uint32_t* triangle = image.triangle.data().data();
   uint32_t tried[9];
   int n_tried = 0;
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
       const int x = cx + dx, y = cy + dy;
-      if (x < 0 || y < 0 || x >= w || y >= h || image.state.at(x, y) != kWarpReliable) continue;
-      const uint32_t id = image.triangle.at(x, y);
+      if (x < 0 || y < 0 || x >= w || y >= h) continue;
+      const size_t at = size_t(y) * size_t(w) + size_t(x);
+      if (state[at] != kWarpReliable) continue;
+      const uint32_t id = triangle[at];
       if (id == kNoWarpTriangle) continue;  // a splatted point
       if (std::find(tried, tried + n_tried, id) != tried + n_tried) continue;
       tried[n_tried++] = id;
@@ -143,23 +211,25 @@ void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& 
                            IntermediateReflection& out) {
   const int w = key.object.width(), h = key.object.height();
   if (out.state.width() == w && out.state.height() == h) {
-    // A pixel is written with its state, never kWarpEmpty: the empty pixels hold the
-    // defaults already, so only the others are reset (not four whole images per frame).
+    // Only the last warp's key's reflective pixels can have been written (a pixel takes only
+    // its own reflector's triangles and splats): reset those, not four whole images per frame.
+    float* radiance = out.radiance.data().data();
+    float* depth = out.depth.data().data();
     uint8_t* state = out.state.data().data();
-    for (size_t i = 0, n = size_t(w) * size_t(h); i < n; ++i)
-      if (state[i] != kWarpEmpty) {
-        const int x = int(i % size_t(w)), y = int(i / size_t(w));
-        for (int c = 0; c < 3; ++c) out.radiance.at(x, y, c) = 0.0f;
-        out.depth.at(x, y) = kInf;
-        out.triangle.at(x, y) = kNoWarpTriangle;
-        state[i] = kWarpEmpty;
-      }
+    uint32_t* triangle = out.triangle.data().data();
+    for (const uint32_t i : out.written) {
+      radiance[3 * size_t(i)] = radiance[3 * size_t(i) + 1] = radiance[3 * size_t(i) + 2] = 0.0f;
+      depth[i] = kInf;
+      state[i] = kWarpEmpty;
+      triangle[i] = kNoWarpTriangle;
+    }
   } else {
     out.radiance = ImageF(w, h, 3, 0.0f);
     out.depth = ImageF(w, h, 1, kInf);
     out.state = ImageU8(w, h, 1, kWarpEmpty);
     out.triangle = ImageU32(w, h, 1, kNoWarpTriangle);
   }
+  out.written.assign(key.pixels.begin(), key.pixels.end());
   out.triangles = out.stretched = out.curved = out.discontinuous = out.edges = 0;
   // Read on reflective pixels only, each set below: a reused buffer keeps stale entries elsewhere.
   out.vertex.resize(size_t(w) * size_t(h));
@@ -191,7 +261,9 @@ void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& 
     }
     return most;
   };
-  std::vector<uint8_t> is_flat(size_t(w) * size_t(h), 1);
+  // Read on valid (so reflective) pixels only, each set here.
+  std::vector<uint8_t>& is_flat = out.flat;
+  is_flat.resize(size_t(w) * size_t(h));
   for (const uint32_t i : pixels) {
     const int x = int(i % uint32_t(w)), y = int(i / uint32_t(w));
     const float spread = key.spread.at(x, y);
@@ -215,7 +287,12 @@ void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& 
     bool nearest;   // an edge triangle under ReflectedEdgeRule::kNearest
   };
   const int bands = (h + kBandRows - 1) / kBandRows;
-  std::vector<std::vector<Tri>> band_tris(size_t(std::max(bands, 1)));
+  // The bins keep their memory from call to call on this thread (no allocation per frame).
+  // (A reference: the raster's worker threads must read the caller's bins, not their own.)
+  static thread_local std::vector<std::vector<Tri>> bins;
+  std::vector<std::vector<Tri>>& band_tris = bins;
+  if (band_tris.size() < size_t(std::max(bands, 1))) band_tris.resize(size_t(std::max(bands, 1)));
+  for (std::vector<Tri>& bin : band_tris) bin.clear();
   for (const uint32_t i : pixels) {  // (x, y): both halves' first corner, reflective
     const int x = int(i % uint32_t(w)), y = int(i / uint32_t(w));
     if (y + 1 >= h || x + 1 >= w) continue;
@@ -225,7 +302,7 @@ void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& 
         if (!valid(cx[0], cy[0]) || !valid(cx[1], cy[1]) || !valid(cx[2], cy[2])) continue;
         const uint32_t o = key.object.at(cx[0], cy[0]);
         if (key.object.at(cx[1], cy[1]) != o || key.object.at(cx[2], cy[2]) != o) continue;
-        const Vertex a = vertex(cx[0], cy[0]), b = vertex(cx[1], cy[1]), c = vertex(cx[2], cy[2]);
+        const Vertex &a = vertex(cx[0], cy[0]), &b = vertex(cx[1], cy[1]), &c = vertex(cx[2], cy[2]);
         if (!continuous({key.depth.at(cx[0], cy[0]), key.depth.at(cx[1], cy[1]), key.depth.at(cx[2], cy[2])}) ||
             !continuous({a.z, b.z, c.z})) {
           ++out.discontinuous;

@@ -3,6 +3,7 @@
 #include "proxima/reflect/temporal_reprojection.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <stdexcept>
 
@@ -28,6 +29,8 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
            std::abs(key.depth.at(x, y) - depth) <= options.depth_tolerance * depth;
   };
   auto reliable = [&](int x, int y) { return !state || state->at(x, y) == kWarpReliable; };
+  assert(frame.base.empty() || (frame.base.width() == frame.sample_camera.width && frame.base.channels() == 3));
+  const float* base = frame.base.data().data();
 
   parallel_for(n, kSampleGrain, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
@@ -52,10 +55,8 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
       const bool gate = mesh && mesh->blend_error < kInf;
       BlendSamples blend;
       auto risky = [&](vec3 value) {
-        const uint32_t p = frame.pixel[i], sw = uint32_t(frame.sample_camera.width);
-        const vec3 base(frame.base.at(int(p % sw), int(p / sw), 0), frame.base.at(int(p % sw), int(p / sw), 1),
-                        frame.base.at(int(p % sw), int(p / sw), 2));
-        return blend_risk(blend, value, frame.specular[i], base) > mesh->blend_error;
+        const float* rgb = base + size_t(frame.pixel[i]) * 3u;  // G-buffer pixel y·width + x
+        return blend_risk_exceeds(blend, value, frame.specular[i], vec3(rgb[0], rgb[1], rgb[2]), mesh->blend_error);
       };
       if (mesh && warped_radiance_at(*mesh, q, out.radiance[i], gate ? &blend : nullptr)) {
         if (gate && risky(out.radiance[i])) {

@@ -580,6 +580,95 @@ TEST(TemporalReflections, RecomputeSplatsMarksSplattedPointsUnreliable) {
       }
 }
 
+// The table blend_risk_exceeds reads stays within its stated bound of linear_to_srgb, on a
+// fine sweep of [0, 1] and around the linear segment's end.
+TEST(TemporalReflections, SrgbTableIsWithinItsBound) {
+  const float bound = linear_to_srgb_approx_error();
+  float worst = 0.0f;
+  constexpr int kSteps = 1 << 18;
+  for (int j = 0; j <= kSteps; ++j) {
+    const float l = float(j) / float(kSteps);
+    worst = std::max(worst, std::abs(linear_to_srgb_approx(l) - linear_to_srgb(l)));
+  }
+  for (float l = 0.0030f; l < 0.0033f; l = std::nextafter(l, 1.0f))
+    worst = std::max(worst, std::abs(linear_to_srgb_approx(l) - linear_to_srgb(l)));
+  EXPECT_LE(worst, bound);
+  EXPECT_GT(worst, 0.0f);  // an approximation (the test would not notice a wrong bound otherwise)
+}
+
+// blend_risk_exceeds is blend_risk(...) > limit for every input: random blends, limits far
+// from and just around the exact risk, NaN, zero and infinite weights.
+TEST(TemporalReflections, BlendRiskExceedsIsTheExactDecision) {
+  uint32_t seed = 12345u;
+  auto uniform = [&] {  // fixed LCG: the same cases everywhere
+    seed = seed * 1664525u + 1013904223u;
+    return float(seed >> 8) / float(1u << 24);
+  };
+  int exceeded = 0, cases = 0;
+  for (int t = 0; t < 20000; ++t) {
+    BlendSamples blend;
+    blend.n = 1 + int(uniform() * 4.0f) % 4;
+    for (int k = 0; k < blend.n; ++k) {
+      blend.lr[k] = vec3(2.0f * uniform(), 2.0f * uniform(), 2.0f * uniform());
+      blend.w[k] = uniform() < 0.1f ? 0.0f : uniform();
+    }
+    const vec3 value = uniform() < 0.5f ? blend.lr[0] : vec3(uniform(), uniform(), uniform());
+    const float s = uniform() < 0.2f ? 1.0f : uniform();
+    const vec3 base = uniform() < 0.3f ? vec3(0.0f) : vec3(uniform(), uniform(), uniform()) * 0.5f;
+    const float risk = blend_risk(blend, value, s, base);
+    const float limits[] = {8.0f, 40.0f * uniform(), risk, std::nextafter(risk, 0.0f), std::nextafter(risk, kInf),
+                            risk + 0.01f, risk - 0.01f, 0.0f, kInf};
+    for (const float limit : limits) {
+      ASSERT_EQ(blend_risk_exceeds(blend, value, s, base, limit), risk > limit)
+          << "case " << t << " limit " << limit << " risk " << risk;
+      exceeded += risk > limit;
+      ++cases;
+    }
+  }
+  EXPECT_GT(exceeded, cases / 10);  // both answers are exercised
+  EXPECT_LT(exceeded, cases * 9 / 10);
+  BlendSamples odd;
+  odd.n = 2;
+  odd.lr[0] = vec3(0.2f), odd.lr[1] = vec3(0.8f, 0.1f, 0.3f);
+  odd.w[0] = 1.0f, odd.w[1] = 1.0f;
+  const float nan = std::nanf("");
+  for (const vec3 value : {vec3(nan, 0.5f, 0.5f), vec3(0.5f)})
+    for (const float w1 : {0.0f, 1.0f, kInf, nan})
+      for (const float limit : {0.0f, 8.0f, 100.0f}) {
+        odd.w[1] = w1;
+        EXPECT_EQ(blend_risk_exceeds(odd, value, 1.0f, vec3(0.0f), limit),
+                  blend_risk(odd, value, 1.0f, vec3(0.0f)) > limit);
+      }
+  BlendSamples none;
+  EXPECT_FALSE(blend_risk_exceeds(none, vec3(0.5f), 1.0f, vec3(0.0f), 0.0f));
+}
+
+// warp_reflections_into over a buffer last written from another key frame (same size, other
+// reflective pixels) gives exactly what a fresh warp gives.
+TEST(TemporalReflections, WarpIntoAReusedBufferIsAFreshWarp) {
+  const Scene first = floor_mirror(true), second = floor_mirror(false);
+  RayScene rays_first(first), rays_second(second);
+  const ReflectionFrame frame_a = frame_at(first, kKeyEye);
+  const ReflectionFrame frame_b = frame_at(second, kKeyEye + vec3(0.3f, 0.2f, 0.1f));
+  const ReflectionDepthImage key_a =
+      make_reflection_depth_image(frame_a, trace_reflections(first, rays_first, frame_a), 1e3f);
+  const ReflectionDepthImage key_b =
+      make_reflection_depth_image(frame_b, trace_reflections(second, rays_second, frame_b), 1e3f);
+  ASSERT_NE(key_a.pixels, key_b.pixels);
+  const OffsetBuffer offsets_a = best_match_search(key_a, kKeyEye + kMove, nullptr, {});
+  const OffsetBuffer offsets_b = best_match_search(key_b, kKeyEye + vec3(0.3f, 0.2f, 0.1f) + kMove, nullptr, {});
+  IntermediateReflection reused;
+  warp_reflections_into(key_a, offsets_a, {}, reused);
+  warp_reflections_into(key_b, offsets_b, {}, reused);
+  const IntermediateReflection fresh = warp_reflections(key_b, offsets_b, {});
+  EXPECT_TRUE(reused.radiance == fresh.radiance);
+  EXPECT_TRUE(reused.depth == fresh.depth);
+  EXPECT_TRUE(reused.state == fresh.state);
+  EXPECT_TRUE(reused.triangle == fresh.triangle);
+  EXPECT_EQ(reused.triangles, fresh.triangles);
+  EXPECT_EQ(reused.discontinuous, fresh.discontinuous);
+}
+
 }  // namespace proxima
 
 namespace proxima {

@@ -70,6 +70,16 @@ struct BlendSamples {
 // display saturates or the reflection is faint, the risk is small.
 float blend_risk(const BlendSamples& blend, vec3 value, float s, vec3 base);
 
+// blend_risk(blend, value, s, base) > limit, the same decision for every input: a table
+// for the sRGB curve settles it unless the risk is within a bound of `limit` (then, and for
+// NaN input, the exact blend_risk decides), so most samples take no powf.
+bool blend_risk_exceeds(const BlendSamples& blend, vec3 value, float s, vec3 base, float limit);
+
+// The table blend_risk_exceeds reads: linear_to_srgb for l in [0, 1] within
+// linear_to_srgb_approx_error(). For its test.
+float linear_to_srgb_approx(float l);
+float linear_to_srgb_approx_error();
+
 // True when the corners' s·Lr (s = key.specular) differ by more than `contrast` in a channel.
 bool edge_triangle(const ReflectionDepthImage& key, const int corner_x[3], const int corner_y[3], float contrast);
 
@@ -90,6 +100,8 @@ struct IntermediateReflection {
   std::vector<WarpVertex> vertex;  // per key pixel (row-major), set on reflective pixels only:
                                    // computed once, read by every triangle that uses it
   std::vector<vec2> point;         // vertex[i].p packed (what a triangle test reads), likewise
+  std::vector<uint8_t> flat;       // per key pixel, likewise: not on a strongly curved reflector
+  std::vector<uint32_t> written;   // the key's reflective pixels: the only ones a warp writes
   uint64_t triangles = 0, stretched = 0, curved = 0, discontinuous = 0, edges = 0;
 };
 
@@ -97,8 +109,9 @@ struct IntermediateReflection {
 IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const OffsetBuffer& offsets,
                                         const WarpOptions& options);
 
-// The same into `out`, reusing its buffers from an earlier warp of the same size (per frame
-// only its written pixels are reset, not four whole images): the same result.
+// The same into `out` (empty, or from an earlier warp), reusing its buffers from an earlier
+// warp of the same size (per frame only its written pixels are reset, not four whole
+// images): the same result.
 void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& offsets, const WarpOptions& options,
                            IntermediateReflection& out);
 
