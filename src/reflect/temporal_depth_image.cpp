@@ -2,6 +2,7 @@
 #include "proxima/reflect/temporal_depth_image.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 
@@ -71,6 +72,8 @@ void make_reflection_depth_image_into(const ReflectionFrame& frame, const Traced
     key.lobe = ImageF(w, h, 1, 0.0f);
   }
   key.reflected.clear();
+  static std::atomic<uint64_t> builds{0};
+  key.serial = ++builds;
   key.camera = frame.camera;
   key.reflective_pixels = frame.sample_count();
   const vec3 forward = camera_forward(frame.camera);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 
 #include "proxima/core/image_io.h"
@@ -19,18 +20,21 @@ constexpr int kBandRows = 16;
 // a pixel centre (offset 0) covers it despite rounding.
 constexpr float kEdgeSlack = 1e-3f;
 
-using Vertex = WarpVertex;
+// A key pixel as a mesh vertex: its centre moved by its offset, depth s.d + s.r, s.Lr.
+struct Vertex {
+  vec2 p;
+  float z;
+  vec3 lr;
+};
+
+Vertex vertex_at(const IntermediateReflection& image, uint32_t j) {
+  return Vertex{image.point[j], image.sample[j].z, image.sample[j].lr};
+}
 
 float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }
 
 // Corners of the two triangles of grid quad (x, y)–(x+1, y+1), split along its main diagonal.
 constexpr int kCorner[2][3][2] = {{{0, 0}, {1, 0}, {1, 1}}, {{0, 0}, {1, 1}, {0, 1}}};
-
-Vertex warp_vertex(const ReflectionDepthImage& key, const OffsetBuffer& offsets, int x, int y) {
-  const size_t i = size_t(y) * size_t(key.object.width()) + size_t(x);
-  return Vertex{vec2(float(x) + 0.5f, float(y) + 0.5f) + offsets.offset[i], key.depth.at(x, y) + key.distance.at(x, y),
-                vec3(key.radiance.at(x, y, 0), key.radiance.at(x, y, 1), key.radiance.at(x, y, 2))};
-}
 
 // True when an edge function is below −kEdgeSlack·max(1, |area2|) ≥ −kEdgeSlack·√|area2|
 // (rounded square root and product are monotone): the slack test fails, without its square
@@ -168,10 +172,10 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance, BlendSam
       const uint32_t quad = id / 2u, half = id % 2u;
       // The test reads the packed positions (corner index = quad + dy·w + dx, no division);
       // the whole vertices and the corners' coordinates only on a hit.
-      size_t corner[3];
+      uint32_t corner[3];
       vec2 p[3];
       for (int k = 0; k < 3; ++k) {
-        corner[k] = size_t(quad) + size_t(kCorner[half][k][1]) * size_t(w) + size_t(kCorner[half][k][0]);
+        corner[k] = image.index[size_t(quad) + size_t(kCorner[half][k][1]) * size_t(w) + size_t(kCorner[half][k][0])];
         p[k] = image.point[corner[k]];
       }
       const float area2 = cross2(p[1] - p[0], p[2] - p[0]);
@@ -187,7 +191,7 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance, BlendSam
       int cx3[3], cy3[3];
       for (int k = 0; k < 3; ++k) {
         cx3[k] = qx + kCorner[half][k][0], cy3[k] = qy + kCorner[half][k][1];
-        v[k] = image.vertex[corner[k]];
+        v[k] = vertex_at(image, corner[k]);
       }
       const float b[3] = {std::max(e0, 0.0f), std::max(e1, 0.0f), std::max(e2, 0.0f)};
       radiance = reconstruct(v, b, edge_triangle(*mesh.key, cx3, cy3, mesh.edge_contrast));
@@ -199,6 +203,77 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance, BlendSam
     }
   return false;
 }
+
+namespace {
+
+// The warp's tables that depend on the key frame (and options) only: built once per key
+// frame, not per frame. The candidates keep the per-frame loop's triangle order.
+void build_key_tables(const ReflectionDepthImage& key, const WarpOptions& options, IntermediateReflection& out) {
+  const int w = key.object.width(), h = key.object.height();
+  const std::vector<uint32_t>& pixels = key.pixels;
+  const size_t n = pixels.size();
+  out.sample.resize(n);
+  out.flat.resize(n);
+  out.index.resize(size_t(w) * size_t(h));  // read on reflective pixels only, each set here
+  // A glossy lobe averages over its cone: a reflector that bends the reflection by less
+  // than the lobe's half-angle per pixel does not change a pixel's value much.
+  const float pixel_angle = 1.0f / focal_length_px(key.camera);
+  auto contrast = [&](int x, int y) {
+    const uint32_t object = key.object.at(x, y);
+    constexpr int kStep[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
+    float most = 0.0f;
+    for (const auto& d : kStep) {
+      const int nx = x + d[0], ny = y + d[1];
+      if (nx < 0 || ny < 0 || nx >= w || ny >= h || key.object.at(nx, ny) != object) continue;
+      for (int c = 0; c < 3; ++c)
+        most = std::max(most, std::abs(key.specular.at(x, y) * key.radiance.at(x, y, c) -
+                                       key.specular.at(nx, ny) * key.radiance.at(nx, ny, c)));
+    }
+    return most;
+  };
+  for (size_t j = 0; j < n; ++j) {
+    const uint32_t i = pixels[j];
+    const int x = int(i % uint32_t(w)), y = int(i / uint32_t(w));
+    out.index[i] = uint32_t(j);
+    out.sample[j] = WarpSample{key.depth.at(x, y) + key.distance.at(x, y),
+                               vec3(key.radiance.at(x, y, 0), key.radiance.at(x, y, 1), key.radiance.at(x, y, 2))};
+    const float spread = key.spread.at(x, y);
+    out.flat[j] = spread <= options.spread_limit || spread * pixel_angle <= key.lobe.at(x, y) ||
+                  contrast(x, y) <= options.curved_contrast;
+  }
+  const float jump = 1.0f + options.depth_discontinuity;
+  auto continuous = [&](std::array<float, 3> v) {
+    const auto [lo, hi] = std::minmax({v[0], v[1], v[2]});
+    return hi <= jump * lo;
+  };
+  out.candidates.clear();
+  for (size_t j = 0; j < n; ++j) {  // (x, y): both halves' first corner, reflective
+    const uint32_t i = pixels[j];
+    const int x = int(i % uint32_t(w)), y = int(i / uint32_t(w));
+    if (y + 1 >= h || x + 1 >= w) continue;
+    for (int half = 0; half < 2; ++half) {
+      int cx[3], cy[3];
+      for (int k = 0; k < 3; ++k) cx[k] = x + kCorner[half][k][0], cy[k] = y + kCorner[half][k][1];
+      const uint32_t o = key.object.at(cx[0], cy[0]);
+      if (o == kNoReflector || key.object.at(cx[1], cy[1]) != o || key.object.at(cx[2], cy[2]) != o) continue;
+      WarpCandidate cand{};
+      for (int k = 0; k < 3; ++k) cand.corner[k] = out.index[size_t(cy[k]) * size_t(w) + size_t(cx[k])];
+      cand.half = uint8_t(half);
+      const float za = out.sample[cand.corner[0]].z, zb = out.sample[cand.corner[1]].z, zc = out.sample[cand.corner[2]].z;
+      if (!continuous({key.depth.at(cx[0], cy[0]), key.depth.at(cx[1], cy[1]), key.depth.at(cx[2], cy[2])}) ||
+          !continuous({za, zb, zc})) {
+        cand.flags = kCandidateDiscontinuous;
+      } else {
+        if (!out.flat[cand.corner[0]] || !out.flat[cand.corner[1]] || !out.flat[cand.corner[2]])
+          cand.flags |= kCandidateCurved;
+        if (edge_triangle(key, cx, cy, options.edge_contrast)) cand.flags |= kCandidateEdge;
+      }
+      out.candidates.push_back(cand);
+    }
+  }
+}
+
+}  // namespace
 
 IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const OffsetBuffer& offsets,
                                         const WarpOptions& options) {
@@ -229,60 +304,35 @@ void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& 
     out.state = ImageU8(w, h, 1, kWarpEmpty);
     out.triangle = ImageU32(w, h, 1, kNoWarpTriangle);
   }
-  out.written.assign(key.pixels.begin(), key.pixels.end());
+  const bool same_key = key.serial != 0 && out.key_serial == key.serial && out.index.size() == size_t(w) * size_t(h);
+  if (!same_key) out.written.assign(key.pixels.begin(), key.pixels.end());
   out.triangles = out.stretched = out.curved = out.discontinuous = out.edges = 0;
-  // Read on reflective pixels only, each set below: a reused buffer keeps stale entries elsewhere.
-  out.vertex.resize(size_t(w) * size_t(h));
-  out.point.resize(size_t(w) * size_t(h));
-  // The key's reflective pixels in row-major order: the loops below visit only these (every
-  // vertex, every triangle's first corner), not whole rows of other pixels.
   const std::vector<uint32_t>& pixels = key.pixels;
-  for (const uint32_t i : pixels) {
-    out.vertex[i] = warp_vertex(key, offsets, int(i % uint32_t(w)), int(i / uint32_t(w)));
-    out.point[i] = out.vertex[i].p;
+  const size_t n = pixels.size();
+  const uint32_t* object = key.object.data().data();
+  const uint32_t key_options[4] = {std::bit_cast<uint32_t>(options.depth_discontinuity),
+                                   std::bit_cast<uint32_t>(options.spread_limit),
+                                   std::bit_cast<uint32_t>(options.curved_contrast),
+                                   std::bit_cast<uint32_t>(options.edge_contrast)};
+  if (!same_key || !std::equal(key_options, key_options + 4, out.key_options))
+    build_key_tables(key, options, out);
+  std::copy(key_options, key_options + 4, out.key_options);
+  out.key_serial = key.serial;
+
+  // Per frame: the vertices' positions and validity, compact in key.pixels order.
+  out.point.resize(n);
+  out.valid.resize(n);
+  for (size_t j = 0; j < n; ++j) {
+    const uint32_t i = pixels[j];
+    out.point[j] = vec2(float(i % uint32_t(w)) + 0.5f, float(i / uint32_t(w)) + 0.5f) + offsets.offset[i];
+    out.valid[j] = offsets.valid[i];
   }
-  auto vertex = [&](int x, int y) -> const Vertex& { return out.vertex[size_t(y) * size_t(w) + size_t(x)]; };
-  auto valid = [&](int x, int y) {
-    return key.object.at(x, y) != kNoReflector && offsets.valid[size_t(y) * size_t(w) + size_t(x)];
-  };
-  // A glossy lobe averages over its cone: a reflector that bends the reflection by less
-  // than the lobe's half-angle per pixel does not change a pixel's value much.
-  const float pixel_angle = 1.0f / focal_length_px(key.camera);
-  auto contrast = [&](int x, int y) {
-    const uint32_t object = key.object.at(x, y);
-    constexpr int kStep[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
-    float most = 0.0f;
-    for (const auto& d : kStep) {
-      const int nx = x + d[0], ny = y + d[1];
-      if (nx < 0 || ny < 0 || nx >= w || ny >= h || key.object.at(nx, ny) != object) continue;
-      for (int c = 0; c < 3; ++c)
-        most = std::max(most, std::abs(key.specular.at(x, y) * key.radiance.at(x, y, c) -
-                                       key.specular.at(nx, ny) * key.radiance.at(nx, ny, c)));
-    }
-    return most;
-  };
-  // Read on valid (so reflective) pixels only, each set here.
-  std::vector<uint8_t>& is_flat = out.flat;
-  is_flat.resize(size_t(w) * size_t(h));
-  for (const uint32_t i : pixels) {
-    const int x = int(i % uint32_t(w)), y = int(i / uint32_t(w));
-    const float spread = key.spread.at(x, y);
-    is_flat[size_t(y) * size_t(w) + size_t(x)] = spread <= options.spread_limit ||
-                                                 spread * pixel_angle <= key.lobe.at(x, y) ||
-                                                 contrast(x, y) <= options.curved_contrast;
-  }
-  auto flat = [&](int x, int y) { return is_flat[size_t(y) * size_t(w) + size_t(x)] != 0; };
-  const float jump = 1.0f + options.depth_discontinuity;
-  auto continuous = [&](std::array<float, 3> v) {
-    const auto [lo, hi] = std::minmax({v[0], v[1], v[2]});
-    return hi <= jump * lo;
-  };
+  const uint8_t* valid = out.valid.data();
 
   // Triangles: quad (x, y)–(x+1, y+1) split along its main diagonal; id = 2·quad + half.
   // Bin each into the row bands its bounding box touches (sequential: a fixed order).
   struct Tri {
-    uint32_t id;
-    int qx, qy;     // its quad (id decoded once)
+    uint32_t candidate;
     uint8_t state;  // WarpState its pixels get
     bool nearest;   // an edge triangle under ReflectedEdgeRule::kNearest
   };
@@ -293,53 +343,51 @@ void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& 
   std::vector<std::vector<Tri>>& band_tris = bins;
   if (band_tris.size() < size_t(std::max(bands, 1))) band_tris.resize(size_t(std::max(bands, 1)));
   for (std::vector<Tri>& bin : band_tris) bin.clear();
-  for (const uint32_t i : pixels) {  // (x, y): both halves' first corner, reflective
-    const int x = int(i % uint32_t(w)), y = int(i / uint32_t(w));
-    if (y + 1 >= h || x + 1 >= w) continue;
-    for (int half = 0; half < 2; ++half) {
-        int cx[3], cy[3];
-        for (int k = 0; k < 3; ++k) cx[k] = x + kCorner[half][k][0], cy[k] = y + kCorner[half][k][1];
-        if (!valid(cx[0], cy[0]) || !valid(cx[1], cy[1]) || !valid(cx[2], cy[2])) continue;
-        const uint32_t o = key.object.at(cx[0], cy[0]);
-        if (key.object.at(cx[1], cy[1]) != o || key.object.at(cx[2], cy[2]) != o) continue;
-        const Vertex &a = vertex(cx[0], cy[0]), &b = vertex(cx[1], cy[1]), &c = vertex(cx[2], cy[2]);
-        if (!continuous({key.depth.at(cx[0], cy[0]), key.depth.at(cx[1], cy[1]), key.depth.at(cx[2], cy[2])}) ||
-            !continuous({a.z, b.z, c.z})) {
-          ++out.discontinuous;
-          continue;
-        }
-        ++out.triangles;
-        const float area = 0.5f * std::abs(cross2(b.p - a.p, c.p - a.p));
-        const bool stretched = !(area <= options.stretch_limit * 0.5f);  // original area: ½ pixel²
-        const bool curved = !flat(cx[0], cy[0]) || !flat(cx[1], cy[1]) || !flat(cx[2], cy[2]);
-        const bool edge = edge_triangle(key, cx, cy, options.edge_contrast);
-        const bool edge_recompute = edge && options.edge_rule == ReflectedEdgeRule::kRecompute;
-        const uint8_t state = curved            ? kWarpCurved
-                              : stretched       ? kWarpUnreliable
-                              : edge_recompute ? kWarpEdge
-                                                : kWarpReliable;
-        out.stretched += stretched;
-        out.curved += curved;
-        out.edges += edge;
-        const float ymin = std::min({a.p.y, b.p.y, c.p.y}), ymax = std::max({a.p.y, b.p.y, c.p.y});
-        const int r0 = std::max(0, int(std::ceil(ymin - 0.5f - kEdgeSlack)));
-        const int r1 = std::min(h - 1, int(std::floor(ymax - 0.5f + kEdgeSlack)));
-        if (r0 > r1) continue;
-        const uint32_t id = 2u * (uint32_t(y) * uint32_t(w) + uint32_t(x)) + uint32_t(half);
-        for (int band = r0 / kBandRows; band <= r1 / kBandRows; ++band)
-          band_tris[size_t(band)].push_back({id, x, y, state, edge && !edge_recompute});
+  const bool edge_recompute_rule = options.edge_rule == ReflectedEdgeRule::kRecompute;
+  const std::vector<WarpCandidate>& candidates = out.candidates;
+  for (size_t t = 0; t < candidates.size(); ++t) {
+    const WarpCandidate& cand = candidates[t];
+    if (!valid[cand.corner[0]] || !valid[cand.corner[1]] || !valid[cand.corner[2]]) continue;
+    if (cand.flags & kCandidateDiscontinuous) {
+      ++out.discontinuous;
+      continue;
     }
+    ++out.triangles;
+    const vec2 a = out.point[cand.corner[0]], b = out.point[cand.corner[1]], c = out.point[cand.corner[2]];
+    const float area = 0.5f * std::abs(cross2(b - a, c - a));
+    const bool stretched = !(area <= options.stretch_limit * 0.5f);  // original area: ½ pixel²
+    const bool curved = (cand.flags & kCandidateCurved) != 0;
+    const bool edge = (cand.flags & kCandidateEdge) != 0;
+    const bool edge_recompute = edge && edge_recompute_rule;
+    const uint8_t state = curved            ? kWarpCurved
+                          : stretched       ? kWarpUnreliable
+                          : edge_recompute ? kWarpEdge
+                                            : kWarpReliable;
+    out.stretched += stretched;
+    out.curved += curved;
+    out.edges += edge;
+    const float ymin = std::min({a.y, b.y, c.y}), ymax = std::max({a.y, b.y, c.y});
+    const int r0 = std::max(0, int(std::ceil(ymin - 0.5f - kEdgeSlack)));
+    const int r1 = std::min(h - 1, int(std::floor(ymax - 0.5f + kEdgeSlack)));
+    if (r0 > r1) continue;
+    for (int band = r0 / kBandRows; band <= r1 / kBandRows; ++band)
+      band_tris[size_t(band)].push_back({uint32_t(t), state, edge && !edge_recompute});
   }
 
   parallel_for(size_t(bands), 1, [&](size_t band_begin, size_t band_end) {
+    float* out_depth = out.depth.data().data();
+    float* out_radiance = out.radiance.data().data();
+    uint8_t* out_state = out.state.data().data();
+    uint32_t* out_triangle = out.triangle.data().data();
     for (size_t band = band_begin; band < band_end; ++band) {
       const int y_lo = int(band) * kBandRows, y_hi = std::min(h, y_lo + kBandRows);
       for (const Tri& t : band_tris[band]) {
-        const uint32_t half = t.id % 2u;
-        const int qx = t.qx, qy = t.qy;
+        const WarpCandidate& cand = candidates[t.candidate];
         Vertex v[3];
-        for (int k = 0; k < 3; ++k) v[k] = vertex(qx + kCorner[half][k][0], qy + kCorner[half][k][1]);
-        const uint32_t object = key.object.at(qx, qy);
+        for (int k = 0; k < 3; ++k) v[k] = vertex_at(out, cand.corner[k]);
+        const uint32_t quad = pixels[cand.corner[0]];
+        const uint32_t id = 2u * quad + uint32_t(cand.half);
+        const uint32_t reflector = object[quad];
         const float area2 = cross2(v[1].p - v[0].p, v[2].p - v[0].p);
         if (std::abs(area2) < 1e-12f) continue;  // collapsed: covers no pixel centre
         const float ymin = std::min({v[0].p.y, v[1].p.y, v[2].p.y}), ymax = std::max({v[0].p.y, v[1].p.y, v[2].p.y});
@@ -352,10 +400,11 @@ void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& 
         const float inv = 1.0f / std::abs(area2);
         for (int py = py0; py <= py1; ++py)
           for (int px = px0; px <= px1; ++px) {
+            const size_t at = size_t(py) * size_t(w) + size_t(px);
             // Offsets stay on their reflector, so a pixel only takes its own reflector's
             // triangles: another's (a floor mirror warped over a ball standing on it) would
             // win the depth test there with the wrong reflection.
-            if (key.object.at(px, py) != object) continue;
+            if (object[at] != reflector) continue;
             const vec2 p(float(px) + 0.5f, float(py) + 0.5f);
             // Barycentrics from edge functions, signed by the triangle's orientation.
             float e0 = cross2(v[2].p - v[1].p, p - v[1].p), e1 = cross2(v[0].p - v[2].p, p - v[2].p),
@@ -365,29 +414,29 @@ void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& 
             const float b[3] = {std::max(e0, 0.0f) * inv, std::max(e1, 0.0f) * inv, std::max(e2, 0.0f) * inv};
             const float sum = b[0] + b[1] + b[2];
             const float z = (b[0] * v[0].z + b[1] * v[1].z + b[2] * v[2].z) / sum;
-            if (!(z < out.depth.at(px, py))) continue;  // ties: the first triangle keeps the pixel
-            out.depth.at(px, py) = z;
+            if (!(z < out_depth[at])) continue;  // ties: the first triangle keeps the pixel
+            out_depth[at] = z;
             const vec3 lr = reconstruct(v, b, t.nearest);
-            for (int c = 0; c < 3; ++c) out.radiance.at(px, py, c) = lr[c];
-            out.state.at(px, py) = t.state;
-            out.triangle.at(px, py) = t.id;
+            for (int c = 0; c < 3; ++c) out_radiance[3 * at + size_t(c)] = lr[c];
+            out_state[at] = t.state;
+            out_triangle[at] = id;
           }
       }
     }
   });
   // Valid samples no triangle reached (one-pixel-wide parts of a reflector, corners next
   // to a dropped triangle) still land as points on the pixel nearest their warped position.
-  for (const uint32_t i : pixels) {
-    const int x = int(i % uint32_t(w)), y = int(i / uint32_t(w));
-    if (!valid(x, y)) continue;
-    const Vertex v = vertex(x, y);
+  for (size_t j = 0; j < n; ++j) {
+    const uint32_t i = pixels[j];
+    if (object[i] == kNoReflector || !valid[j]) continue;
+    const Vertex v = vertex_at(out, uint32_t(j));
     const int px = int(std::floor(v.p.x)), py = int(std::floor(v.p.y));
     if (px < 0 || py < 0 || px >= w || py >= h || out.state.at(px, py) != kWarpEmpty ||
-        key.object.at(px, py) != key.object.at(x, y))
+        key.object.at(px, py) != object[i])
       continue;
     out.depth.at(px, py) = v.z;
     for (int c = 0; c < 3; ++c) out.radiance.at(px, py, c) = v.lr[c];
-    out.state.at(px, py) = !flat(x, y) ? kWarpCurved : options.recompute_splats ? kWarpUnreliable : kWarpReliable;
+    out.state.at(px, py) = !out.flat[j] ? kWarpCurved : options.recompute_splats ? kWarpUnreliable : kWarpReliable;
   }
 }
 

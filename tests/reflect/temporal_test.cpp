@@ -669,6 +669,57 @@ TEST(TemporalReflections, WarpIntoAReusedBufferIsAFreshWarp) {
   EXPECT_EQ(reused.discontinuous, fresh.discontinuous);
 }
 
+// The warp keeps per-key-frame tables (candidate triangles, compact vertices): a key frame
+// rebuilt in place (same object) or new options must rebuild them, so the reused warp
+// equals a fresh one, also as read by warped_radiance_at.
+TEST(TemporalReflections, WarpAfterAKeyRebuiltInPlaceIsAFreshWarp) {
+  const Scene first = floor_mirror(true), second = floor_mirror(false);
+  RayScene rays_first(first), rays_second(second);
+  const vec3 eye_b = kKeyEye + vec3(0.3f, 0.2f, 0.1f);
+  const ReflectionFrame frame_a = frame_at(first, kKeyEye), frame_b = frame_at(second, eye_b);
+  ReflectionDepthImage key;
+  make_reflection_depth_image_into(frame_a, trace_reflections(first, rays_first, frame_a), 1e3f, key);
+  const std::vector<uint32_t> pixels_a = key.pixels;
+  const OffsetBuffer offsets_a = best_match_search(key, kKeyEye + kMove, nullptr, {});
+  IntermediateReflection reused;
+  warp_reflections_into(key, offsets_a, {}, reused);
+  make_reflection_depth_image_into(frame_b, trace_reflections(second, rays_second, frame_b), 1e3f, key);
+  ASSERT_NE(pixels_a, key.pixels);
+  const OffsetBuffer offsets_b = best_match_search(key, eye_b + kMove, nullptr, {});
+  WarpOptions strict;  // every per-key flag on: curved, edge, discontinuity
+  strict.spread_limit = 1.5f;
+  strict.curved_contrast = -1.0f;
+  strict.edge_contrast = 0.05f;
+  strict.edge_rule = ReflectedEdgeRule::kRecompute;
+  strict.depth_discontinuity = 0.02f;
+  for (const WarpOptions& options : {WarpOptions{}, strict, WarpOptions{}}) {
+    warp_reflections_into(key, offsets_b, options, reused);
+    const IntermediateReflection fresh = warp_reflections(key, offsets_b, options);
+    EXPECT_TRUE(reused.radiance == fresh.radiance);
+    EXPECT_TRUE(reused.depth == fresh.depth);
+    EXPECT_TRUE(reused.state == fresh.state);
+    EXPECT_TRUE(reused.triangle == fresh.triangle);
+    EXPECT_EQ(reused.triangles, fresh.triangles);
+    EXPECT_EQ(reused.discontinuous, fresh.discontinuous);
+    EXPECT_EQ(reused.stretched, fresh.stretched);
+    EXPECT_EQ(reused.curved, fresh.curved);
+    EXPECT_EQ(reused.edges, fresh.edges);
+    const WarpedMesh mesh_reused{&key, &offsets_b, &reused}, mesh_fresh{&key, &offsets_b, &fresh};
+    int hits = 0;
+    for (int y = 0; y < key.object.height(); y += 3)
+      for (int x = 0; x < key.object.width(); x += 3) {
+        const vec2 q(float(x) + 0.37f, float(y) + 0.61f);
+        vec3 a(0.0f), b(0.0f);
+        const bool hit = warped_radiance_at(mesh_reused, q, a);
+        ASSERT_EQ(hit, warped_radiance_at(mesh_fresh, q, b));
+        if (hit) {
+          EXPECT_TRUE(a == b);
+          ++hits;
+        }
+      }
+    EXPECT_GT(hits, 0);
+  }
+}
 }  // namespace proxima
 
 namespace proxima {

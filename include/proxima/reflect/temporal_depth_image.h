@@ -34,6 +34,9 @@ struct ReflectionDepthImage {
   // row-major) and their reflected points R (key_reflected_point), in that order.
   std::vector<uint32_t> pixels;
   std::vector<vec3> reflected;
+  // Set by every build from a process-wide counter: tells a rebuilt key frame (rebuilt in
+  // place, so the same address) from the one a per-key-frame table was made for.
+  uint64_t serial = 0;
 };
 
 // Mirror direction at a key pixel: reflect(W − E_old, s.n), unit.

@@ -85,9 +85,18 @@ bool edge_triangle(const ReflectionDepthImage& key, const int corner_x[3], const
 
 inline constexpr uint32_t kNoWarpTriangle = 0xFFFFFFFFu;
 
-// A key pixel as a mesh vertex: its centre moved by its offset, depth s.d + s.r, s.Lr.
-struct WarpVertex {
-  vec2 p;
+// A warp triangle that the key frame alone admits (corners reflective, on one reflector):
+// its corners' indices in key.pixels and what the key frame says about it. Per frame only
+// the corners' offset validity and the stretch remain to test.
+struct WarpCandidate {
+  uint32_t corner[3];
+  uint8_t half;   // of its grid quad at key.pixels[corner[0]]
+  uint8_t flags;  // kCandidate* bits
+};
+inline constexpr uint8_t kCandidateDiscontinuous = 1, kCandidateCurved = 2, kCandidateEdge = 4;
+
+// A key pixel's vertex data that does not move: depth s.d + s.r and s.Lr.
+struct WarpSample {
   float z;
   vec3 lr;
 };
@@ -97,11 +106,18 @@ struct IntermediateReflection {
   ImageF depth;       // its interpolated s.d + s.r, +inf where empty
   ImageU8 state;      // WarpState
   ImageU32 triangle;  // that triangle: 2·(y·width + x) + half of its grid quad, or kNoWarpTriangle
-  std::vector<WarpVertex> vertex;  // per key pixel (row-major), set on reflective pixels only:
-                                   // computed once, read by every triangle that uses it
-  std::vector<vec2> point;         // vertex[i].p packed (what a triangle test reads), likewise
-  std::vector<uint8_t> flat;       // per key pixel, likewise: not on a strongly curved reflector
-  std::vector<uint32_t> written;   // the key's reflective pixels: the only ones a warp writes
+  // Per reflective key pixel, in key.pixels order (compact: far less memory than per pixel):
+  std::vector<vec2> point;      // per frame: its centre moved by its offset
+  std::vector<uint8_t> valid;   // per frame: its offset is valid
+  std::vector<uint32_t> written;  // the key's reflective pixels: the only ones a warp writes
+  // Per key frame (rebuilt when the key's serial, its size or the options they read change):
+  uint64_t key_serial = 0;        // ReflectionDepthImage::serial they were made for; 0: none
+  uint32_t key_options[4] = {};   // bits of depth_discontinuity, spread_limit, curved_contrast, edge_contrast
+  std::vector<WarpSample> sample;   // per reflective key pixel: z and Lr of its vertex
+  std::vector<uint8_t> flat;        // likewise: not on a strongly curved reflector
+  std::vector<uint32_t> index;      // per key pixel (row-major): its index in key.pixels, set
+                                    // on reflective pixels only
+  std::vector<WarpCandidate> candidates;  // in the warp's triangle order
   uint64_t triangles = 0, stretched = 0, curved = 0, discontinuous = 0, edges = 0;
 };
 
