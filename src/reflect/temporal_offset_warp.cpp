@@ -170,14 +170,14 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance, BlendSam
       if (std::find(tried, tried + n_tried, id) != tried + n_tried) continue;
       tried[n_tried++] = id;
       const uint32_t quad = id / 2u, half = id % 2u;
-      // The test reads the packed positions (corner index = quad + dy·w + dx, no division);
-      // the whole vertices and the corners' coordinates only on a hit.
-      uint32_t corner[3];
+      // The test reads the packed positions; the whole vertices and the corners' coordinates
+      // only on a hit. Corner indices in key.pixels: those are row-major, so a corner's right
+      // neighbour (also reflective) is the next index: two map reads, not three.
+      const uint32_t first = image.index[quad], diagonal = image.index[size_t(quad) + size_t(w) + 1u];
+      const uint32_t corner[3] = {first, half == 0u ? first + 1u : diagonal,
+                                  half == 0u ? diagonal : diagonal - 1u};
       vec2 p[3];
-      for (int k = 0; k < 3; ++k) {
-        corner[k] = image.index[size_t(quad) + size_t(kCorner[half][k][1]) * size_t(w) + size_t(kCorner[half][k][0])];
-        p[k] = image.point[corner[k]];
-      }
+      for (int k = 0; k < 3; ++k) p[k] = image.point[corner[k]];
       const float area2 = cross2(p[1] - p[0], p[2] - p[0]);
       if (std::abs(area2) < 1e-12f) continue;
       float e0 = cross2(p[2] - p[1], q - p[1]), e1 = cross2(p[0] - p[2], q - p[2]), e2 = cross2(p[1] - p[0], q - p[0]);
