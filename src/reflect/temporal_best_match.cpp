@@ -38,11 +38,11 @@ struct Search {
   float distance(int x, int y, vec3 r) const {
     return match_distance(rgb_at(key.position, x, y), rgb_at(key.normal, x, y), r, eye);
   }
-  // match_distance of the 8 neighbours of (cx, cy) in kRing order; +inf for pixels of
-  // another reflector (or none): outside the search space. The same operations as
+  // match_distance of the listed ring cells of (cx, cy) (`ks`: kRing indices, `count` ≤ 8)
+  // into d[cell] and on[cell] (cell = 3·(dy+1) + dx+1); +inf for pixels of another reflector
+  // (or none): outside the search space. Four at a time (SIMD), the same operations as
   // match_distance lane by lane (IEEE single precision, no fused ops): the same bits.
-  // Returns whether all 8 are on the reflector.
-  bool ring(int cx, int cy, uint32_t object, vec3 r, float out[8]) const;
+  void cells(int cx, int cy, uint32_t object, vec3 r, const int* ks, int count, float d[9], bool on[9]) const;
 };
 
 #if defined(__SSE2__)
@@ -81,29 +81,43 @@ __m128 match_distance4(const float* const w[4], const float* const n[4], vec3 r,
 }
 #endif
 
-bool Search::ring(int cx, int cy, uint32_t object, vec3 r, float out[8]) const {
-  bool in[8];
-  const float* wp[8];
-  const float* np[8];
-  for (int k = 0; k < 8; ++k) {
-    const int x = cx + kRing[k][0], y = cy + kRing[k][1];
-    in[k] = same(x, y, object);
-    const size_t i =
-        in[k] ? (size_t(y) * size_t(w) + size_t(x)) * 3 : (size_t(cy) * size_t(w) + size_t(cx)) * 3;
-    wp[k] = position + i;
-    np[k] = normal + i;
-  }
+void Search::cells(int cx, int cy, uint32_t object, vec3 r, const int* ks, int count, float d[9],
+                   bool on[9]) const {
+  const size_t centre = (size_t(cy) * size_t(w) + size_t(cx)) * 3;
+  for (int g = 0; g < count; g += 4) {
+    const int n = std::min(4, count - g);
+    bool in[4];
+    const float* wp[4];
+    const float* np[4];
+    for (int k = 0; k < 4; ++k) {  // unused lanes repeat the centre
+      const int c = k < n ? ks[g + k] : ks[g];
+      const int x = cx + kRing[c][0], y = cy + kRing[c][1];
+      in[k] = same(x, y, object);
+      const size_t i = in[k] ? (size_t(y) * size_t(w) + size_t(x)) * 3 : centre;
+      wp[k] = position + i;
+      np[k] = normal + i;
+    }
+    float out[4];
 #if defined(__SSE2__)
-  _mm_storeu_ps(out, match_distance4(wp, np, r, eye));
-  _mm_storeu_ps(out + 4, match_distance4(wp + 4, np + 4, r, eye));
+    _mm_storeu_ps(out, match_distance4(wp, np, r, eye));
 #else
-  for (int k = 0; k < 8; ++k)
-    out[k] = match_distance(vec3(wp[k][0], wp[k][1], wp[k][2]), vec3(np[k][0], np[k][1], np[k][2]), r, eye);
+    for (int k = 0; k < n; ++k)
+      out[k] = match_distance(vec3(wp[k][0], wp[k][1], wp[k][2]), vec3(np[k][0], np[k][1], np[k][2]), r, eye);
 #endif
-  bool all = true;
-  for (int k = 0; k < 8; ++k)
-    if (!in[k]) out[k] = kInf, all = false;
-  return all;
+    for (int k = 0; k < n; ++k) {
+      const int cell = 3 * (kRing[ks[g + k]][1] + 1) + kRing[ks[g + k]][0] + 1;
+      on[cell] = in[k];
+      d[cell] = in[k] ? out[k] : kInf;
+    }
+  }
+}
+
+// std::lround for the offsets here (|v| < 2²²: pixel distances), without the library call:
+// halves away from zero. v − trunc(v) is exact (Sterbenz), so the same integer.
+int round_offset(float v) {
+  const int t = int(v);
+  const float f = v - float(t);
+  return t + int(f >= 0.5f) - int(f <= -0.5f);
 }
 
 // Vertex of a parabola through (−1, a), (0, b), (1, c), clamped to ±0.5; 0 if not convex.
@@ -129,12 +143,21 @@ float match_distance(vec3 w_n, vec3 n_n, vec3 reflected, vec3 eye) {
 OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const OffsetBuffer* previous,
                                const BestMatchOptions& options, BestMatchStats* stats,
                                const OffsetBuffer* earlier) {
+  OffsetBuffer out;  // fresh: zero, as the contract says, where no pixel is written
+  best_match_search_into(key, eye, previous, options, out, stats, earlier);
+  return out;
+}
+
+void best_match_search_into(const ReflectionDepthImage& key, vec3 eye, const OffsetBuffer* previous,
+                            const BestMatchOptions& options, OffsetBuffer& out, BestMatchStats* stats,
+                            const OffsetBuffer* earlier) {
   const int w = key.object.width(), h = key.object.height();
-  OffsetBuffer out;
-  out.width = w;
-  out.height = h;
-  out.offset.assign(size_t(w) * size_t(h), vec2(0.0f));
-  out.valid.assign(size_t(w) * size_t(h), 0);
+  if (out.width != w || out.height != h || out.offset.size() != size_t(w) * size_t(h)) {
+    out.width = w;
+    out.height = h;
+    out.offset.assign(size_t(w) * size_t(h), vec2(0.0f));
+    out.valid.assign(size_t(w) * size_t(h), 0);
+  }
   const bool warm = previous && previous->width == w && previous->height == h;
   const bool extrapolate =
       warm && options.extrapolate && earlier && earlier->width == w && earlier->height == h;
@@ -145,53 +168,78 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
   const size_t n = key.pixels.size();
   const size_t chunks = (n + kPixelGrain - 1) / kPixelGrain;
   std::vector<uint64_t> chunk_steps(chunks, 0), chunk_invalid(chunks, 0);
+  vec2* const offsets = out.offset.data();
+  uint8_t* const valid = out.valid.data();
 
   parallel_for(n, kPixelGrain, [&](size_t j0, size_t j1) {
     const size_t chunk = j0 / kPixelGrain;
+    uint64_t steps = 0, invalid = 0;
+    // key.pixels is row-major ascending: follow the row instead of dividing per pixel.
+    int y = j0 < j1 ? int(key.pixels[j0] / size_t(w)) : 0;
+    size_t row = size_t(y) * size_t(w);
     for (size_t j = j0; j < j1; ++j) {
       const size_t i = key.pixels[j];
-      const int x = int(i % size_t(w)), y = int(i / size_t(w));
-      const uint32_t object = key.object.at(x, y);
+      while (i >= row + size_t(w)) ++y, row += size_t(w);
+      const int x = int(i - row);
+      const uint32_t object = s.objects[i];
       const vec3 r = key.reflected[j];
       int cx = x, cy = y;
       if (warm) {  // INVALID pixels too: their end point saves the next walk
-        const int px = x + int(std::lround(previous->offset[i].x)),
-                  py = y + int(std::lround(previous->offset[i].y));
+        const int px = x + round_offset(previous->offset[i].x), py = y + round_offset(previous->offset[i].y);
         if (s.same(px, py, object)) cx = px, cy = py;
       }
       float former = s.distance(cx, cy, r);
       if (extrapolate) {  // steady motion: the offset moves on by its last change
         const vec2 guess = 2.0f * previous->offset[i] - earlier->offset[i];
-        const int gx = x + int(std::lround(guess.x)), gy = y + int(std::lround(guess.y));
+        const int gx = x + round_offset(guess.x), gy = y + round_offset(guess.y);
         if ((gx != cx || gy != cy) && s.same(gx, gy, object)) {
           const float d = s.distance(gx, gy, r);
           if (d < former) former = d, cx = gx, cy = gy;
         }
       }
       bool converged = false, inside = true;  // inside: the last ring was all on the reflector
-      // The last step's 3×3 distances (centre included): on convergence they are the end
-      // point's neighbours, which the sub-pixel fit reads again. Each step evaluates its
-      // whole ring at once (SIMD): cells shared with the previous square get the same bits.
-      float around[3][3] = {};
-      around[1][1] = former;
+      // The current 3×3 distances (cell 3·(dy+1) + dx+1, centre 4) and whether each is on the
+      // reflector: on convergence they are the end point's neighbours, which the sub-pixel fit
+      // reads again. A step keeps the cells its new square shares with the old one (the same
+      // bits as evaluating them again) and evaluates only the others.
+      float around[9];
+      bool on[9];
+      bool known[9] = {};
+      around[4] = former;
+      on[4] = known[4] = true;
       for (int step = 0; step < max_steps; ++step) {
-        float d8[8];
-        inside = s.ring(cx, cy, object, r, d8);
-        int bx = cx, by = cy;
+        int todo[8], count = 0;
+        for (int k = 0; k < 8; ++k)
+          if (!known[3 * (kRing[k][1] + 1) + kRing[k][0] + 1]) todo[count++] = k;
+        s.cells(cx, cy, object, r, todo, count, around, on);
+        int best_k = -1;
         float best = kInf;
+        inside = true;
         for (int k = 0; k < 8; ++k) {
-          around[kRing[k][1] + 1][kRing[k][0] + 1] = d8[k];
-          if (d8[k] < best) best = d8[k], bx = cx + kRing[k][0], by = cy + kRing[k][1];
+          const int cell = 3 * (kRing[k][1] + 1) + kRing[k][0] + 1;
+          inside = inside && on[cell];
+          if (around[cell] < best) best = around[cell], best_k = k;
         }
-        around[1][1] = former;
         if (!(best < former)) {  // local minimum (ties stop too: no cycles)
           converged = true;
           break;
         }
+        // Move to the best neighbour; shift the shared cells into the new square.
+        const int dx = kRing[best_k][0], dy = kRing[best_k][1];
+        float moved[9];
+        bool moved_on[9];
+        for (int b = 0; b < 3; ++b)
+          for (int a = 0; a < 3; ++a) {
+            const int oa = a + dx, ob = b + dy, cell = 3 * b + a;
+            known[cell] = unsigned(oa) < 3u && unsigned(ob) < 3u;
+            if (known[cell]) moved[cell] = around[3 * ob + oa], moved_on[cell] = on[3 * ob + oa];
+          }
+        for (int c = 0; c < 9; ++c)
+          if (known[c]) around[c] = moved[c], on[c] = moved_on[c];
         former = best;
-        cx = bx;
-        cy = by;
-        ++chunk_steps[chunk];
+        cx += dx;
+        cy += dy;
+        ++steps;
       }
       bool ok = converged;
       if (ok) {
@@ -208,13 +256,14 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
         }
       }
       if (!ok) {
-        ++chunk_invalid[chunk];
-        out.offset[i] = vec2(float(cx - x), float(cy - y));
+        ++invalid;
+        offsets[i] = vec2(float(cx - x), float(cy - y));
+        valid[i] = 0;
         continue;
       }
       vec2 sub(0.0f);
       if (options.subpixel) {
-        auto sq = [&](int dx, int dy) { return around[dy + 1][dx + 1] * around[dy + 1][dx + 1]; };
+        auto sq = [&](int dx, int dy) { return around[3 * (dy + 1) + dx + 1] * around[3 * (dy + 1) + dx + 1]; };
         const float b = former * former;
         const float l = sq(-1, 0), rr = sq(1, 0), u = sq(0, -1), dn = sq(0, 1);
         // An (almost) exact match stays put: near a zero of the distance its square is
@@ -223,9 +272,11 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
         if (std::isfinite(l) && std::isfinite(rr) && !exact(l, rr)) sub.x = parabola_vertex(l, b, rr);
         if (std::isfinite(u) && std::isfinite(dn) && !exact(u, dn)) sub.y = parabola_vertex(u, b, dn);
       }
-      out.offset[i] = vec2(float(cx - x), float(cy - y)) + sub;
-      out.valid[i] = 1;
+      offsets[i] = vec2(float(cx - x), float(cy - y)) + sub;
+      valid[i] = 1;
     }
+    chunk_steps[chunk] = steps;
+    chunk_invalid[chunk] = invalid;
   });
   if (stats) {
     *stats = {};
@@ -235,7 +286,6 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
       stats->steps += chunk_steps[c];
     }
   }
-  return out;
 }
 
 }  // namespace proxima
