@@ -23,6 +23,19 @@ constexpr float kExactMatch = 1e-4f;
 // the order of the descent's tie-breaks.
 constexpr int kRing[8][2] = {{-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
 
+// match_distance, inlined into the descent: the start's chain of square roots and divisions
+// then overlaps the first ring's.
+inline __attribute__((always_inline)) float distance_to_mirrored_ray(vec3 w_n, vec3 n_n, vec3 reflected, vec3 eye) {
+  const vec3 m = reflected - 2.0f * glm::dot(reflected - w_n, n_n) * n_n;
+  const vec3 axis = w_n - m;
+  const float len = glm::length(axis);
+  if (!(len > 0.0f)) return glm::length(eye - w_n);
+  const vec3 dir = axis / len;
+  const vec3 e = eye - m;
+  const float t = glm::dot(e, dir);
+  return t <= 0.0f ? glm::length(e) : glm::length(e - t * dir);
+}
+
 struct Search {
   const ReflectionDepthImage& key;
   vec3 eye;
@@ -36,18 +49,19 @@ struct Search {
            objects[size_t(y) * size_t(w) + size_t(x)] == object;
   }
   float distance(int x, int y, vec3 r) const {
-    return match_distance(rgb_at(key.position, x, y), rgb_at(key.normal, x, y), r, eye);
+    return distance_to_mirrored_ray(rgb_at(key.position, x, y), rgb_at(key.normal, x, y), r, eye);
   }
-  // match_distance of the listed ring cells of (cx, cy) (`ks`: kRing indices, `count` ≤ 8)
-  // into d[cell] and on[cell] (cell = 3·(dy+1) + dx+1); +inf for pixels of another reflector
-  // (or none): outside the search space. Four at a time (SIMD), the same operations as
+  // match_distance of the 8 neighbours of (cx, cy) in kRing order; +inf for pixels of
+  // another reflector (or none): outside the search space. The same operations as
   // match_distance lane by lane (IEEE single precision, no fused ops): the same bits.
-  void cells(int cx, int cy, uint32_t object, vec3 r, const int* ks, int count, float d[9], bool on[9]) const;
+  // Returns whether all 8 are on the reflector.
+  bool ring(int cx, int cy, uint32_t object, vec3 r, float out[8]) const;
 };
 
 #if defined(__SSE2__)
 // Four candidates at once; lanes are independent, each the exact sequence of match_distance.
-__m128 match_distance4(const float* const w[4], const float* const n[4], vec3 r, vec3 eye) {
+// Inlined: a ring's two groups are independent chains the core then runs side by side.
+inline __attribute__((always_inline)) __m128 match_distance4(const float* const w[4], const float* const n[4], vec3 r, vec3 eye) {
   const __m128 wx = _mm_setr_ps(w[0][0], w[1][0], w[2][0], w[3][0]);
   const __m128 wy = _mm_setr_ps(w[0][1], w[1][1], w[2][1], w[3][1]);
   const __m128 wz = _mm_setr_ps(w[0][2], w[1][2], w[2][2], w[3][2]);
@@ -71,45 +85,41 @@ __m128 match_distance4(const float* const w[4], const float* const n[4], vec3 r,
   const __m128 t = dot(qx, qy, qz, dx, dy, dz);
   const __m128 fx = _mm_sub_ps(qx, _mm_mul_ps(t, dx)), fy = _mm_sub_ps(qy, _mm_mul_ps(t, dy)),
                fz = _mm_sub_ps(qz, _mm_mul_ps(t, dz));
+  // The cases pick the squared length, then one square root: a lane's sqrt is correctly
+  // rounded, so the same bits as taking the root of each case and picking.
   const __m128 behind = _mm_cmple_ps(t, _mm_setzero_ps());
-  const __m128 d = _mm_or_ps(_mm_and_ps(behind, _mm_sqrt_ps(dot(qx, qy, qz, qx, qy, qz))),
-                             _mm_andnot_ps(behind, _mm_sqrt_ps(dot(fx, fy, fz, fx, fy, fz))));
+  const __m128 d2 = _mm_or_ps(_mm_and_ps(behind, dot(qx, qy, qz, qx, qy, qz)),
+                              _mm_andnot_ps(behind, dot(fx, fy, fz, fx, fy, fz)));
   // Degenerate axis (len not > 0): the distance to W itself.
   const __m128 gx = _mm_sub_ps(ex, wx), gy = _mm_sub_ps(ey, wy), gz = _mm_sub_ps(ez, wz);
   const __m128 ok = _mm_cmpgt_ps(len, _mm_setzero_ps());
-  return _mm_or_ps(_mm_and_ps(ok, d), _mm_andnot_ps(ok, _mm_sqrt_ps(dot(gx, gy, gz, gx, gy, gz))));
+  return _mm_sqrt_ps(_mm_or_ps(_mm_and_ps(ok, d2), _mm_andnot_ps(ok, dot(gx, gy, gz, gx, gy, gz))));
 }
 #endif
 
-void Search::cells(int cx, int cy, uint32_t object, vec3 r, const int* ks, int count, float d[9],
-                   bool on[9]) const {
-  const size_t centre = (size_t(cy) * size_t(w) + size_t(cx)) * 3;
-  for (int g = 0; g < count; g += 4) {
-    const int n = std::min(4, count - g);
-    bool in[4];
-    const float* wp[4];
-    const float* np[4];
-    for (int k = 0; k < 4; ++k) {  // unused lanes repeat the centre
-      const int c = k < n ? ks[g + k] : ks[g];
-      const int x = cx + kRing[c][0], y = cy + kRing[c][1];
-      in[k] = same(x, y, object);
-      const size_t i = in[k] ? (size_t(y) * size_t(w) + size_t(x)) * 3 : centre;
-      wp[k] = position + i;
-      np[k] = normal + i;
-    }
-    float out[4];
-#if defined(__SSE2__)
-    _mm_storeu_ps(out, match_distance4(wp, np, r, eye));
-#else
-    for (int k = 0; k < n; ++k)
-      out[k] = match_distance(vec3(wp[k][0], wp[k][1], wp[k][2]), vec3(np[k][0], np[k][1], np[k][2]), r, eye);
-#endif
-    for (int k = 0; k < n; ++k) {
-      const int cell = 3 * (kRing[ks[g + k]][1] + 1) + kRing[ks[g + k]][0] + 1;
-      on[cell] = in[k];
-      d[cell] = in[k] ? out[k] : kInf;
-    }
+bool Search::ring(int cx, int cy, uint32_t object, vec3 r, float out[8]) const {
+  bool in[8];
+  const float* wp[8];
+  const float* np[8];
+  for (int k = 0; k < 8; ++k) {
+    const int x = cx + kRing[k][0], y = cy + kRing[k][1];
+    in[k] = same(x, y, object);
+    const size_t i =
+        in[k] ? (size_t(y) * size_t(w) + size_t(x)) * 3 : (size_t(cy) * size_t(w) + size_t(cx)) * 3;
+    wp[k] = position + i;
+    np[k] = normal + i;
   }
+#if defined(__SSE2__)
+  _mm_storeu_ps(out, match_distance4(wp, np, r, eye));
+  _mm_storeu_ps(out + 4, match_distance4(wp + 4, np + 4, r, eye));
+#else
+  for (int k = 0; k < 8; ++k)
+    out[k] = match_distance(vec3(wp[k][0], wp[k][1], wp[k][2]), vec3(np[k][0], np[k][1], np[k][2]), r, eye);
+#endif
+  bool all = true;
+  for (int k = 0; k < 8; ++k)
+    if (!in[k]) out[k] = kInf, all = false;
+  return all;
 }
 
 // std::lround for the offsets here (|v| < 2²²: pixel distances), without the library call:
@@ -130,14 +140,7 @@ float parabola_vertex(float a, float b, float c) {
 }  // namespace
 
 float match_distance(vec3 w_n, vec3 n_n, vec3 reflected, vec3 eye) {
-  const vec3 m = reflected - 2.0f * glm::dot(reflected - w_n, n_n) * n_n;
-  const vec3 axis = w_n - m;
-  const float len = glm::length(axis);
-  if (!(len > 0.0f)) return glm::length(eye - w_n);
-  const vec3 dir = axis / len;
-  const vec3 e = eye - m;
-  const float t = glm::dot(e, dir);
-  return t <= 0.0f ? glm::length(e) : glm::length(e - t * dir);
+  return distance_to_mirrored_ray(w_n, n_n, reflected, eye);
 }
 
 OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const OffsetBuffer* previous,
@@ -198,47 +201,28 @@ void best_match_search_into(const ReflectionDepthImage& key, vec3 eye, const Off
         }
       }
       bool converged = false, inside = true;  // inside: the last ring was all on the reflector
-      // The current 3×3 distances (cell 3·(dy+1) + dx+1, centre 4) and whether each is on the
-      // reflector: on convergence they are the end point's neighbours, which the sub-pixel fit
-      // reads again. A step keeps the cells its new square shares with the old one (the same
-      // bits as evaluating them again) and evaluates only the others.
-      float around[9];
-      bool on[9];
-      bool known[9] = {};
-      around[4] = former;
-      on[4] = known[4] = true;
+      // The last step's 3×3 distances (centre included): on convergence they are the end
+      // point's neighbours, which the sub-pixel fit reads again. Each step evaluates its
+      // whole ring at once (SIMD): cells shared with the previous square get the same bits.
+      float around[3][3] = {};
+      around[1][1] = former;
       for (int step = 0; step < max_steps; ++step) {
-        int todo[8], count = 0;
-        for (int k = 0; k < 8; ++k)
-          if (!known[3 * (kRing[k][1] + 1) + kRing[k][0] + 1]) todo[count++] = k;
-        s.cells(cx, cy, object, r, todo, count, around, on);
-        int best_k = -1;
+        float d8[8];
+        inside = s.ring(cx, cy, object, r, d8);
+        int bx = cx, by = cy;
         float best = kInf;
-        inside = true;
         for (int k = 0; k < 8; ++k) {
-          const int cell = 3 * (kRing[k][1] + 1) + kRing[k][0] + 1;
-          inside = inside && on[cell];
-          if (around[cell] < best) best = around[cell], best_k = k;
+          around[kRing[k][1] + 1][kRing[k][0] + 1] = d8[k];
+          if (d8[k] < best) best = d8[k], bx = cx + kRing[k][0], by = cy + kRing[k][1];
         }
+        around[1][1] = former;
         if (!(best < former)) {  // local minimum (ties stop too: no cycles)
           converged = true;
           break;
         }
-        // Move to the best neighbour; shift the shared cells into the new square.
-        const int dx = kRing[best_k][0], dy = kRing[best_k][1];
-        float moved[9];
-        bool moved_on[9];
-        for (int b = 0; b < 3; ++b)
-          for (int a = 0; a < 3; ++a) {
-            const int oa = a + dx, ob = b + dy, cell = 3 * b + a;
-            known[cell] = unsigned(oa) < 3u && unsigned(ob) < 3u;
-            if (known[cell]) moved[cell] = around[3 * ob + oa], moved_on[cell] = on[3 * ob + oa];
-          }
-        for (int c = 0; c < 9; ++c)
-          if (known[c]) around[c] = moved[c], on[c] = moved_on[c];
         former = best;
-        cx += dx;
-        cy += dy;
+        cx = bx;
+        cy = by;
         ++steps;
       }
       bool ok = converged;
@@ -263,7 +247,7 @@ void best_match_search_into(const ReflectionDepthImage& key, vec3 eye, const Off
       }
       vec2 sub(0.0f);
       if (options.subpixel) {
-        auto sq = [&](int dx, int dy) { return around[3 * (dy + 1) + dx + 1] * around[3 * (dy + 1) + dx + 1]; };
+        auto sq = [&](int dx, int dy) { return around[dy + 1][dx + 1] * around[dy + 1][dx + 1]; };
         const float b = former * former;
         const float l = sq(-1, 0), rr = sq(1, 0), u = sq(0, -1), dn = sq(0, 1);
         // An (almost) exact match stays put: near a zero of the distance its square is
