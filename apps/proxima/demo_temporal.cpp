@@ -38,7 +38,8 @@ void temporal_section(Context& c) {
                   "those offsets and reprojected; pixels the warp cannot supply (disoccluded, stretched) "
                   "and those whose blend of key samples is likely visibly wrong (expected display error above 8 "
                   "levels, --blend-error) are traced again with Embree. A new key frame starts when more than 30% of the reflective pixels "
-                  "were recomputed. Compared with full ray tracing of every frame and with direct depth "
+                  "were recomputed, or once a reuse frame's work (recomputed rays plus the fixed steps) reaches the "
+                  "average work per frame since the key frame (--keyframe-cost). Compared with full ray tracing of every frame and with direct depth "
                   "reprojection, which treats reflections as if they were painted on the surface. "
                   "docs/temporal.md.\n\n"
                   "This run: " + std::to_string(s.size) + "² frames, the first " + std::to_string(s.frames) +

@@ -23,6 +23,19 @@ constexpr float kExactMatch = 1e-4f;
 // the order of the descent's tie-breaks.
 constexpr int kRing[8][2] = {{-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
 
+// match_distance, inlined into the descent: the start's chain of square roots and divisions
+// then overlaps the first ring's.
+inline __attribute__((always_inline)) float distance_to_mirrored_ray(vec3 w_n, vec3 n_n, vec3 reflected, vec3 eye) {
+  const vec3 m = reflected - 2.0f * glm::dot(reflected - w_n, n_n) * n_n;
+  const vec3 axis = w_n - m;
+  const float len = glm::length(axis);
+  if (!(len > 0.0f)) return glm::length(eye - w_n);
+  const vec3 dir = axis / len;
+  const vec3 e = eye - m;
+  const float t = glm::dot(e, dir);
+  return t <= 0.0f ? glm::length(e) : glm::length(e - t * dir);
+}
+
 struct Search {
   const ReflectionDepthImage& key;
   vec3 eye;
@@ -36,7 +49,7 @@ struct Search {
            objects[size_t(y) * size_t(w) + size_t(x)] == object;
   }
   float distance(int x, int y, vec3 r) const {
-    return match_distance(rgb_at(key.position, x, y), rgb_at(key.normal, x, y), r, eye);
+    return distance_to_mirrored_ray(rgb_at(key.position, x, y), rgb_at(key.normal, x, y), r, eye);
   }
   // match_distance of the 8 neighbours of (cx, cy) in kRing order; +inf for pixels of
   // another reflector (or none): outside the search space. The same operations as
@@ -47,7 +60,8 @@ struct Search {
 
 #if defined(__SSE2__)
 // Four candidates at once; lanes are independent, each the exact sequence of match_distance.
-__m128 match_distance4(const float* const w[4], const float* const n[4], vec3 r, vec3 eye) {
+// Inlined: a ring's two groups are independent chains the core then runs side by side.
+inline __attribute__((always_inline)) __m128 match_distance4(const float* const w[4], const float* const n[4], vec3 r, vec3 eye) {
   const __m128 wx = _mm_setr_ps(w[0][0], w[1][0], w[2][0], w[3][0]);
   const __m128 wy = _mm_setr_ps(w[0][1], w[1][1], w[2][1], w[3][1]);
   const __m128 wz = _mm_setr_ps(w[0][2], w[1][2], w[2][2], w[3][2]);
@@ -71,13 +85,15 @@ __m128 match_distance4(const float* const w[4], const float* const n[4], vec3 r,
   const __m128 t = dot(qx, qy, qz, dx, dy, dz);
   const __m128 fx = _mm_sub_ps(qx, _mm_mul_ps(t, dx)), fy = _mm_sub_ps(qy, _mm_mul_ps(t, dy)),
                fz = _mm_sub_ps(qz, _mm_mul_ps(t, dz));
+  // The cases pick the squared length, then one square root: a lane's sqrt is correctly
+  // rounded, so the same bits as taking the root of each case and picking.
   const __m128 behind = _mm_cmple_ps(t, _mm_setzero_ps());
-  const __m128 d = _mm_or_ps(_mm_and_ps(behind, _mm_sqrt_ps(dot(qx, qy, qz, qx, qy, qz))),
-                             _mm_andnot_ps(behind, _mm_sqrt_ps(dot(fx, fy, fz, fx, fy, fz))));
+  const __m128 d2 = _mm_or_ps(_mm_and_ps(behind, dot(qx, qy, qz, qx, qy, qz)),
+                              _mm_andnot_ps(behind, dot(fx, fy, fz, fx, fy, fz)));
   // Degenerate axis (len not > 0): the distance to W itself.
   const __m128 gx = _mm_sub_ps(ex, wx), gy = _mm_sub_ps(ey, wy), gz = _mm_sub_ps(ez, wz);
   const __m128 ok = _mm_cmpgt_ps(len, _mm_setzero_ps());
-  return _mm_or_ps(_mm_and_ps(ok, d), _mm_andnot_ps(ok, _mm_sqrt_ps(dot(gx, gy, gz, gx, gy, gz))));
+  return _mm_sqrt_ps(_mm_or_ps(_mm_and_ps(ok, d2), _mm_andnot_ps(ok, dot(gx, gy, gz, gx, gy, gz))));
 }
 #endif
 
@@ -106,6 +122,14 @@ bool Search::ring(int cx, int cy, uint32_t object, vec3 r, float out[8]) const {
   return all;
 }
 
+// std::lround for the offsets here (|v| < 2²²: pixel distances), without the library call:
+// halves away from zero. v − trunc(v) is exact (Sterbenz), so the same integer.
+int round_offset(float v) {
+  const int t = int(v);
+  const float f = v - float(t);
+  return t + int(f >= 0.5f) - int(f <= -0.5f);
+}
+
 // Vertex of a parabola through (−1, a), (0, b), (1, c), clamped to ±0.5; 0 if not convex.
 float parabola_vertex(float a, float b, float c) {
   const float denom = a - 2.0f * b + c;
@@ -116,25 +140,27 @@ float parabola_vertex(float a, float b, float c) {
 }  // namespace
 
 float match_distance(vec3 w_n, vec3 n_n, vec3 reflected, vec3 eye) {
-  const vec3 m = reflected - 2.0f * glm::dot(reflected - w_n, n_n) * n_n;
-  const vec3 axis = w_n - m;
-  const float len = glm::length(axis);
-  if (!(len > 0.0f)) return glm::length(eye - w_n);
-  const vec3 dir = axis / len;
-  const vec3 e = eye - m;
-  const float t = glm::dot(e, dir);
-  return t <= 0.0f ? glm::length(e) : glm::length(e - t * dir);
+  return distance_to_mirrored_ray(w_n, n_n, reflected, eye);
 }
 
 OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const OffsetBuffer* previous,
                                const BestMatchOptions& options, BestMatchStats* stats,
                                const OffsetBuffer* earlier) {
+  OffsetBuffer out;  // fresh: zero, as the contract says, where no pixel is written
+  best_match_search_into(key, eye, previous, options, out, stats, earlier);
+  return out;
+}
+
+void best_match_search_into(const ReflectionDepthImage& key, vec3 eye, const OffsetBuffer* previous,
+                            const BestMatchOptions& options, OffsetBuffer& out, BestMatchStats* stats,
+                            const OffsetBuffer* earlier) {
   const int w = key.object.width(), h = key.object.height();
-  OffsetBuffer out;
-  out.width = w;
-  out.height = h;
-  out.offset.assign(size_t(w) * size_t(h), vec2(0.0f));
-  out.valid.assign(size_t(w) * size_t(h), 0);
+  if (out.width != w || out.height != h || out.offset.size() != size_t(w) * size_t(h)) {
+    out.width = w;
+    out.height = h;
+    out.offset.assign(size_t(w) * size_t(h), vec2(0.0f));
+    out.valid.assign(size_t(w) * size_t(h), 0);
+  }
   const bool warm = previous && previous->width == w && previous->height == h;
   const bool extrapolate =
       warm && options.extrapolate && earlier && earlier->width == w && earlier->height == h;
@@ -145,24 +171,30 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
   const size_t n = key.pixels.size();
   const size_t chunks = (n + kPixelGrain - 1) / kPixelGrain;
   std::vector<uint64_t> chunk_steps(chunks, 0), chunk_invalid(chunks, 0);
+  vec2* const offsets = out.offset.data();
+  uint8_t* const valid = out.valid.data();
 
   parallel_for(n, kPixelGrain, [&](size_t j0, size_t j1) {
     const size_t chunk = j0 / kPixelGrain;
+    uint64_t steps = 0, invalid = 0;
+    // key.pixels is row-major ascending: follow the row instead of dividing per pixel.
+    int y = j0 < j1 ? int(key.pixels[j0] / size_t(w)) : 0;
+    size_t row = size_t(y) * size_t(w);
     for (size_t j = j0; j < j1; ++j) {
       const size_t i = key.pixels[j];
-      const int x = int(i % size_t(w)), y = int(i / size_t(w));
-      const uint32_t object = key.object.at(x, y);
+      while (i >= row + size_t(w)) ++y, row += size_t(w);
+      const int x = int(i - row);
+      const uint32_t object = s.objects[i];
       const vec3 r = key.reflected[j];
       int cx = x, cy = y;
       if (warm) {  // INVALID pixels too: their end point saves the next walk
-        const int px = x + int(std::lround(previous->offset[i].x)),
-                  py = y + int(std::lround(previous->offset[i].y));
+        const int px = x + round_offset(previous->offset[i].x), py = y + round_offset(previous->offset[i].y);
         if (s.same(px, py, object)) cx = px, cy = py;
       }
       float former = s.distance(cx, cy, r);
       if (extrapolate) {  // steady motion: the offset moves on by its last change
         const vec2 guess = 2.0f * previous->offset[i] - earlier->offset[i];
-        const int gx = x + int(std::lround(guess.x)), gy = y + int(std::lround(guess.y));
+        const int gx = x + round_offset(guess.x), gy = y + round_offset(guess.y);
         if ((gx != cx || gy != cy) && s.same(gx, gy, object)) {
           const float d = s.distance(gx, gy, r);
           if (d < former) former = d, cx = gx, cy = gy;
@@ -191,7 +223,7 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
         former = best;
         cx = bx;
         cy = by;
-        ++chunk_steps[chunk];
+        ++steps;
       }
       bool ok = converged;
       if (ok) {
@@ -208,8 +240,9 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
         }
       }
       if (!ok) {
-        ++chunk_invalid[chunk];
-        out.offset[i] = vec2(float(cx - x), float(cy - y));
+        ++invalid;
+        offsets[i] = vec2(float(cx - x), float(cy - y));
+        valid[i] = 0;
         continue;
       }
       vec2 sub(0.0f);
@@ -223,9 +256,11 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
         if (std::isfinite(l) && std::isfinite(rr) && !exact(l, rr)) sub.x = parabola_vertex(l, b, rr);
         if (std::isfinite(u) && std::isfinite(dn) && !exact(u, dn)) sub.y = parabola_vertex(u, b, dn);
       }
-      out.offset[i] = vec2(float(cx - x), float(cy - y)) + sub;
-      out.valid[i] = 1;
+      offsets[i] = vec2(float(cx - x), float(cy - y)) + sub;
+      valid[i] = 1;
     }
+    chunk_steps[chunk] = steps;
+    chunk_invalid[chunk] = invalid;
   });
   if (stats) {
     *stats = {};
@@ -235,7 +270,6 @@ OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const 
       stats->steps += chunk_steps[c];
     }
   }
-  return out;
 }
 
 }  // namespace proxima

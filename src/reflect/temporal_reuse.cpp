@@ -2,6 +2,7 @@
 #include "proxima/reflect/temporal_reuse.h"
 
 #include <stdexcept>
+#include <utility>
 
 #include "proxima/core/timer.h"
 
@@ -82,9 +83,9 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
   } else {
     Stopwatch watch;
     BestMatchStats ms;
-    OffsetBuffer offsets =
-        best_match_search(state.key, frame.camera.position, state.previous.width ? &state.previous : nullptr,
-                          options.match, &ms, state.earlier.width ? &state.earlier : nullptr);
+    OffsetBuffer offsets = std::move(state.spare);
+    best_match_search_into(state.key, frame.camera.position, state.previous.width ? &state.previous : nullptr,
+                           options.match, offsets, &ms, state.earlier.width ? &state.earlier : nullptr);
     st.match_ms = watch.elapsed_ms();
     st.invalid_offsets = ms.invalid;
     st.match_steps = ms.steps;
@@ -106,7 +107,8 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
     watch.restart();
     st.traced_rays = recompute(scene, rays, frame, r);
     st.recompute_ms = watch.elapsed_ms();
-    if (options.match.extrapolate) state.earlier = std::move(state.previous);
+    if (options.match.extrapolate) std::swap(state.earlier, state.previous);
+    state.spare = std::move(state.previous);  // the oldest: the next frame writes over it
     state.previous = std::move(offsets);
     ++state.frames_since_key;
     // §5.4.4: too much recomputed → the next frame refreshes the key frame.

@@ -762,3 +762,44 @@ TEST(TemporalReflections, ExtrapolatedWarmStartShortensTheWalkAndKeepsTheMatches
 }
 
 }  // namespace proxima
+
+namespace proxima {
+
+// best_match_search_into over a reused buffer (stale entries, or another size) writes every
+// reflective entry as best_match_search does, warm-started and extrapolated too.
+TEST(TemporalReflections, BestMatchIntoAReusedBufferMatchesAFreshSearch) {
+  const Scene scene = floor_mirror(false);
+  RayScene rays(scene);
+  const ReflectionFrame frame = frame_at(scene, kKeyEye);
+  const ReflectionDepthImage key = make_reflection_depth_image(frame, trace_reflections(scene, rays, frame), 1e3f);
+  BestMatchOptions ex;
+  ex.extrapolate = true;
+  const OffsetBuffer o1 = best_match_search(key, kKeyEye + kMove, nullptr, ex);
+  const OffsetBuffer o2 = best_match_search(key, kKeyEye + 2.0f * kMove, &o1, ex);
+  BestMatchStats st_fresh, st_reused;
+  const OffsetBuffer fresh = best_match_search(key, kKeyEye + 3.0f * kMove, &o2, ex, &st_fresh, &o1);
+  OffsetBuffer reused = o1;  // an older frame's offsets, scribbled over
+  std::fill(reused.offset.begin(), reused.offset.end(), vec2(1e6f, -3.5f));
+  std::fill(reused.valid.begin(), reused.valid.end(), uint8_t(1));
+  best_match_search_into(key, kKeyEye + 3.0f * kMove, &o2, ex, reused, &st_reused, &o1);
+  ASSERT_GT(key.pixels.size(), 2000u);
+  EXPECT_EQ(st_reused.steps, st_fresh.steps);
+  EXPECT_EQ(st_reused.invalid, st_fresh.invalid);
+  for (const uint32_t i : key.pixels) {
+    ASSERT_EQ(reused.offset[i], fresh.offset[i]) << i;
+    ASSERT_EQ(reused.valid[i], fresh.valid[i]) << i;
+  }
+  // Another size: resized, and then as fresh as best_match_search's (zero off the reflector).
+  OffsetBuffer other;
+  other.width = 3;
+  other.height = 2;
+  other.offset.assign(6, vec2(7.0f));
+  other.valid.assign(6, 1);
+  best_match_search_into(key, kKeyEye + kMove, nullptr, ex, other);
+  EXPECT_EQ(other.width, o1.width);
+  EXPECT_EQ(other.height, o1.height);
+  EXPECT_EQ(other.offset, o1.offset);
+  EXPECT_EQ(other.valid, o1.valid);
+}
+
+}  // namespace proxima

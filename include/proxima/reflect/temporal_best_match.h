@@ -47,8 +47,18 @@ float match_distance(vec3 w_n, vec3 n_n, vec3 reflected, vec3 eye);
 // Algorithm 9 for every reflective pixel of `key` (parallel, deterministic). `previous` (same
 // size, may be null) warm-starts each search at s + its offset (valid or not) when that
 // lies on the same reflector. `earlier` (may be null) is read only with options.extrapolate.
+// Entries of non-reflective pixels are zero (offset 0, INVALID).
 OffsetBuffer best_match_search(const ReflectionDepthImage& key, vec3 eye, const OffsetBuffer* previous,
                                const BestMatchOptions& options, BestMatchStats* stats = nullptr,
                                const OffsetBuffer* earlier = nullptr);
+
+// best_match_search into `out`, a buffer reused from frame to frame (resized to the key's size
+// if it differs): only the entries of the key's reflective pixels are written, the others keep
+// what they held, so read an entry only where key.object is a reflector. Spares clearing a
+// whole image per frame (the reflective pixels are ~10% of it). The same reflective entries as
+// best_match_search. `out` must not be `previous` or `earlier`.
+void best_match_search_into(const ReflectionDepthImage& key, vec3 eye, const OffsetBuffer* previous,
+                            const BestMatchOptions& options, OffsetBuffer& out, BestMatchStats* stats = nullptr,
+                            const OffsetBuffer* earlier = nullptr);
 
 }  // namespace proxima

@@ -40,6 +40,7 @@ struct TemporalState {
   ReflectionDepthImage key;
   OffsetBuffer previous;   // last frame's offsets (warm start), empty after a key frame
   OffsetBuffer earlier;    // the frame's before those (BestMatchOptions::extrapolate), empty likewise
+  OffsetBuffer spare;      // the oldest offsets, recycled as the next frame's (best_match_search_into)
   IntermediateReflection warp;  // the last warp: its buffers are reused by the next
   bool need_key = true;    // the next frame is a key frame
   int frames_since_key = 0;
