@@ -25,7 +25,7 @@ struct TemporalReflectFlags {
   std::string edge_rule = "nearest";  // there: "nearest" corner's Lr, or "recompute"
   bool recompute_splats = false;  // samples no warp triangle reached are recomputed
   float blend_error = 8.0f;     // inf = off (the thesis' method); reused samples whose expected display error (blend_risk, 0–255) exceeds this are recomputed
-  float keyframe_cost = 0.5f;   // 0 = off (the thesis' policy alone); fixed steps' cost per key pixel in traced rays (TemporalOptions::keyframe_cost)
+  float keyframe_cost = 1.0f;   // 0 = off (the thesis' policy alone); fixed steps' cost per key pixel in traced rays (TemporalOptions::keyframe_cost)
   bool match_extrapolate = false;  // best match also starts from the offsets' last change continued
   int image_frame = -1;         // frame whose images are written; −1 = the first non-key frame
   float lobe_seed_cell = 0.0f;  // > 0: glossy lobe rays seeded per world cell of this size × diagonal
