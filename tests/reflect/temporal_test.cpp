@@ -643,6 +643,21 @@ TEST(TemporalReflections, BlendRiskExceedsIsTheExactDecision) {
   EXPECT_FALSE(blend_risk_exceeds(none, vec3(0.5f), 1.0f, vec3(0.0f), 0.0f));
 }
 
+namespace {
+// The same images and counters, bit for bit.
+void expect_same_warp(const IntermediateReflection& reused, const IntermediateReflection& fresh) {
+  EXPECT_TRUE(reused.radiance == fresh.radiance);
+  EXPECT_TRUE(reused.depth == fresh.depth);
+  EXPECT_TRUE(reused.state == fresh.state);
+  EXPECT_TRUE(reused.triangle == fresh.triangle);
+  EXPECT_EQ(reused.triangles, fresh.triangles);
+  EXPECT_EQ(reused.discontinuous, fresh.discontinuous);
+  EXPECT_EQ(reused.stretched, fresh.stretched);
+  EXPECT_EQ(reused.curved, fresh.curved);
+  EXPECT_EQ(reused.edges, fresh.edges);
+}
+}  // namespace
+
 // warp_reflections_into over a buffer last written from another key frame (same size, other
 // reflective pixels) gives exactly what a fresh warp gives.
 TEST(TemporalReflections, WarpIntoAReusedBufferIsAFreshWarp) {
@@ -660,13 +675,7 @@ TEST(TemporalReflections, WarpIntoAReusedBufferIsAFreshWarp) {
   IntermediateReflection reused;
   warp_reflections_into(key_a, offsets_a, {}, reused);
   warp_reflections_into(key_b, offsets_b, {}, reused);
-  const IntermediateReflection fresh = warp_reflections(key_b, offsets_b, {});
-  EXPECT_TRUE(reused.radiance == fresh.radiance);
-  EXPECT_TRUE(reused.depth == fresh.depth);
-  EXPECT_TRUE(reused.state == fresh.state);
-  EXPECT_TRUE(reused.triangle == fresh.triangle);
-  EXPECT_EQ(reused.triangles, fresh.triangles);
-  EXPECT_EQ(reused.discontinuous, fresh.discontinuous);
+  expect_same_warp(reused, warp_reflections(key_b, offsets_b, {}));
 }
 
 // The warp keeps per-key-frame tables (candidate triangles, compact vertices): a key frame
@@ -695,15 +704,7 @@ TEST(TemporalReflections, WarpAfterAKeyRebuiltInPlaceIsAFreshWarp) {
   for (const WarpOptions& options : {WarpOptions{}, strict, WarpOptions{}}) {
     warp_reflections_into(key, offsets_b, options, reused);
     const IntermediateReflection fresh = warp_reflections(key, offsets_b, options);
-    EXPECT_TRUE(reused.radiance == fresh.radiance);
-    EXPECT_TRUE(reused.depth == fresh.depth);
-    EXPECT_TRUE(reused.state == fresh.state);
-    EXPECT_TRUE(reused.triangle == fresh.triangle);
-    EXPECT_EQ(reused.triangles, fresh.triangles);
-    EXPECT_EQ(reused.discontinuous, fresh.discontinuous);
-    EXPECT_EQ(reused.stretched, fresh.stretched);
-    EXPECT_EQ(reused.curved, fresh.curved);
-    EXPECT_EQ(reused.edges, fresh.edges);
+    expect_same_warp(reused, fresh);
     const WarpedMesh mesh_reused{&key, &offsets_b, &reused}, mesh_fresh{&key, &offsets_b, &fresh};
     int hits = 0;
     for (int y = 0; y < key.object.height(); y += 3)
@@ -726,16 +727,30 @@ namespace proxima {
 
 // --match-extrapolate: under steady camera motion the walk starting from the offsets' last
 // change continued is shorter and ends at the same matches as the plain warm start.
-TEST(TemporalReflections, ExtrapolatedWarmStartShortensTheWalkAndKeepsTheMatches) {
+namespace {
+
+// The floor mirror's key frame and the offsets of three equal camera steps from it: frames
+// 1 and 2 (searched with `options`) are the warm starts of frame 3.
+struct SteadySteps {
+  ReflectionDepthImage key;
+  OffsetBuffer o1, o2;
+};
+SteadySteps steady_steps(const BestMatchOptions& options) {
   const Scene scene = floor_mirror(false);
   RayScene rays(scene);
   const ReflectionFrame frame = frame_at(scene, kKeyEye);
-  const ReflectionDepthImage key = make_reflection_depth_image(frame, trace_reflections(scene, rays, frame), 1e3f);
+  SteadySteps s{make_reflection_depth_image(frame, trace_reflections(scene, rays, frame), 1e3f), {}, {}};
+  s.o1 = best_match_search(s.key, kKeyEye + kMove, nullptr, options);
+  s.o2 = best_match_search(s.key, kKeyEye + 2.0f * kMove, &s.o1, options);
+  return s;
+}
+
+}  // namespace
+
+TEST(TemporalReflections, ExtrapolatedWarmStartShortensTheWalkAndKeepsTheMatches) {
   BestMatchOptions plain, extrapolated;
   extrapolated.extrapolate = true;
-  // Three equal steps of the camera: frames 1 and 2 as the warm starts of frame 3.
-  const OffsetBuffer o1 = best_match_search(key, kKeyEye + kMove, nullptr, plain);
-  const OffsetBuffer o2 = best_match_search(key, kKeyEye + 2.0f * kMove, &o1, plain);
+  const auto [key, o1, o2] = steady_steps(plain);
   BestMatchStats st_plain, st_ex;
   const OffsetBuffer a = best_match_search(key, kKeyEye + 3.0f * kMove, &o2, plain, &st_plain);
   const OffsetBuffer b = best_match_search(key, kKeyEye + 3.0f * kMove, &o2, extrapolated, &st_ex, &o1);
@@ -768,14 +783,9 @@ namespace proxima {
 // best_match_search_into over a reused buffer (stale entries, or another size) writes every
 // reflective entry as best_match_search does, warm-started and extrapolated too.
 TEST(TemporalReflections, BestMatchIntoAReusedBufferMatchesAFreshSearch) {
-  const Scene scene = floor_mirror(false);
-  RayScene rays(scene);
-  const ReflectionFrame frame = frame_at(scene, kKeyEye);
-  const ReflectionDepthImage key = make_reflection_depth_image(frame, trace_reflections(scene, rays, frame), 1e3f);
   BestMatchOptions ex;
   ex.extrapolate = true;
-  const OffsetBuffer o1 = best_match_search(key, kKeyEye + kMove, nullptr, ex);
-  const OffsetBuffer o2 = best_match_search(key, kKeyEye + 2.0f * kMove, &o1, ex);
+  const auto [key, o1, o2] = steady_steps(ex);
   BestMatchStats st_fresh, st_reused;
   const OffsetBuffer fresh = best_match_search(key, kKeyEye + 3.0f * kMove, &o2, ex, &st_fresh, &o1);
   OffsetBuffer reused = o1;  // an older frame's offsets, scribbled over
