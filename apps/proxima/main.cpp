@@ -5,9 +5,11 @@
 
 #include "command.h"
 #include "proxima/core/error.h"
+#include "proxima/core/worker_threads.h"
 
 int main(int argc, char** argv) {
   using namespace proxima;
+  const WorkerThreadsJoinedAtExit workers;  // declared first: destroyed last, after every command
   cli::set_command_line(argc, argv);
   CLI::App root{"proxima — approximate representations of complex 3D scenes, measured against ray tracing"};
   root.require_subcommand(1);
