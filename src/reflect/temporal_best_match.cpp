@@ -6,6 +6,10 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define PROXIMA_BEST_MATCH_AVX512 1
+#endif
 
 #include "proxima/core/image_rgb.h"
 #include "proxima/core/parallel.h"
@@ -122,6 +126,96 @@ bool Search::ring(int cx, int cy, uint32_t object, vec3 r, float out[8]) const {
   return all;
 }
 
+#if defined(PROXIMA_BEST_MATCH_AVX512)
+// The whole 3×3 square at once in one 16-lane AVX-512 group (runtime dispatch; the rest of
+// the build stays SSE2): lane 4·row + column holds the cell (column − 1, row − 1) of the
+// square, columns 0–2 and rows 0–2 (lanes 3, 7, 11, 12–15 are unused). Each row's 4 pixels
+// (12 floats of the AoS position / normal) come in one masked load, so no cell outside the
+// image is read, then are de-interleaved by two permutes per coordinate. Lane by lane the
+// exact IEEE operations of match_distance (no fused ops: only avx512f is enabled here, and
+// the build is ISO C++, -ffp-contract=off): the same bits as the SSE2 and scalar paths.
+// The centre lane gives the start's distance with the first ring, off the walk's chain.
+constexpr int kRingLane[8] = {0, 1, 2, 4, 6, 8, 9, 10};
+constexpr int kCentreLane = 5;
+
+// GCC 12 warns of its own _mm512_undefined_ps in the headers' sqrt (a false positive).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#define PROXIMA_AVX512 __attribute__((target("avx512f"))) inline __attribute__((always_inline))
+PROXIMA_AVX512 __m512 dot16(__m512 ax, __m512 ay, __m512 az, __m512 bx, __m512 by, __m512 bz) {
+  return _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(ax, bx), _mm512_mul_ps(ay, by)), _mm512_mul_ps(az, bz));
+}
+// De-interleave: coordinate k of lane 4·row + c is element 3c + k of row `row`.
+PROXIMA_AVX512 __m512 coord16(const __m512 v[3], int k) {
+  const __m512i i01 = _mm512_setr_epi32(k, 3 + k, 6 + k, 9 + k, 16 + k, 19 + k, 22 + k, 25 + k, 0, 0, 0, 0, 0, 0, 0, 0);
+  const __m512 ab = _mm512_permutex2var_ps(v[0], i01, v[1]);
+  const __m512i i2 = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 16 + k, 19 + k, 22 + k, 25 + k, 0, 0, 0, 0);
+  return _mm512_permutex2var_ps(ab, i2, v[2]);
+}
+
+struct WideRing {
+  const Search& s;
+  __attribute__((target("avx512f"))) bool operator()(
+      int cx, int cy, uint32_t object, vec3 r, float out[8], float* centre) const {
+    const int w = s.w;
+    // Columns cx − 1 .. cx + 2 inside the image (a 4-bit mask), rows cy − 1 .. cy + 1.
+    unsigned cols = 0x2u | (cx >= 1 ? 0x1u : 0u) | (cx + 1 < w ? 0x4u : 0u);
+    const unsigned rows = 0x2u | (cy >= 1 ? 0x1u : 0u) | (cy + 1 < s.h ? 0x4u : 0u);
+    // Per row: the 12 floats of columns cx − 1 .. cx + 2 (only the 3 of the mask used).
+    auto float_mask = [&](unsigned c) {  // pixel mask → 12-float mask
+      unsigned m = 0;
+      for (int k = 0; k < 3; ++k)
+        if (c & (1u << k)) m |= 0x7u << (3 * k);
+      return __mmask16(m);
+    };
+    const __mmask16 fm = float_mask(cols);
+    const ptrdiff_t base = ptrdiff_t(cy) * w + (cx - 1);  // pixel index of (cx − 1, cy)
+    const __m512 zero = _mm512_setzero_ps();
+    __m512i obj = _mm512_set1_epi32(int(kNoReflector));
+    __m512 pr[3], nr[3];
+    for (int row = 0; row < 3; ++row) {
+      const bool ok = rows & (1u << row);
+      const __mmask16 m = ok ? fm : __mmask16(0);
+      const ptrdiff_t p = base + ptrdiff_t(row - 1) * w;  // may point before the image: masked
+      pr[row] = _mm512_maskz_loadu_ps(m, s.position + 3 * p);
+      nr[row] = _mm512_maskz_loadu_ps(m, s.normal + 3 * p);
+      const __m512i o = _mm512_mask_loadu_epi32(_mm512_set1_epi32(int(kNoReflector)),
+                                                ok ? __mmask16(cols) : __mmask16(0), s.objects + p);
+      // this row's 4 ids into lanes 4·row .. 4·row + 3
+      obj = _mm512_mask_permutexvar_epi32(obj, __mmask16(0xFu << (4 * row)),
+                                          _mm512_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3), o);
+    }
+    const __mmask16 in = _mm512_cmpeq_epi32_mask(obj, _mm512_set1_epi32(int(object)));
+    const __m512 wx = coord16(pr, 0), wy = coord16(pr, 1), wz = coord16(pr, 2);
+    const __m512 nx = coord16(nr, 0), ny = coord16(nr, 1), nz = coord16(nr, 2);
+    const __m512 rx = _mm512_set1_ps(r.x), ry = _mm512_set1_ps(r.y), rz = _mm512_set1_ps(r.z);
+    const __m512 ex = _mm512_set1_ps(s.eye.x), ey = _mm512_set1_ps(s.eye.y), ez = _mm512_set1_ps(s.eye.z);
+    const __m512 k2 = _mm512_mul_ps(
+        _mm512_set1_ps(2.0f), dot16(_mm512_sub_ps(rx, wx), _mm512_sub_ps(ry, wy), _mm512_sub_ps(rz, wz), nx, ny, nz));
+    const __m512 mx = _mm512_sub_ps(rx, _mm512_mul_ps(k2, nx)), my = _mm512_sub_ps(ry, _mm512_mul_ps(k2, ny)),
+                 mz = _mm512_sub_ps(rz, _mm512_mul_ps(k2, nz));
+    const __m512 ax = _mm512_sub_ps(wx, mx), ay = _mm512_sub_ps(wy, my), az = _mm512_sub_ps(wz, mz);
+    const __m512 len = _mm512_sqrt_ps(dot16(ax, ay, az, ax, ay, az));
+    const __m512 dx = _mm512_div_ps(ax, len), dy = _mm512_div_ps(ay, len), dz = _mm512_div_ps(az, len);
+    const __m512 qx = _mm512_sub_ps(ex, mx), qy = _mm512_sub_ps(ey, my), qz = _mm512_sub_ps(ez, mz);
+    const __m512 t = dot16(qx, qy, qz, dx, dy, dz);
+    const __m512 fx = _mm512_sub_ps(qx, _mm512_mul_ps(t, dx)), fy = _mm512_sub_ps(qy, _mm512_mul_ps(t, dy)),
+                 fz = _mm512_sub_ps(qz, _mm512_mul_ps(t, dz));
+    const __mmask16 behind = _mm512_cmp_ps_mask(t, zero, _CMP_LE_OQ);
+    const __m512 d2 = _mm512_mask_blend_ps(behind, dot16(fx, fy, fz, fx, fy, fz), dot16(qx, qy, qz, qx, qy, qz));
+    const __m512 gx = _mm512_sub_ps(ex, wx), gy = _mm512_sub_ps(ey, wy), gz = _mm512_sub_ps(ez, wz);
+    const __mmask16 okl = _mm512_cmp_ps_mask(len, zero, _CMP_GT_OQ);
+    const __m512 d = _mm512_sqrt_ps(_mm512_mask_blend_ps(okl, dot16(gx, gy, gz, gx, gy, gz), d2));
+    alignas(64) float lanes[16];
+    _mm512_store_ps(lanes, _mm512_mask_blend_ps(in, _mm512_set1_ps(kInf), d));
+    for (int k = 0; k < 8; ++k) out[k] = lanes[kRingLane[k]];
+    if (centre) *centre = lanes[kCentreLane];
+    return (in & 0x0757u) == 0x0757u;  // the 8 ring lanes (centre: on the reflector)
+  }
+};
+#pragma GCC diagnostic pop
+#endif
+
 // std::lround for the offsets here (|v| < 2²²: pixel distances), without the library call:
 // halves away from zero. v − trunc(v) is exact (Sterbenz), so the same integer.
 int round_offset(float v) {
@@ -137,6 +231,157 @@ float parabola_vertex(float a, float b, float c) {
   return std::clamp(0.5f * (a - c) / denom, -0.5f, 0.5f);
 }
 
+// The walks of the key's reflective pixels j0 .. j1 − 1 (one parallel chunk). `ring` is
+// WideRing for kWide, else Search::ring is used.
+struct Walk {
+  const ReflectionDepthImage& key;
+  const Search& s;
+  const OffsetBuffer* previous;
+  const OffsetBuffer* earlier;
+  const BestMatchOptions& options;
+  bool warm, extrapolate;
+  int w, max_steps;
+  float focal;
+  vec2* offsets;
+  uint8_t* valid;
+};
+
+template <bool kWide, class Ring>
+inline void walk_pixels(const Walk& c, [[maybe_unused]] Ring ring, size_t j0, size_t j1, uint64_t& steps, uint64_t& invalid) {
+  const ReflectionDepthImage& key = c.key;
+  const Search& s = c.s;
+  const OffsetBuffer* const previous = c.previous;
+  const OffsetBuffer* const earlier = c.earlier;
+  const BestMatchOptions& options = c.options;
+  const bool warm = c.warm, extrapolate = c.extrapolate;
+  const int w = c.w, max_steps = c.max_steps;
+  const float focal = c.focal;
+  vec2* const offsets = c.offsets;
+  uint8_t* const valid = c.valid;
+  // key.pixels is row-major ascending: follow the row instead of dividing per pixel.
+  int y = j0 < j1 ? int(key.pixels[j0] / size_t(w)) : 0;
+  size_t row = size_t(y) * size_t(w);
+  for (size_t j = j0; j < j1; ++j) {
+    const size_t i = key.pixels[j];
+    while (i >= row + size_t(w)) ++y, row += size_t(w);
+    const int x = int(i - row);
+    const uint32_t object = s.objects[i];
+    const vec3 r = key.reflected[j];
+    int cx = x, cy = y;
+    if (warm) {  // INVALID pixels too: their end point saves the next walk
+      const int px = x + round_offset(previous->offset[i].x), py = y + round_offset(previous->offset[i].y);
+      if (s.same(px, py, object)) cx = px, cy = py;
+    }
+    // The wide ring gives the start's distance with its first ring (its centre lane) unless
+    // the extrapolated guess needs it first.
+    const bool centre_from_ring = kWide && !extrapolate;
+    float former = centre_from_ring ? 0.0f : s.distance(cx, cy, r);
+    if (extrapolate) {  // steady motion: the offset moves on by its last change
+      const vec2 guess = 2.0f * previous->offset[i] - earlier->offset[i];
+      const int gx = x + round_offset(guess.x), gy = y + round_offset(guess.y);
+      if ((gx != cx || gy != cy) && s.same(gx, gy, object)) {
+        const float d = s.distance(gx, gy, r);
+        if (d < former) former = d, cx = gx, cy = gy;
+      }
+    }
+    bool converged = false, inside = true;  // inside: the last ring was all on the reflector
+    // The last step's 3×3 distances (centre included): on convergence they are the end
+    // point's neighbours, which the sub-pixel fit reads again. Each step evaluates its
+    // whole ring at once (SIMD): cells shared with the previous square get the same bits.
+    float around[3][3] = {};
+    around[1][1] = former;
+    for (int step = 0; step < max_steps; ++step) {
+      float d8[8];
+      if constexpr (kWide) {
+        inside = ring(cx, cy, object, r, d8, centre_from_ring && step == 0 ? &former : nullptr);
+      } else {
+        inside = s.ring(cx, cy, object, r, d8);
+      }
+      int bx = cx, by = cy;
+      float best = kInf;
+      for (int k = 0; k < 8; ++k) {
+        around[kRing[k][1] + 1][kRing[k][0] + 1] = d8[k];
+        if (d8[k] < best) best = d8[k], bx = cx + kRing[k][0], by = cy + kRing[k][1];
+      }
+      around[1][1] = former;
+      if (!(best < former)) {  // local minimum (ties stop too: no cycles)
+        converged = true;
+        break;
+      }
+      former = best;
+      cx = bx;
+      cy = by;
+      ++steps;
+    }
+    bool ok = converged;
+    if (ok) {
+      // On the silhouette border the true minimum may lie outside the reflector: keep
+      // the match only if the reflected ray through W_c misses E_cur by ≤ tolerance
+      // key pixels (distance scaled back to W_c by similar triangles).
+      // (the end point's 3×3 is on the reflector but for the ring's cells outside)
+      if (!inside) {
+        const vec3 wc = rgb_at(key.position, cx, cy), nc = rgb_at(key.normal, cx, cy);
+        const vec3 m = r - 2.0f * glm::dot(r - wc, nc) * nc;
+        const float scale = glm::length(wc - m) / std::max(glm::length(s.eye - m), 1e-6f);
+        const float miss_px = former * scale * focal / std::max(key.depth.at(cx, cy), 1e-6f);
+        ok = miss_px <= options.border_tolerance_px;
+      }
+    }
+    if (!ok) {
+      ++invalid;
+      offsets[i] = vec2(float(cx - x), float(cy - y));
+      valid[i] = 0;
+      continue;
+    }
+    vec2 sub(0.0f);
+    if (options.subpixel) {
+      auto sq = [&](int dx, int dy) { return around[dy + 1][dx + 1] * around[dy + 1][dx + 1]; };
+      const float b = former * former;
+      const float l = sq(-1, 0), rr = sq(1, 0), u = sq(0, -1), dn = sq(0, 1);
+      // An (almost) exact match stays put: near a zero of the distance its square is
+      // far from a parabola where the reflection is close (small s.r).
+      auto exact = [&](float p, float q) { return b <= kExactMatch * std::min(p, q); };
+      if (std::isfinite(l) && std::isfinite(rr) && !exact(l, rr)) sub.x = parabola_vertex(l, b, rr);
+      if (std::isfinite(u) && std::isfinite(dn) && !exact(u, dn)) sub.y = parabola_vertex(u, b, dn);
+    }
+    offsets[i] = vec2(float(cx - x), float(cy - y)) + sub;
+    valid[i] = 1;
+  }
+}
+
+struct NoRing {};
+
+void walk_pixels_sse(const Walk& c, size_t j0, size_t j1, uint64_t& steps, uint64_t& invalid) {
+  walk_pixels<false>(c, NoRing{}, j0, j1, steps, invalid);
+}
+
+#if defined(PROXIMA_BEST_MATCH_AVX512)
+// flatten: walk_pixels and WideRing inline here, in the avx512f context.
+__attribute__((target("avx512f"), flatten)) void walk_pixels_avx512(const Walk& c, size_t j0, size_t j1,
+                                                                      uint64_t& steps, uint64_t& invalid) {
+  walk_pixels<true>(c, WideRing{c.s}, j0, j1, steps, invalid);
+}
+
+bool has_avx512() {
+  static const bool yes = __builtin_cpu_supports("avx512f");
+  return yes;
+}
+#endif
+
+}  // namespace
+
+namespace detail {
+bool best_match_wide = true;
+bool best_match_wide_available() {
+#if defined(PROXIMA_BEST_MATCH_AVX512)
+  return has_avx512();
+#else
+  return false;
+#endif
+}
+}  // namespace detail
+
+namespace {
 }  // namespace
 
 float match_distance(vec3 w_n, vec3 n_n, vec3 reflected, vec3 eye) {
@@ -174,91 +419,19 @@ void best_match_search_into(const ReflectionDepthImage& key, vec3 eye, const Off
   vec2* const offsets = out.offset.data();
   uint8_t* const valid = out.valid.data();
 
+  const Walk walk{key, s, previous, earlier, options, warm, extrapolate, w, max_steps, focal, offsets, valid};
+#if defined(PROXIMA_BEST_MATCH_AVX512)
+  const bool wide = detail::best_match_wide && has_avx512();
+#endif
   parallel_for(n, kPixelGrain, [&](size_t j0, size_t j1) {
     const size_t chunk = j0 / kPixelGrain;
     uint64_t steps = 0, invalid = 0;
-    // key.pixels is row-major ascending: follow the row instead of dividing per pixel.
-    int y = j0 < j1 ? int(key.pixels[j0] / size_t(w)) : 0;
-    size_t row = size_t(y) * size_t(w);
-    for (size_t j = j0; j < j1; ++j) {
-      const size_t i = key.pixels[j];
-      while (i >= row + size_t(w)) ++y, row += size_t(w);
-      const int x = int(i - row);
-      const uint32_t object = s.objects[i];
-      const vec3 r = key.reflected[j];
-      int cx = x, cy = y;
-      if (warm) {  // INVALID pixels too: their end point saves the next walk
-        const int px = x + round_offset(previous->offset[i].x), py = y + round_offset(previous->offset[i].y);
-        if (s.same(px, py, object)) cx = px, cy = py;
-      }
-      float former = s.distance(cx, cy, r);
-      if (extrapolate) {  // steady motion: the offset moves on by its last change
-        const vec2 guess = 2.0f * previous->offset[i] - earlier->offset[i];
-        const int gx = x + round_offset(guess.x), gy = y + round_offset(guess.y);
-        if ((gx != cx || gy != cy) && s.same(gx, gy, object)) {
-          const float d = s.distance(gx, gy, r);
-          if (d < former) former = d, cx = gx, cy = gy;
-        }
-      }
-      bool converged = false, inside = true;  // inside: the last ring was all on the reflector
-      // The last step's 3×3 distances (centre included): on convergence they are the end
-      // point's neighbours, which the sub-pixel fit reads again. Each step evaluates its
-      // whole ring at once (SIMD): cells shared with the previous square get the same bits.
-      float around[3][3] = {};
-      around[1][1] = former;
-      for (int step = 0; step < max_steps; ++step) {
-        float d8[8];
-        inside = s.ring(cx, cy, object, r, d8);
-        int bx = cx, by = cy;
-        float best = kInf;
-        for (int k = 0; k < 8; ++k) {
-          around[kRing[k][1] + 1][kRing[k][0] + 1] = d8[k];
-          if (d8[k] < best) best = d8[k], bx = cx + kRing[k][0], by = cy + kRing[k][1];
-        }
-        around[1][1] = former;
-        if (!(best < former)) {  // local minimum (ties stop too: no cycles)
-          converged = true;
-          break;
-        }
-        former = best;
-        cx = bx;
-        cy = by;
-        ++steps;
-      }
-      bool ok = converged;
-      if (ok) {
-        // On the silhouette border the true minimum may lie outside the reflector: keep
-        // the match only if the reflected ray through W_c misses E_cur by ≤ tolerance
-        // key pixels (distance scaled back to W_c by similar triangles).
-        // (the end point's 3×3 is on the reflector but for the ring's cells outside)
-        if (!inside) {
-          const vec3 wc = rgb_at(key.position, cx, cy), nc = rgb_at(key.normal, cx, cy);
-          const vec3 m = r - 2.0f * glm::dot(r - wc, nc) * nc;
-          const float scale = glm::length(wc - m) / std::max(glm::length(eye - m), 1e-6f);
-          const float miss_px = former * scale * focal / std::max(key.depth.at(cx, cy), 1e-6f);
-          ok = miss_px <= options.border_tolerance_px;
-        }
-      }
-      if (!ok) {
-        ++invalid;
-        offsets[i] = vec2(float(cx - x), float(cy - y));
-        valid[i] = 0;
-        continue;
-      }
-      vec2 sub(0.0f);
-      if (options.subpixel) {
-        auto sq = [&](int dx, int dy) { return around[dy + 1][dx + 1] * around[dy + 1][dx + 1]; };
-        const float b = former * former;
-        const float l = sq(-1, 0), rr = sq(1, 0), u = sq(0, -1), dn = sq(0, 1);
-        // An (almost) exact match stays put: near a zero of the distance its square is
-        // far from a parabola where the reflection is close (small s.r).
-        auto exact = [&](float p, float q) { return b <= kExactMatch * std::min(p, q); };
-        if (std::isfinite(l) && std::isfinite(rr) && !exact(l, rr)) sub.x = parabola_vertex(l, b, rr);
-        if (std::isfinite(u) && std::isfinite(dn) && !exact(u, dn)) sub.y = parabola_vertex(u, b, dn);
-      }
-      offsets[i] = vec2(float(cx - x), float(cy - y)) + sub;
-      valid[i] = 1;
-    }
+#if defined(PROXIMA_BEST_MATCH_AVX512)
+    if (wide)
+      walk_pixels_avx512(walk, j0, j1, steps, invalid);
+    else
+#endif
+      walk_pixels_sse(walk, j0, j1, steps, invalid);
     chunk_steps[chunk] = steps;
     chunk_invalid[chunk] = invalid;
   });
