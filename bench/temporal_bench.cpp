@@ -76,6 +76,20 @@ void BM_TemporalBestMatch(benchmark::State& state) {
   state.counters["reflective"] = double(stats.searched);
 }
 
+// As temporal_reflections runs it: into a buffer reused from frame to frame (no fresh
+// 9-byte-per-pixel allocation per call).
+void BM_TemporalBestMatchInto(benchmark::State& state) {
+  const Walk& w = walk(int(state.range(0)), state.range(1) != 0);
+  ThreadLimit limit(1);
+  BestMatchStats stats;
+  OffsetBuffer out;
+  for (auto _ : state) {
+    best_match_search_into(w.state.key, w.frame.camera.position, &w.state.previous, w.options.match, out, &stats);
+    benchmark::DoNotOptimize(out.offset.data());
+  }
+  state.counters["steps_per_px"] = double(stats.steps) / double(std::max<uint64_t>(stats.searched, 1));
+}
+
 void BM_TemporalWarp(benchmark::State& state) {
   const Walk& w = walk(int(state.range(0)), state.range(1) != 0);
   ThreadLimit limit(1);
@@ -112,6 +126,7 @@ void BM_TemporalTrace(benchmark::State& state) {  // full reflection ray tracing
 
 #define TEMPORAL_ARGS ArgsProduct({{256, 512, 1024}, {0, 1}})->ArgNames({"side", "rules"})->Unit(benchmark::kMillisecond)
 BENCHMARK(BM_TemporalBestMatch)->TEMPORAL_ARGS;
+BENCHMARK(BM_TemporalBestMatchInto)->TEMPORAL_ARGS;
 BENCHMARK(BM_TemporalWarp)->TEMPORAL_ARGS;
 BENCHMARK(BM_TemporalReproject)
     ->ArgsProduct({{256, 512, 1024}, {0, 1}, {0, 8}})

@@ -6,6 +6,13 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define PROXIMA_BEST_MATCH_AVX512 1
+// match_distance_lanes<Lanes16> passes __m512 in a default-target template; it is only ever
+// inlined into the avx512f code, so no call with that ABI exists.
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
 
 #include "proxima/core/image_rgb.h"
 #include "proxima/core/parallel.h"
@@ -58,42 +65,64 @@ struct Search {
   bool ring(int cx, int cy, uint32_t object, vec3 r, float out[8]) const;
 };
 
-#if defined(__SSE2__)
-// Four candidates at once; lanes are independent, each the exact sequence of match_distance.
-// Inlined: a ring's two groups are independent chains the core then runs side by side.
-inline __attribute__((always_inline)) __m128 match_distance4(const float* const w[4], const float* const n[4], vec3 r, vec3 eye) {
-  const __m128 wx = _mm_setr_ps(w[0][0], w[1][0], w[2][0], w[3][0]);
-  const __m128 wy = _mm_setr_ps(w[0][1], w[1][1], w[2][1], w[3][1]);
-  const __m128 wz = _mm_setr_ps(w[0][2], w[1][2], w[2][2], w[3][2]);
-  const __m128 nx = _mm_setr_ps(n[0][0], n[1][0], n[2][0], n[3][0]);
-  const __m128 ny = _mm_setr_ps(n[0][1], n[1][1], n[2][1], n[3][1]);
-  const __m128 nz = _mm_setr_ps(n[0][2], n[1][2], n[2][2], n[3][2]);
-  const __m128 rx = _mm_set1_ps(r.x), ry = _mm_set1_ps(r.y), rz = _mm_set1_ps(r.z);
-  const __m128 ex = _mm_set1_ps(eye.x), ey = _mm_set1_ps(eye.y), ez = _mm_set1_ps(eye.z);
-  auto dot = [](__m128 ax, __m128 ay, __m128 az, __m128 bx, __m128 by, __m128 bz) {
-    return _mm_add_ps(_mm_add_ps(_mm_mul_ps(ax, bx), _mm_mul_ps(ay, by)), _mm_mul_ps(az, bz));
+// match_distance on the lanes of L::V (lanes independent, each the exact sequence of
+// match_distance: IEEE single precision, no fused ops): the same bits in any lane of any
+// width. w, n: the candidates' W and s.n per coordinate.
+template <class L>
+inline __attribute__((always_inline)) typename L::V match_distance_lanes(const typename L::V w[3],
+                                                                         const typename L::V n[3], vec3 r, vec3 eye) {
+  using V = typename L::V;
+  auto dot = [](V ax, V ay, V az, V bx, V by, V bz) {
+    return L::add(L::add(L::mul(ax, bx), L::mul(ay, by)), L::mul(az, bz));
   };
+  const V rx = L::set1(r.x), ry = L::set1(r.y), rz = L::set1(r.z);
+  const V ex = L::set1(eye.x), ey = L::set1(eye.y), ez = L::set1(eye.z);
   // m = r − (2·dot(r − w, n))·n
-  const __m128 k = _mm_mul_ps(_mm_set1_ps(2.0f),
-                              dot(_mm_sub_ps(rx, wx), _mm_sub_ps(ry, wy), _mm_sub_ps(rz, wz), nx, ny, nz));
-  const __m128 mx = _mm_sub_ps(rx, _mm_mul_ps(k, nx)), my = _mm_sub_ps(ry, _mm_mul_ps(k, ny)),
-               mz = _mm_sub_ps(rz, _mm_mul_ps(k, nz));
-  const __m128 ax = _mm_sub_ps(wx, mx), ay = _mm_sub_ps(wy, my), az = _mm_sub_ps(wz, mz);
-  const __m128 len = _mm_sqrt_ps(dot(ax, ay, az, ax, ay, az));
-  const __m128 dx = _mm_div_ps(ax, len), dy = _mm_div_ps(ay, len), dz = _mm_div_ps(az, len);
-  const __m128 qx = _mm_sub_ps(ex, mx), qy = _mm_sub_ps(ey, my), qz = _mm_sub_ps(ez, mz);
-  const __m128 t = dot(qx, qy, qz, dx, dy, dz);
-  const __m128 fx = _mm_sub_ps(qx, _mm_mul_ps(t, dx)), fy = _mm_sub_ps(qy, _mm_mul_ps(t, dy)),
-               fz = _mm_sub_ps(qz, _mm_mul_ps(t, dz));
+  const V k = L::mul(L::set1(2.0f), dot(L::sub(rx, w[0]), L::sub(ry, w[1]), L::sub(rz, w[2]), n[0], n[1], n[2]));
+  const V mx = L::sub(rx, L::mul(k, n[0])), my = L::sub(ry, L::mul(k, n[1])), mz = L::sub(rz, L::mul(k, n[2]));
+  const V ax = L::sub(w[0], mx), ay = L::sub(w[1], my), az = L::sub(w[2], mz);
+  const V len = L::sqrt(dot(ax, ay, az, ax, ay, az));
+  const V dx = L::div(ax, len), dy = L::div(ay, len), dz = L::div(az, len);
+  const V qx = L::sub(ex, mx), qy = L::sub(ey, my), qz = L::sub(ez, mz);
+  const V t = dot(qx, qy, qz, dx, dy, dz);
+  const V fx = L::sub(qx, L::mul(t, dx)), fy = L::sub(qy, L::mul(t, dy)), fz = L::sub(qz, L::mul(t, dz));
   // The cases pick the squared length, then one square root: a lane's sqrt is correctly
   // rounded, so the same bits as taking the root of each case and picking.
-  const __m128 behind = _mm_cmple_ps(t, _mm_setzero_ps());
-  const __m128 d2 = _mm_or_ps(_mm_and_ps(behind, dot(qx, qy, qz, qx, qy, qz)),
-                              _mm_andnot_ps(behind, dot(fx, fy, fz, fx, fy, fz)));
+  const V d2 = L::if_le0(t, dot(qx, qy, qz, qx, qy, qz), dot(fx, fy, fz, fx, fy, fz));
   // Degenerate axis (len not > 0): the distance to W itself.
-  const __m128 gx = _mm_sub_ps(ex, wx), gy = _mm_sub_ps(ey, wy), gz = _mm_sub_ps(ez, wz);
-  const __m128 ok = _mm_cmpgt_ps(len, _mm_setzero_ps());
-  return _mm_sqrt_ps(_mm_or_ps(_mm_and_ps(ok, d2), _mm_andnot_ps(ok, dot(gx, gy, gz, gx, gy, gz))));
+  const V gx = L::sub(ex, w[0]), gy = L::sub(ey, w[1]), gz = L::sub(ez, w[2]);
+  return L::sqrt(L::if_gt0(len, d2, dot(gx, gy, gz, gx, gy, gz)));
+}
+
+#if defined(__SSE2__)
+#define PROXIMA_SSE2 static inline __attribute__((always_inline))
+struct Lanes4 {
+  using V = __m128;
+  PROXIMA_SSE2 V set1(float v) { return _mm_set1_ps(v); }
+  PROXIMA_SSE2 V add(V a, V b) { return _mm_add_ps(a, b); }
+  PROXIMA_SSE2 V sub(V a, V b) { return _mm_sub_ps(a, b); }
+  PROXIMA_SSE2 V mul(V a, V b) { return _mm_mul_ps(a, b); }
+  PROXIMA_SSE2 V div(V a, V b) { return _mm_div_ps(a, b); }
+  PROXIMA_SSE2 V sqrt(V a) { return _mm_sqrt_ps(a); }
+  PROXIMA_SSE2 V if_le0(V t, V a, V b) {  // t ≤ 0 ? a : b (NaN: b)
+    const V m = _mm_cmple_ps(t, _mm_setzero_ps());
+    return _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b));
+  }
+  PROXIMA_SSE2 V if_gt0(V t, V a, V b) {  // t > 0 ? a : b (NaN: b)
+    const V m = _mm_cmpgt_ps(t, _mm_setzero_ps());
+    return _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b));
+  }
+};
+#undef PROXIMA_SSE2
+
+// Four candidates at once. Inlined: a ring's two groups are independent chains the core
+// then runs side by side.
+inline __attribute__((always_inline)) __m128 match_distance4(const float* const w[4], const float* const n[4], vec3 r, vec3 eye) {
+  const __m128 wv[3] = {_mm_setr_ps(w[0][0], w[1][0], w[2][0], w[3][0]), _mm_setr_ps(w[0][1], w[1][1], w[2][1], w[3][1]),
+                        _mm_setr_ps(w[0][2], w[1][2], w[2][2], w[3][2])};
+  const __m128 nv[3] = {_mm_setr_ps(n[0][0], n[1][0], n[2][0], n[3][0]), _mm_setr_ps(n[0][1], n[1][1], n[2][1], n[3][1]),
+                        _mm_setr_ps(n[0][2], n[1][2], n[2][2], n[3][2])};
+  return match_distance_lanes<Lanes4>(wv, nv, r, eye);
 }
 #endif
 
@@ -122,6 +151,94 @@ bool Search::ring(int cx, int cy, uint32_t object, vec3 r, float out[8]) const {
   return all;
 }
 
+#if defined(PROXIMA_BEST_MATCH_AVX512)
+// The whole 3×3 square at once in one 16-lane AVX-512 group (runtime dispatch; the rest of
+// the build stays SSE2): lane 4·row + column holds the cell (column − 1, row − 1) of the
+// square, columns 0–2 and rows 0–2 (lanes 3, 7, 11, 12–15 are unused). Each row's 4 pixels
+// (12 floats of the AoS position / normal) come in one masked load, so no cell outside the
+// image is read, then are de-interleaved by two permutes per coordinate. Lane by lane the
+// exact IEEE operations of match_distance (no fused ops: only avx512f is enabled here, and
+// the build is ISO C++, -ffp-contract=off): the same bits as the SSE2 and scalar paths.
+// The centre lane gives the start's distance with the first ring, off the walk's chain.
+constexpr int kRingLane[8] = {0, 1, 2, 4, 6, 8, 9, 10};
+constexpr int kCentreLane = 5;
+
+// GCC 12 warns of its own _mm512_undefined_ps in the headers' sqrt (a false positive).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#define PROXIMA_AVX512 __attribute__((target("avx512f"))) inline __attribute__((always_inline))
+// Not always_inline: match_distance_lanes (default target) calls these; they inline where
+// it is inlined, in WideRing (flattened into walk_pixels_avx512).
+#define PROXIMA_AVX512_OP static __attribute__((target("avx512f"))) inline
+struct Lanes16 {
+  using V = __m512;
+  PROXIMA_AVX512_OP V set1(float v) { return _mm512_set1_ps(v); }
+  PROXIMA_AVX512_OP V add(V a, V b) { return _mm512_add_ps(a, b); }
+  PROXIMA_AVX512_OP V sub(V a, V b) { return _mm512_sub_ps(a, b); }
+  PROXIMA_AVX512_OP V mul(V a, V b) { return _mm512_mul_ps(a, b); }
+  PROXIMA_AVX512_OP V div(V a, V b) { return _mm512_div_ps(a, b); }
+  PROXIMA_AVX512_OP V sqrt(V a) { return _mm512_sqrt_ps(a); }
+  PROXIMA_AVX512_OP V if_le0(V t, V a, V b) {
+    return _mm512_mask_blend_ps(_mm512_cmp_ps_mask(t, _mm512_setzero_ps(), _CMP_LE_OQ), b, a);
+  }
+  PROXIMA_AVX512_OP V if_gt0(V t, V a, V b) {
+    return _mm512_mask_blend_ps(_mm512_cmp_ps_mask(t, _mm512_setzero_ps(), _CMP_GT_OQ), b, a);
+  }
+};
+#undef PROXIMA_AVX512_OP
+// De-interleave: coordinate k of lane 4·row + c is element 3c + k of row `row`.
+PROXIMA_AVX512 __m512 coord16(const __m512 v[3], int k) {
+  const __m512i i01 = _mm512_setr_epi32(k, 3 + k, 6 + k, 9 + k, 16 + k, 19 + k, 22 + k, 25 + k, 0, 0, 0, 0, 0, 0, 0, 0);
+  const __m512 ab = _mm512_permutex2var_ps(v[0], i01, v[1]);
+  const __m512i i2 = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 16 + k, 19 + k, 22 + k, 25 + k, 0, 0, 0, 0);
+  return _mm512_permutex2var_ps(ab, i2, v[2]);
+}
+
+struct WideRing {
+  const Search& s;
+  __attribute__((target("avx512f"))) bool operator()(
+      int cx, int cy, uint32_t object, vec3 r, float out[8], float* centre) const {
+    const int w = s.w;
+    // Columns cx − 1 .. cx + 2 inside the image (a 4-bit mask), rows cy − 1 .. cy + 1.
+    const unsigned cols = 0x2u | (cx >= 1 ? 0x1u : 0u) | (cx + 1 < w ? 0x4u : 0u);
+    const unsigned rows = 0x2u | (cy >= 1 ? 0x1u : 0u) | (cy + 1 < s.h ? 0x4u : 0u);
+    // Per row: the 12 floats of columns cx − 1 .. cx + 2 (only the 3 of the mask used).
+    auto float_mask = [&](unsigned c) {  // pixel mask → 12-float mask
+      unsigned m = 0;
+      for (int k = 0; k < 3; ++k)
+        if (c & (1u << k)) m |= 0x7u << (3 * k);
+      return __mmask16(m);
+    };
+    const __mmask16 fm = float_mask(cols);
+    const ptrdiff_t base = ptrdiff_t(cy) * w + (cx - 1);  // pixel index of (cx − 1, cy)
+    __m512i obj = _mm512_set1_epi32(int(kNoReflector));
+    __m512 pr[3], nr[3];
+    for (int row = 0; row < 3; ++row) {
+      const bool ok = rows & (1u << row);
+      const __mmask16 m = ok ? fm : __mmask16(0);
+      const ptrdiff_t p = base + ptrdiff_t(row - 1) * w;  // may point before the image: masked
+      pr[row] = _mm512_maskz_loadu_ps(m, s.position + 3 * p);
+      nr[row] = _mm512_maskz_loadu_ps(m, s.normal + 3 * p);
+      const __m512i o = _mm512_mask_loadu_epi32(_mm512_set1_epi32(int(kNoReflector)),
+                                                ok ? __mmask16(cols) : __mmask16(0), s.objects + p);
+      // this row's 4 ids into lanes 4·row .. 4·row + 3
+      obj = _mm512_mask_permutexvar_epi32(obj, __mmask16(0xFu << (4 * row)),
+                                          _mm512_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3), o);
+    }
+    const __mmask16 in = _mm512_cmpeq_epi32_mask(obj, _mm512_set1_epi32(int(object)));
+    const __m512 wv[3] = {coord16(pr, 0), coord16(pr, 1), coord16(pr, 2)};
+    const __m512 nv[3] = {coord16(nr, 0), coord16(nr, 1), coord16(nr, 2)};
+    const __m512 d = match_distance_lanes<Lanes16>(wv, nv, r, s.eye);
+    alignas(64) float lanes[16];
+    _mm512_store_ps(lanes, _mm512_mask_blend_ps(in, _mm512_set1_ps(kInf), d));
+    for (int k = 0; k < 8; ++k) out[k] = lanes[kRingLane[k]];
+    if (centre) *centre = lanes[kCentreLane];
+    return (in & 0x0757u) == 0x0757u;  // the 8 ring lanes (centre: on the reflector)
+  }
+};
+#pragma GCC diagnostic pop
+#endif
+
 // std::lround for the offsets here (|v| < 2²²: pixel distances), without the library call:
 // halves away from zero. v − trunc(v) is exact (Sterbenz), so the same integer.
 int round_offset(float v) {
@@ -137,6 +254,205 @@ float parabola_vertex(float a, float b, float c) {
   return std::clamp(0.5f * (a - c) / denom, -0.5f, 0.5f);
 }
 
+// The walks of the key's reflective pixels j0 .. j1 − 1 (one parallel chunk).
+struct Walk {
+  const ReflectionDepthImage& key;
+  const Search& s;
+  const OffsetBuffer* previous;
+  const OffsetBuffer* earlier;
+  const BestMatchOptions& options;
+  bool warm, extrapolate;
+  int w, max_steps;
+  float focal;
+  vec2* offsets;
+  uint8_t* valid;
+};
+
+// One pixel's walk, a step at a time, so the wide path can run two pixels' rings side by
+// side (independent chains of square roots and divisions the core overlaps). Each pixel's
+// steps are exactly the sequential walk's: the same bits whichever pixel runs beside it.
+struct PixelWalk {
+  size_t i;
+  int x, y, cx, cy, step;
+  uint32_t object;
+  vec3 r;
+  float former;
+  bool need_former;  // the start's distance comes with the first ring (its centre lane)
+  bool converged, inside;  // inside: the last ring was all on the reflector
+  // The last step's 3×3 distances (centre included): on convergence they are the end
+  // point's neighbours, which the sub-pixel fit reads again. Each step evaluates its
+  // whole ring at once (SIMD): cells shared with the previous square get the same bits.
+  float around[3][3];
+};
+
+struct Walker {
+  const Walk& c;
+  size_t row;  // key.pixels is row-major ascending: follow the row instead of dividing per pixel
+  int y;
+  uint64_t steps = 0, invalid = 0;
+
+  Walker(const Walk& walk, size_t j0, size_t j1) : c(walk) {
+    y = j0 < j1 ? int(c.key.pixels[j0] / size_t(c.w)) : 0;
+    row = size_t(y) * size_t(c.w);
+  }
+
+  // The start of pixel j's walk: s + the previous offset (or the extrapolated guess).
+  void begin(PixelWalk& p, size_t j, bool centre_from_ring) {
+    const Search& s = c.s;
+    const size_t i = c.key.pixels[j];
+    while (i >= row + size_t(c.w)) ++y, row += size_t(c.w);
+    p.i = i;
+    p.x = int(i - row);
+    p.y = y;
+    p.object = s.objects[i];
+    p.r = c.key.reflected[j];
+    p.cx = p.x, p.cy = p.y;
+    if (c.warm) {  // INVALID pixels too: their end point saves the next walk
+      const vec2 o = c.previous->offset[i];
+      const int px = p.x + round_offset(o.x), py = p.y + round_offset(o.y);
+      if (s.same(px, py, p.object)) p.cx = px, p.cy = py;
+    }
+    p.need_former = centre_from_ring && !c.extrapolate;
+    p.former = p.need_former ? 0.0f : s.distance(p.cx, p.cy, p.r);
+    if (c.extrapolate) {  // steady motion: the offset moves on by its last change
+      const vec2 guess = 2.0f * c.previous->offset[i] - c.earlier->offset[i];
+      const int gx = p.x + round_offset(guess.x), gy = p.y + round_offset(guess.y);
+      if ((gx != p.cx || gy != p.cy) && s.same(gx, gy, p.object)) {
+        const float d = s.distance(gx, gy, p.r);
+        if (d < p.former) p.former = d, p.cx = gx, p.cy = gy;
+      }
+    }
+    p.step = 0;
+    p.converged = false;
+    p.inside = true;
+    for (auto& a : p.around) a[0] = a[1] = a[2] = 0.0f;
+  }
+
+  // One descent step from the ring of (cx, cy): whether the walk has ended.
+  bool advance(PixelWalk& p, bool inside, const float d8[8], float centre) {
+    if (p.need_former) p.former = centre, p.need_former = false;
+    p.inside = inside;
+    int bx = p.cx, by = p.cy;
+    float best = kInf;
+    for (int k = 0; k < 8; ++k) {
+      p.around[kRing[k][1] + 1][kRing[k][0] + 1] = d8[k];
+      if (d8[k] < best) best = d8[k], bx = p.cx + kRing[k][0], by = p.cy + kRing[k][1];
+    }
+    p.around[1][1] = p.former;
+    if (!(best < p.former)) {  // local minimum (ties stop too: no cycles)
+      p.converged = true;
+      return true;
+    }
+    p.former = best;
+    p.cx = bx;
+    p.cy = by;
+    ++steps;
+    return ++p.step >= c.max_steps;
+  }
+
+  void finish(const PixelWalk& p) {
+    const ReflectionDepthImage& key = c.key;
+    const int cx = p.cx, cy = p.cy;
+    const float former = p.former;
+    bool ok = p.converged;
+    if (ok) {
+      // On the silhouette border the true minimum may lie outside the reflector: keep
+      // the match only if the reflected ray through W_c misses E_cur by ≤ tolerance
+      // key pixels (distance scaled back to W_c by similar triangles).
+      // (the end point's 3×3 is on the reflector but for the ring's cells outside)
+      if (!p.inside) {
+        const vec3 r = p.r;
+        const vec3 wc = rgb_at(key.position, cx, cy), nc = rgb_at(key.normal, cx, cy);
+        const vec3 m = r - 2.0f * glm::dot(r - wc, nc) * nc;
+        const float scale = glm::length(wc - m) / std::max(glm::length(c.s.eye - m), 1e-6f);
+        const float miss_px = former * scale * c.focal / std::max(key.depth.at(cx, cy), 1e-6f);
+        ok = miss_px <= c.options.border_tolerance_px;
+      }
+    }
+    if (!ok) {
+      ++invalid;
+      c.offsets[p.i] = vec2(float(cx - p.x), float(cy - p.y));
+      c.valid[p.i] = 0;
+      return;
+    }
+    vec2 sub(0.0f);
+    if (c.options.subpixel) {
+      auto sq = [&](int dx, int dy) { return p.around[dy + 1][dx + 1] * p.around[dy + 1][dx + 1]; };
+      const float b = former * former;
+      const float l = sq(-1, 0), rr = sq(1, 0), u = sq(0, -1), dn = sq(0, 1);
+      // An (almost) exact match stays put: near a zero of the distance its square is
+      // far from a parabola where the reflection is close (small s.r).
+      auto exact = [&](float a, float q) { return b <= kExactMatch * std::min(a, q); };
+      if (std::isfinite(l) && std::isfinite(rr) && !exact(l, rr)) sub.x = parabola_vertex(l, b, rr);
+      if (std::isfinite(u) && std::isfinite(dn) && !exact(u, dn)) sub.y = parabola_vertex(u, b, dn);
+    }
+    c.offsets[p.i] = vec2(float(cx - p.x), float(cy - p.y)) + sub;
+    c.valid[p.i] = 1;
+  }
+};
+
+void walk_pixels_sse(const Walk& c, size_t j0, size_t j1, uint64_t& steps, uint64_t& invalid) {
+  Walker walker(c, j0, j1);
+  PixelWalk p;
+  for (size_t j = j0; j < j1; ++j) {
+    walker.begin(p, j, false);
+    for (;;) {
+      float d8[8];
+      const bool inside = c.s.ring(p.cx, p.cy, p.object, p.r, d8);
+      if (walker.advance(p, inside, d8, 0.0f)) break;
+    }
+    walker.finish(p);
+  }
+  steps = walker.steps;
+  invalid = walker.invalid;
+}
+
+#if defined(PROXIMA_BEST_MATCH_AVX512)
+// Two pixels' walks side by side, each refilled from j0 .. j1 − 1 in order as it ends.
+// flatten: the Walker and WideRing inline here, in the avx512f context.
+__attribute__((target("avx512f"), flatten)) void walk_pixels_avx512(const Walk& c, size_t j0, size_t j1,
+                                                                      uint64_t& steps, uint64_t& invalid) {
+  Walker walker(c, j0, j1);
+  const WideRing ring{c.s};
+  PixelWalk p[2];
+  size_t next = j0;
+  bool live[2];
+  for (int k = 0; k < 2; ++k)
+    if ((live[k] = next < j1)) walker.begin(p[k], next++, true);
+  while (live[0] || live[1]) {
+    float d8[2][8], centre[2] = {0.0f, 0.0f};
+    bool inside[2] = {true, true};
+    for (int k = 0; k < 2; ++k)
+      if (live[k]) inside[k] = ring(p[k].cx, p[k].cy, p[k].object, p[k].r, d8[k], &centre[k]);
+    for (int k = 0; k < 2; ++k)
+      if (live[k] && walker.advance(p[k], inside[k], d8[k], centre[k])) {
+        walker.finish(p[k]);
+        if ((live[k] = next < j1)) walker.begin(p[k], next++, true);
+      }
+  }
+  steps = walker.steps;
+  invalid = walker.invalid;
+}
+bool has_avx512() {
+  static const bool yes = __builtin_cpu_supports("avx512f");
+  return yes;
+}
+#endif
+
+}  // namespace
+
+namespace detail {
+bool best_match_wide = true;
+bool best_match_wide_available() {
+#if defined(PROXIMA_BEST_MATCH_AVX512)
+  return has_avx512();
+#else
+  return false;
+#endif
+}
+}  // namespace detail
+
+namespace {
 }  // namespace
 
 float match_distance(vec3 w_n, vec3 n_n, vec3 reflected, vec3 eye) {
@@ -174,91 +490,19 @@ void best_match_search_into(const ReflectionDepthImage& key, vec3 eye, const Off
   vec2* const offsets = out.offset.data();
   uint8_t* const valid = out.valid.data();
 
+  const Walk walk{key, s, previous, earlier, options, warm, extrapolate, w, max_steps, focal, offsets, valid};
+#if defined(PROXIMA_BEST_MATCH_AVX512)
+  const bool wide = detail::best_match_wide && has_avx512();
+#endif
   parallel_for(n, kPixelGrain, [&](size_t j0, size_t j1) {
     const size_t chunk = j0 / kPixelGrain;
     uint64_t steps = 0, invalid = 0;
-    // key.pixels is row-major ascending: follow the row instead of dividing per pixel.
-    int y = j0 < j1 ? int(key.pixels[j0] / size_t(w)) : 0;
-    size_t row = size_t(y) * size_t(w);
-    for (size_t j = j0; j < j1; ++j) {
-      const size_t i = key.pixels[j];
-      while (i >= row + size_t(w)) ++y, row += size_t(w);
-      const int x = int(i - row);
-      const uint32_t object = s.objects[i];
-      const vec3 r = key.reflected[j];
-      int cx = x, cy = y;
-      if (warm) {  // INVALID pixels too: their end point saves the next walk
-        const int px = x + round_offset(previous->offset[i].x), py = y + round_offset(previous->offset[i].y);
-        if (s.same(px, py, object)) cx = px, cy = py;
-      }
-      float former = s.distance(cx, cy, r);
-      if (extrapolate) {  // steady motion: the offset moves on by its last change
-        const vec2 guess = 2.0f * previous->offset[i] - earlier->offset[i];
-        const int gx = x + round_offset(guess.x), gy = y + round_offset(guess.y);
-        if ((gx != cx || gy != cy) && s.same(gx, gy, object)) {
-          const float d = s.distance(gx, gy, r);
-          if (d < former) former = d, cx = gx, cy = gy;
-        }
-      }
-      bool converged = false, inside = true;  // inside: the last ring was all on the reflector
-      // The last step's 3×3 distances (centre included): on convergence they are the end
-      // point's neighbours, which the sub-pixel fit reads again. Each step evaluates its
-      // whole ring at once (SIMD): cells shared with the previous square get the same bits.
-      float around[3][3] = {};
-      around[1][1] = former;
-      for (int step = 0; step < max_steps; ++step) {
-        float d8[8];
-        inside = s.ring(cx, cy, object, r, d8);
-        int bx = cx, by = cy;
-        float best = kInf;
-        for (int k = 0; k < 8; ++k) {
-          around[kRing[k][1] + 1][kRing[k][0] + 1] = d8[k];
-          if (d8[k] < best) best = d8[k], bx = cx + kRing[k][0], by = cy + kRing[k][1];
-        }
-        around[1][1] = former;
-        if (!(best < former)) {  // local minimum (ties stop too: no cycles)
-          converged = true;
-          break;
-        }
-        former = best;
-        cx = bx;
-        cy = by;
-        ++steps;
-      }
-      bool ok = converged;
-      if (ok) {
-        // On the silhouette border the true minimum may lie outside the reflector: keep
-        // the match only if the reflected ray through W_c misses E_cur by ≤ tolerance
-        // key pixels (distance scaled back to W_c by similar triangles).
-        // (the end point's 3×3 is on the reflector but for the ring's cells outside)
-        if (!inside) {
-          const vec3 wc = rgb_at(key.position, cx, cy), nc = rgb_at(key.normal, cx, cy);
-          const vec3 m = r - 2.0f * glm::dot(r - wc, nc) * nc;
-          const float scale = glm::length(wc - m) / std::max(glm::length(eye - m), 1e-6f);
-          const float miss_px = former * scale * focal / std::max(key.depth.at(cx, cy), 1e-6f);
-          ok = miss_px <= options.border_tolerance_px;
-        }
-      }
-      if (!ok) {
-        ++invalid;
-        offsets[i] = vec2(float(cx - x), float(cy - y));
-        valid[i] = 0;
-        continue;
-      }
-      vec2 sub(0.0f);
-      if (options.subpixel) {
-        auto sq = [&](int dx, int dy) { return around[dy + 1][dx + 1] * around[dy + 1][dx + 1]; };
-        const float b = former * former;
-        const float l = sq(-1, 0), rr = sq(1, 0), u = sq(0, -1), dn = sq(0, 1);
-        // An (almost) exact match stays put: near a zero of the distance its square is
-        // far from a parabola where the reflection is close (small s.r).
-        auto exact = [&](float p, float q) { return b <= kExactMatch * std::min(p, q); };
-        if (std::isfinite(l) && std::isfinite(rr) && !exact(l, rr)) sub.x = parabola_vertex(l, b, rr);
-        if (std::isfinite(u) && std::isfinite(dn) && !exact(u, dn)) sub.y = parabola_vertex(u, b, dn);
-      }
-      offsets[i] = vec2(float(cx - x), float(cy - y)) + sub;
-      valid[i] = 1;
-    }
+#if defined(PROXIMA_BEST_MATCH_AVX512)
+    if (wide)
+      walk_pixels_avx512(walk, j0, j1, steps, invalid);
+    else
+#endif
+      walk_pixels_sse(walk, j0, j1, steps, invalid);
     chunk_steps[chunk] = steps;
     chunk_invalid[chunk] = invalid;
   });

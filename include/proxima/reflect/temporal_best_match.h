@@ -61,4 +61,11 @@ void best_match_search_into(const ReflectionDepthImage& key, vec3 eye, const Off
                             const BestMatchOptions& options, OffsetBuffer& out, BestMatchStats* stats = nullptr,
                             const OffsetBuffer* earlier = nullptr);
 
+namespace detail {
+// The search runs its 3×3 squares on AVX-512 (16 lanes, runtime dispatch) where the CPU has
+// it, else on SSE2: the same bits. Tests set this false to compare the two paths.
+extern bool best_match_wide;
+bool best_match_wide_available();
+}  // namespace detail
+
 }  // namespace proxima
