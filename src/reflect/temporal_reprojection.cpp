@@ -18,12 +18,20 @@ constexpr size_t kSampleGrain = 1024;
 ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const ReflectionDepthImage& key,
                                              const ImageF& radiance, const ImageU8* state,
                                              const ReprojectOptions& options, const WarpedMesh* mesh) {
+  ReflectionReprojection out;
+  reproject_reflections_into(frame, key, radiance, state, options, mesh, out);
+  return out;
+}
+
+void reproject_reflections_into(const ReflectionFrame& frame, const ReflectionDepthImage& key, const ImageF& radiance,
+                                const ImageU8* state, const ReprojectOptions& options, const WarpedMesh* mesh,
+                                ReflectionReprojection& out) {
   if (frame.supersample != 1) throw std::logic_error("reprojection: frame must have supersample 1");
   const size_t n = frame.sample_count();
   const int kw = key.object.width(), kh = key.object.height();
-  ReflectionReprojection out;
-  out.radiance.assign(n, vec3(0.0f));
+  out.radiance.assign(n, vec3(0.0f));  // in the vectors' memory when they have room: no fresh pages
   out.flag.assign(n, kReuseOk);
+  out.disoccluded = out.unreliable = out.curved = out.edge = 0;
   auto same_surface = [&](int x, int y, uint32_t object, float depth) {
     return x >= 0 && y >= 0 && x < kw && y < kh && key.object.at(x, y) == object &&
            std::abs(key.depth.at(x, y) - depth) <= options.depth_tolerance * depth;
@@ -107,7 +115,6 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
     out.curved += (f & kReuseCurved) != 0;
     out.edge += (f & kReuseEdge) != 0;
   }
-  return out;
 }
 
 }  // namespace proxima
