@@ -39,18 +39,25 @@ void reproject_reflections_into(const ReflectionFrame& frame, const ReflectionDe
   auto reliable = [&](int x, int y) { return !state || state->at(x, y) == kWarpReliable; };
   assert(frame.base.empty() || (frame.base.width() == frame.sample_camera.width && frame.base.channels() == 3));
   const float* base = frame.base.data().data();
+  // project(key.camera, ·) with its per-call constants (the inverse rotation, the focal
+  // length's tan) hoisted: the same operations on the same values, so the same bits.
+  const quat to_camera = glm::conjugate(key.camera.orientation);
+  const vec3 eye = key.camera.position;
+  const float focal = focal_length_px(key.camera);
+  const float half_w = 0.5f * float(key.camera.width), half_h = 0.5f * float(key.camera.height);
 
   parallel_for(n, kSampleGrain, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
-      const auto proj = project(key.camera, frame.position[i]);
+      const vec3 c = to_camera * (frame.position[i] - eye);
+      const float depth = -c.z;
       const uint32_t object = frame.reflector[i];
-      if (!proj) {
+      if (!(depth > 0.0f)) {
         out.flag[i] = kReuseDisoccluded;
         continue;
       }
-      const vec2 q = proj->pixel;
+      const vec2 q(half_w + focal * c.x / depth, half_h - focal * c.y / depth);
       const int nx = int(std::floor(q.x)), ny = int(std::floor(q.y));
-      if (!same_surface(nx, ny, object, proj->depth)) {
+      if (!same_surface(nx, ny, object, depth)) {
         out.flag[i] = kReuseDisoccluded;
         continue;
       }
@@ -82,7 +89,7 @@ void reproject_reflections_into(const ReflectionFrame& frame, const ReflectionDe
       for (int j = 0; j < 2; ++j)
         for (int k = 0; k < 2; ++k) {
           const int x = x0 + k, y = y0 + j;
-          if (!same_surface(x, y, object, proj->depth) || !reliable(x, y)) continue;
+          if (!same_surface(x, y, object, depth) || !reliable(x, y)) continue;
           const float wt = (k ? tx : 1.0f - tx) * (j ? ty : 1.0f - ty);
           if (wt <= 0.0f) continue;
           const vec3 lr(radiance.at(x, y, 0), radiance.at(x, y, 1), radiance.at(x, y, 2));
