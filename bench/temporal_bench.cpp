@@ -109,9 +109,9 @@ void BM_TemporalReproject(benchmark::State& state) {
   const WarpedMesh mesh{&w.state.key, &w.offsets, &w.mid, w.options.warp.edge_contrast, w.options.warp.edge_rule,
                         w.options.warp.recompute_splats, blend_error};
   uint64_t recompute = 0;
+  ReflectionReprojection r;  // reused frame to frame, as temporal_reflections does
   for (auto _ : state) {
-    const ReflectionReprojection r =
-        reproject_reflections(w.frame, w.state.key, w.mid.radiance, &w.mid.state, w.options.reproject, &mesh);
+    reproject_reflections_into(w.frame, w.state.key, w.mid.radiance, &w.mid.state, w.options.reproject, &mesh, r);
     recompute = r.recompute();
     benchmark::DoNotOptimize(recompute);
   }

@@ -275,6 +275,8 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   ErrorBreakdown breakdown;
   Series age_mae[kAgeBins];
   Series hq_temporal_mae, hq_reference_mae, hq_direct_mae;
+  std::vector<vec3> reflected;  // per frame; its memory (and flags') circulates with the state's
+  std::vector<uint8_t> flags;
   for (int frame_index = 0; frame_index < frames; frame_index += tf.frame_step) {
     const float t = frames > 1 ? t_first + float(frame_index) * (t_last - t_first) / float(frames - 1) : t_first;
     if (animated) {
@@ -289,9 +291,8 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
     const ReflectionFrame frame = prepare_reflection_frame(scene, camera, ro);
     const double diffuse = watch.elapsed_ms();
     TemporalFrameStats st;
-    std::vector<uint8_t> flags;
     double cpu = process_cpu_ms();
-    const std::vector<vec3> reflected = temporal_reflections(scene, rays, frame, state, to, &st, &flags);
+    temporal_reflections_into(scene, rays, frame, state, to, reflected, &st, &flags);
     temporal_cpu_ms.add(process_cpu_ms() - cpu);
     watch.restart();
     const ImageF color = compose_reflections(frame, reflected);

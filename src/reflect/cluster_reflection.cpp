@@ -239,32 +239,53 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
   return frame;
 }
 
+namespace {
+
+// Sample i's mean radiance over its rays, in ray order; with `hits`, each ray's closest hit
+// (left as it is where the ray escapes). One kernel for every trace entry: the same bits.
+template <bool kHits>
+vec3 trace_sample(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame, size_t i,
+                  TracedReflections* hits) {
+  vec3 sum(0.0f);
+  for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
+    const vec3 dir = frame.direction[r];
+    Hit hit = rays.intersect(Ray{frame.origin[i], dir, 0.0f, kInf});
+    if (hit.valid()) {
+      if constexpr (kHits) hits->hit_triangle[r] = hit.triangle, hits->hit_t[r] = hit.t;
+      sum += shade_reflected_point(scene, hit.triangle, hit.u, hit.v, -dir, frame.area_light_samples);
+    } else {
+      sum += environment_radiance(scene.environment, dir);
+    }
+  }
+  return sum / float(frame.first_ray[i + 1] - frame.first_ray[i]);
+}
+
+}  // namespace
+
 TracedReflections trace_reflections(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame) {
-  Stopwatch watch;
   TracedReflections out;
+  trace_reflections_into(scene, rays, frame, out);
+  return out;
+}
+
+void trace_reflections_into(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
+                            TracedReflections& out) {
+  Stopwatch watch;
   const size_t n = frame.sample_count();
-  out.radiance.assign(n, vec3(0.0f));
+  out.radiance.resize(n);  // every sample is written below
   out.hit_triangle.assign(frame.direction.size(), kNoTriangle);
   out.hit_t.assign(frame.direction.size(), kInf);
   parallel_for(n, kSampleGrain, [&](size_t b, size_t e) {
-    for (size_t i = b; i < e; ++i) {
-      vec3 sum(0.0f);
-      for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
-        const vec3 dir = frame.direction[r];
-        Hit hit = rays.intersect(Ray{frame.origin[i], dir, 0.0f, kInf});
-        if (hit.valid()) {
-          out.hit_triangle[r] = hit.triangle;
-          out.hit_t[r] = hit.t;
-          sum += shade_reflected_point(scene, hit.triangle, hit.u, hit.v, -dir, frame.area_light_samples);
-        } else {
-          sum += environment_radiance(scene.environment, dir);
-        }
-      }
-      out.radiance[i] = sum / float(frame.first_ray[i + 1] - frame.first_ray[i]);
-    }
+    for (size_t i = b; i < e; ++i) out.radiance[i] = trace_sample<true>(scene, rays, frame, i, &out);
   });
   out.ms = watch.elapsed_ms();
-  return out;
+}
+
+void trace_reflection_samples(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
+                              std::span<const uint32_t> samples, std::span<vec3> radiance) {
+  parallel_for(samples.size(), kSampleGrain, [&](size_t b, size_t e) {
+    for (size_t k = b; k < e; ++k) radiance[samples[k]] = trace_sample<false>(scene, rays, frame, samples[k], nullptr);
+  });
 }
 
 ClusterReflections render_cluster_reflections(const Scene& scene, const ReflectionFrame& frame,

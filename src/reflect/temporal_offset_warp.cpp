@@ -36,13 +36,12 @@ float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }
 // Corners of the two triangles of grid quad (x, y)–(x+1, y+1), split along its main diagonal.
 constexpr int kCorner[2][3][2] = {{{0, 0}, {1, 0}, {1, 1}}, {{0, 0}, {1, 1}, {0, 1}}};
 
-// True when an edge function is below −kEdgeSlack·max(1, |area2|) ≥ −kEdgeSlack·√|area2|
-// (rounded square root and product are monotone): the slack test fails, without its square
-// root. NaN never counts as a miss, as in the slack test.
-bool clear_miss(float e0, float e1, float e2, float area2) {
+// The bound an edge function must fall below to miss whatever the slack: −kEdgeSlack·max(1,
+// |area2|) ≤ −kEdgeSlack·√|area2| (rounded square root and product are monotone), so the
+// slack test needs no square root to reject. NaN is never below it, as in the slack test.
+float clear_miss_bound(float area2) {
   const float a = std::abs(area2);
-  const float bound = kEdgeSlack * (a < 1.0f ? 1.0f : a);
-  return e0 < -bound || e1 < -bound || e2 < -bound;
+  return kEdgeSlack * (a < 1.0f ? 1.0f : a);
 }
 
 // Lr at barycentrics b (unnormalised, ≥ 0, not all 0): the blend, or on an edge triangle
@@ -180,9 +179,18 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance, BlendSam
       for (int k = 0; k < 3; ++k) p[k] = image.point[corner[k]];
       const float area2 = cross2(p[1] - p[0], p[2] - p[0]);
       if (std::abs(area2) < 1e-12f) continue;
-      float e0 = cross2(p[2] - p[1], q - p[1]), e1 = cross2(p[0] - p[2], q - p[2]), e2 = cross2(p[1] - p[0], q - p[0]);
-      if (area2 < 0.0f) e0 = -e0, e1 = -e1, e2 = -e2;
-      if (clear_miss(e0, e1, e2, area2)) continue;
+      // Edge functions signed by the orientation, each rejected as soon as it is computed.
+      const float bound = -clear_miss_bound(area2);
+      auto edge = [&](vec2 a, vec2 b) {
+        const float e = cross2(b - a, q - a);
+        return area2 < 0.0f ? -e : e;
+      };
+      const float e0 = edge(p[1], p[2]);
+      if (e0 < bound) continue;
+      const float e1 = edge(p[2], p[0]);
+      if (e1 < bound) continue;
+      const float e2 = edge(p[0], p[1]);
+      if (e2 < bound) continue;
       const float slack = e0 >= 0.0f && e1 >= 0.0f && e2 >= 0.0f ? 0.0f  // inside: no slack needed
                                                                   : kEdgeSlack * std::sqrt(std::abs(area2));
       if (e0 < -slack || e1 < -slack || e2 < -slack) continue;

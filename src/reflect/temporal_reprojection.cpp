@@ -18,12 +18,20 @@ constexpr size_t kSampleGrain = 1024;
 ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const ReflectionDepthImage& key,
                                              const ImageF& radiance, const ImageU8* state,
                                              const ReprojectOptions& options, const WarpedMesh* mesh) {
+  ReflectionReprojection out;
+  reproject_reflections_into(frame, key, radiance, state, options, mesh, out);
+  return out;
+}
+
+void reproject_reflections_into(const ReflectionFrame& frame, const ReflectionDepthImage& key, const ImageF& radiance,
+                                const ImageU8* state, const ReprojectOptions& options, const WarpedMesh* mesh,
+                                ReflectionReprojection& out) {
   if (frame.supersample != 1) throw std::logic_error("reprojection: frame must have supersample 1");
   const size_t n = frame.sample_count();
   const int kw = key.object.width(), kh = key.object.height();
-  ReflectionReprojection out;
-  out.radiance.assign(n, vec3(0.0f));
+  out.radiance.assign(n, vec3(0.0f));  // in the vectors' memory when they have room: no fresh pages
   out.flag.assign(n, kReuseOk);
+  out.disoccluded = out.unreliable = out.curved = out.edge = 0;
   auto same_surface = [&](int x, int y, uint32_t object, float depth) {
     return x >= 0 && y >= 0 && x < kw && y < kh && key.object.at(x, y) == object &&
            std::abs(key.depth.at(x, y) - depth) <= options.depth_tolerance * depth;
@@ -31,18 +39,25 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
   auto reliable = [&](int x, int y) { return !state || state->at(x, y) == kWarpReliable; };
   assert(frame.base.empty() || (frame.base.width() == frame.sample_camera.width && frame.base.channels() == 3));
   const float* base = frame.base.data().data();
+  // project(key.camera, ·) with its per-call constants (the inverse rotation, the focal
+  // length's tan) hoisted: the same operations on the same values, so the same bits.
+  const quat to_camera = glm::conjugate(key.camera.orientation);
+  const vec3 eye = key.camera.position;
+  const float focal = focal_length_px(key.camera);
+  const float half_w = 0.5f * float(key.camera.width), half_h = 0.5f * float(key.camera.height);
 
   parallel_for(n, kSampleGrain, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
-      const auto proj = project(key.camera, frame.position[i]);
+      const vec3 c = to_camera * (frame.position[i] - eye);
+      const float depth = -c.z;
       const uint32_t object = frame.reflector[i];
-      if (!proj) {
+      if (!(depth > 0.0f)) {
         out.flag[i] = kReuseDisoccluded;
         continue;
       }
-      const vec2 q = proj->pixel;
+      const vec2 q(half_w + focal * c.x / depth, half_h - focal * c.y / depth);
       const int nx = int(std::floor(q.x)), ny = int(std::floor(q.y));
-      if (!same_surface(nx, ny, object, proj->depth)) {
+      if (!same_surface(nx, ny, object, depth)) {
         out.flag[i] = kReuseDisoccluded;
         continue;
       }
@@ -74,7 +89,7 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
       for (int j = 0; j < 2; ++j)
         for (int k = 0; k < 2; ++k) {
           const int x = x0 + k, y = y0 + j;
-          if (!same_surface(x, y, object, proj->depth) || !reliable(x, y)) continue;
+          if (!same_surface(x, y, object, depth) || !reliable(x, y)) continue;
           const float wt = (k ? tx : 1.0f - tx) * (j ? ty : 1.0f - ty);
           if (wt <= 0.0f) continue;
           const vec3 lr(radiance.at(x, y, 0), radiance.at(x, y, 1), radiance.at(x, y, 2));
@@ -107,7 +122,6 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
     out.curved += (f & kReuseCurved) != 0;
     out.edge += (f & kReuseEdge) != 0;
   }
-  return out;
 }
 
 }  // namespace proxima

@@ -14,60 +14,45 @@ namespace {
 // behaves like a direction in the match distance, finite for the warp's depth test.
 constexpr float kEscapeDistanceScale = 100.0f;
 
-// Traces the flagged samples and fills their radiance in; returns how many rays it traced.
-uint64_t recompute(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame, ReflectionReprojection& r) {
-  std::vector<uint32_t> todo;
+// Traces the flagged samples into r.radiance (listed in `todo`, reused); returns how many
+// rays it traced.
+uint64_t recompute(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame, ReflectionReprojection& r,
+                   std::vector<uint32_t>& todo) {
+  todo.clear();
   uint64_t traced_rays = 0;
   for (size_t i = 0; i < r.flag.size(); ++i)
     if (r.flag[i] != kReuseOk) {
       todo.push_back(uint32_t(i));
       traced_rays += frame.first_ray[i + 1] - frame.first_ray[i];
     }
-  const std::vector<vec3> traced = trace_reflection_subset(scene, rays, frame, todo);
-  for (size_t k = 0; k < todo.size(); ++k) r.radiance[todo[k]] = traced[k];
+  trace_reflection_samples(scene, rays, frame, todo, r.radiance);
   return traced_rays;
 }
 
 }  // namespace
 
-std::vector<vec3> trace_reflection_subset(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
-                                          std::span<const uint32_t> samples) {
-  // A frame holding just these samples' rays: trace_reflections reads pixel (for the
-  // count), origin, first_ray, direction and area_light_samples.
-  ReflectionFrame sub;
-  sub.area_light_samples = frame.area_light_samples;
-  sub.pixel.resize(samples.size());
-  sub.origin.resize(samples.size());
-  sub.first_ray.assign(samples.size() + 1, 0);
-  for (size_t k = 0; k < samples.size(); ++k) {
-    const uint32_t i = samples[k];
-    sub.pixel[k] = frame.pixel[i];
-    sub.origin[k] = frame.origin[i];
-    sub.first_ray[k + 1] = sub.first_ray[k] + (frame.first_ray[i + 1] - frame.first_ray[i]);
-  }
-  sub.direction.resize(sub.first_ray.back());
-  for (size_t k = 0; k < samples.size(); ++k) {
-    const uint32_t i = samples[k];
-    std::copy(frame.direction.begin() + frame.first_ray[i], frame.direction.begin() + frame.first_ray[i + 1],
-              sub.direction.begin() + sub.first_ray[k]);
-  }
-  return trace_reflections(scene, rays, sub).radiance;
-}
-
 std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
                                        TemporalState& state, const TemporalOptions& options,
                                        TemporalFrameStats* stats, std::vector<uint8_t>* flags) {
+  std::vector<vec3> radiance;
+  temporal_reflections_into(scene, rays, frame, state, options, radiance, stats, flags);
+  return radiance;
+}
+
+void temporal_reflections_into(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
+                               TemporalState& state, const TemporalOptions& options, std::vector<vec3>& radiance,
+                               TemporalFrameStats* stats, std::vector<uint8_t>* flags) {
   if (frame.supersample != 1) throw std::logic_error("temporal reflections: frame must have supersample 1");
   TemporalFrameStats st;
   st.reflective = frame.sample_count();
   st.rays = frame.direction.size();
   const bool size_changed =
       state.key.camera.width != frame.camera.width || state.key.camera.height != frame.camera.height;
-  std::vector<vec3> radiance;
   if (state.need_key || size_changed) {
     // Key frame: trace everything, keep the reflection depth image.
     Stopwatch watch;
-    TracedReflections traced = trace_reflections(scene, rays, frame);
+    TracedReflections& traced = state.traced;
+    trace_reflections_into(scene, rays, frame, traced);
     make_reflection_depth_image_into(frame, traced, kEscapeDistanceScale * frame.scene_diagonal, state.key);
     state.previous = {};
     state.earlier = {};
@@ -78,7 +63,7 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
     st.traced_rays = st.rays;
     st.work = 1.0;
     st.key_ms = watch.elapsed_ms();
-    radiance = std::move(traced.radiance);
+    radiance.swap(traced.radiance);  // the caller's old buffer is the next key frame's
     if (flags) flags->assign(frame.sample_count(), kReuseOk);
   } else {
     Stopwatch watch;
@@ -96,8 +81,8 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
     watch.restart();
     const WarpedMesh mesh{&state.key, &offsets, &mid, options.warp.edge_contrast, options.warp.edge_rule,
                           options.warp.recompute_splats, options.warp.blend_error};
-    ReflectionReprojection r =
-        reproject_reflections(frame, state.key, mid.radiance, &mid.state, options.reproject, &mesh);
+    ReflectionReprojection& r = state.reprojection;
+    reproject_reflections_into(frame, state.key, mid.radiance, &mid.state, options.reproject, &mesh, r);
     st.reproject_ms = watch.elapsed_ms();
     st.disoccluded = r.disoccluded;
     st.unreliable = r.unreliable;
@@ -105,7 +90,7 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
     st.edge = r.edge;
     st.recomputed = r.recompute();
     watch.restart();
-    st.traced_rays = recompute(scene, rays, frame, r);
+    st.traced_rays = recompute(scene, rays, frame, r, state.todo);
     st.recompute_ms = watch.elapsed_ms();
     if (options.match.extrapolate) std::swap(state.earlier, state.previous);
     state.spare = std::move(state.previous);  // the oldest: the next frame writes over it
@@ -121,11 +106,10 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
     state.cycle_work += st.work;
     if (options.keyframe_cost > 0.0f && st.work >= state.cycle_work / double(state.frames_since_key + 1))
       state.need_key = true;
-    radiance = std::move(r.radiance);
-    if (flags) *flags = std::move(r.flag);
+    radiance.swap(r.radiance);  // buffers circulate between the caller and the state
+    if (flags) flags->swap(r.flag);
   }
   if (stats) *stats = st;
-  return radiance;
 }
 
 std::vector<vec3> direct_reprojection(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
@@ -133,7 +117,8 @@ std::vector<vec3> direct_reprojection(const Scene& scene, const RayScene& rays, 
                                       uint64_t* recomputed) {
   ReflectionReprojection r = reproject_reflections(frame, key, key.radiance, nullptr, options);
   if (recomputed) *recomputed = r.recompute();
-  recompute(scene, rays, frame, r);
+  std::vector<uint32_t> todo;
+  recompute(scene, rays, frame, r, todo);
   return std::move(r.radiance);
 }
 

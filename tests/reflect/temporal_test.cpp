@@ -190,6 +190,47 @@ TEST(TemporalReflections, DisoccludedPixelsAreFlaggedForRecomputation) {
   EXPECT_GE(r.disoccluded, flagged);
 }
 
+// The buffers kept in the state and swapped with the caller's (temporal_reflections_into,
+// key frames and reuse frames mixed, flags included) give the fresh path's bits.
+TEST(TemporalReflections, ReusedBuffersGiveTheFreshResult) {
+  const Scene scene = floor_mirror(true);
+  RayScene rays(scene);
+  TemporalOptions options;
+  options.keyframe_threshold = 0.05f;  // some key frames among the reuse frames
+  TemporalState fresh_state, reused_state;
+  std::vector<vec3> reused;
+  std::vector<uint8_t> reused_flags;
+  int keys = 0;
+  for (int f = 0; f < 6; ++f) {
+    const ReflectionFrame frame = frame_at(scene, kKeyEye + float(f) * kMove);
+    TemporalFrameStats a, b;
+    std::vector<uint8_t> fresh_flags;
+    const std::vector<vec3> fresh = temporal_reflections(scene, rays, frame, fresh_state, options, &a, &fresh_flags);
+    temporal_reflections_into(scene, rays, frame, reused_state, options, reused, &b, &reused_flags);
+    keys += a.key;
+    ASSERT_EQ(a.key, b.key) << f;
+    ASSERT_EQ(a.recomputed, b.recomputed) << f;
+    ASSERT_EQ(fresh, reused) << f;
+    ASSERT_EQ(fresh_flags, reused_flags) << f;
+  }
+  EXPECT_GE(keys, 2);
+  EXPECT_LT(keys, 6);
+}
+
+// trace_reflection_samples gives trace_reflections' radiance to the listed samples, and
+// leaves the others as they were.
+TEST(TemporalReflections, TracingListedSamplesMatchesTheFullTrace) {
+  const Scene scene = floor_mirror(true);
+  RayScene rays(scene);
+  const ReflectionFrame frame = frame_at(scene, kKeyEye);
+  const TracedReflections full = trace_reflections(scene, rays, frame);
+  std::vector<uint32_t> listed;
+  for (uint32_t i = 0; i < frame.sample_count(); i += 3) listed.push_back(i);
+  std::vector<vec3> radiance(frame.sample_count(), vec3(-1.0f));
+  trace_reflection_samples(scene, rays, frame, listed, radiance);
+  for (size_t i = 0; i < radiance.size(); ++i) ASSERT_EQ(radiance[i], i % 3 == 0 ? full.radiance[i] : vec3(-1.0f)) << i;
+}
+
 TEST(TemporalReflections, IdenticalForAnyThreadCount) {
   const Scene scene = floor_mirror(true);
   RayScene rays(scene);

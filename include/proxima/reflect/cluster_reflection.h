@@ -90,6 +90,15 @@ struct TracedReflections {
 // `rays` must be built from the scene the frame was prepared on.
 TracedReflections trace_reflections(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame);
 
+// The same into `out`, reusing its vectors' memory (no fresh pages per frame): the same result.
+void trace_reflections_into(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
+                            TracedReflections& out);
+
+// trace_reflections' radiance of the listed samples alone (the same rays, shading and order
+// of accumulation: the same bits), written to radiance[i] of each listed i; no hits kept.
+void trace_reflection_samples(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
+                              std::span<const uint32_t> samples, std::span<vec3> radiance);
+
 struct ClusterReflectionOptions {
   ClusteringOptions clustering;
   float resolution_scale = 1.0f;    // cluster image texels per pixel footprint (Table 17)

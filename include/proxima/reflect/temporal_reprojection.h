@@ -47,4 +47,9 @@ ReflectionReprojection reproject_reflections(const ReflectionFrame& frame, const
                                              const ImageF& radiance, const ImageU8* state,
                                              const ReprojectOptions& options, const WarpedMesh* mesh = nullptr);
 
+// The same into `out` (empty, or from an earlier call), reusing its vectors' memory: the same result.
+void reproject_reflections_into(const ReflectionFrame& frame, const ReflectionDepthImage& key, const ImageF& radiance,
+                                const ImageU8* state, const ReprojectOptions& options, const WarpedMesh* mesh,
+                                ReflectionReprojection& out);
+
 }  // namespace proxima

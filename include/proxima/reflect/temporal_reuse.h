@@ -42,6 +42,10 @@ struct TemporalState {
   OffsetBuffer earlier;    // the frame's before those (BestMatchOptions::extrapolate), empty likewise
   OffsetBuffer spare;      // the oldest offsets, recycled as the next frame's (best_match_search_into)
   IntermediateReflection warp;  // the last warp: its buffers are reused by the next
+  // Buffers reused frame to frame (fresh large allocations cost page faults):
+  TracedReflections traced;             // the last key frame's trace
+  ReflectionReprojection reprojection;  // the last reprojection (its vectors swap with the caller's)
+  std::vector<uint32_t> todo;           // the samples the last frame recomputed
   bool need_key = true;    // the next frame is a key frame
   int frames_since_key = 0;
   double cycle_work = 0.0;  // Σ work / full-trace work of the frames since the key frame, it included
@@ -78,14 +82,17 @@ std::vector<vec3> temporal_reflections(const Scene& scene, const RayScene& rays,
                                        TemporalState& state, const TemporalOptions& options,
                                        TemporalFrameStats* stats = nullptr, std::vector<uint8_t>* flags = nullptr);
 
+// The same into `radiance` (resized to the frame's samples). Its memory and that of `flags`
+// are swapped with buffers kept in `state`: a caller that passes the same vectors every
+// frame allocates nothing once sizes settle.
+void temporal_reflections_into(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
+                               TemporalState& state, const TemporalOptions& options, std::vector<vec3>& radiance,
+                               TemporalFrameStats* stats = nullptr, std::vector<uint8_t>* flags = nullptr);
+
 // The baseline: the current key frame's Lr reprojected by depth alone; flagged samples are
 // traced, like the temporal method's. `recomputed` (may be null) receives their count.
 std::vector<vec3> direct_reprojection(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
                                       const ReflectionDepthImage& key, const ReprojectOptions& options,
                                       uint64_t* recomputed = nullptr);
-
-// Traces only the listed samples of `frame` (as trace_reflections, one radiance each).
-std::vector<vec3> trace_reflection_subset(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
-                                          std::span<const uint32_t> samples);
 
 }  // namespace proxima
