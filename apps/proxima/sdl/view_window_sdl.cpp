@@ -69,6 +69,10 @@ void show(SDL_Window* window, const ImageU8& frame) {
 bool view_window_available() { return true; }
 
 int run_view_window(ViewerSession& session, const ViewWindowOptions& o) {
+  // The frames are CPU images blitted to the window surface: no GL renderer behind the
+  // surface, so no Mesa (llvmpipe) threads still alive at exit, where LeakSanitizer's exit
+  // check stops every thread and now and then crashes on one.
+  SDL_SetHint(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0");
   if (SDL_Init(SDL_INIT_VIDEO) != 0)
     fail_input(std::string("view: cannot open a window (no display? try xvfb-run): ") + SDL_GetError());
   // No SDL_Quit(): it unloads the X11 libraries SDL dlopen()ed, after which LeakSanitizer
