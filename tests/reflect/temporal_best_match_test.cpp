@@ -33,7 +33,7 @@ void expect_same_stats(const BestMatchStats& a, const BestMatchStats& b) {
 class BestMatchWide : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(BestMatchWide, SameBitsAsTheSsePath) {
-  if (!detail::best_match_wide_available()) GTEST_SKIP() << "no AVX-512 on this CPU";
+  if (!detail::best_match_wide_available()) GTEST_SKIP() << "no AVX-512 on this CPU, or an unoptimized build (SSE2 only)";
   const Scene scene = make_builtin_scene(GetParam());
   RayScene rays(scene);
   const CameraPath& path = scene.camera_paths.front();
