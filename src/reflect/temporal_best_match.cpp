@@ -9,8 +9,9 @@
 // Only in optimized builds: the wide path relies on `flatten` inlining match_distance_lanes
 // <Lanes16> and its lane ops into the avx512f code. Unoptimized (the Debug sanitizer build)
 // the calls stay, and pass __m512 between a default-target and an avx512f function, whose
-// ABIs differ: wrong distances (found by `make asan`). There the SSE2 path runs.
-#if defined(__x86_64__) && defined(__GNUC__) && defined(__OPTIMIZE__)
+// ABIs differ: wrong distances (found by `make asan`). There the SSE2 path runs. GCC only:
+// clang rejects the __m512 of the default-target template outright (the fuzz build).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(__OPTIMIZE__)
 #include <immintrin.h>
 #define PROXIMA_BEST_MATCH_AVX512 1
 // match_distance_lanes<Lanes16> passes __m512 in a default-target template; it is only ever
