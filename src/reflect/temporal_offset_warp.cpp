@@ -281,6 +281,115 @@ void build_key_tables(const ReflectionDepthImage& key, const WarpOptions& option
   }
 }
 
+
+// int(std::ceil(x)) and int(std::floor(x)), the same for every x, without the rounding
+// sequence SSE2 (no roundss) inlines: within int range truncation and one comparison.
+int ceil_int(float x) {
+  if (!(std::abs(x) < 2147483648.0f)) return int(std::ceil(x));  // beyond int range, NaN: as before
+  const int t = int(x);
+  return t + int(float(t) < x);
+}
+int floor_int(float x) {
+  if (!(std::abs(x) < 2147483648.0f)) return int(std::floor(x));
+  const int t = int(x);
+  return t - int(float(t) > x);
+}
+
+// A triangle the per-frame tests kept, in the candidates' order: what its raster needs.
+struct LiveTriangle {
+  uint32_t candidate;
+  uint8_t state;  // WarpState its pixels get
+  bool nearest;   // an edge triangle under ReflectedEdgeRule::kNearest
+  int r0, r1;     // the pixel rows whose centres its bounding box may hold (clipped to the image)
+};
+
+// What the raster reads and writes: the per-frame and per-key-frame arrays as plain pointers
+// (stores through the uint8_t state image may alias anything: no reloads through `out`).
+struct WarpTarget {
+  float* depth;
+  float* radiance;
+  uint8_t* state;
+  uint32_t* triangle;
+  const uint32_t* object;   // the key's reflector ids
+  const uint32_t* pixels;   // key.pixels
+  const WarpSample* sample;
+  int w;
+};
+
+// Four floats as one value: a key sample's (z, Lr) blended in one go. Per lane the same
+// IEEE operations as the scalar expressions, so the same bits.
+typedef float Float4 __attribute__((vector_size(16)));
+static_assert(sizeof(WarpSample) == sizeof(Float4));
+
+Float4 load_sample(const WarpSample& s) { return std::bit_cast<Float4>(s); }
+
+Float4 splat4(float x) { return Float4{x, x, x, x}; }
+
+// Rasterizes one live triangle into pixel rows [py0, py1] (within its bounding box). A
+// pixel's result depends only on the triangles that cover it, in the order they come: the
+// rows a call covers (a band, or the whole box) do not change it.
+// p0..p2: its corners' warped positions, area2 = cross2(p1 − p0, p2 − p0).
+inline __attribute__((always_inline)) void raster_triangle(const WarpTarget& to, const WarpCandidate& cand, vec2 p0,
+                                                           vec2 p1, vec2 p2, float area2, uint8_t tri_state,
+                                                           bool nearest, int py0, int py1) {
+  if (std::abs(area2) < 1e-12f) return;  // collapsed: covers no pixel centre
+  const float xmin = std::min({p0.x, p1.x, p2.x}), xmax = std::max({p0.x, p1.x, p2.x});
+  const int px0 = std::max(0, ceil_int(xmin - 0.5f - kEdgeSlack));
+  const int px1 = std::min(to.w - 1, floor_int(xmax - 0.5f + kEdgeSlack));
+  if (px0 > px1) return;
+  const uint32_t quad = to.pixels[cand.corner[0]];
+  const uint32_t id = 2u * quad + uint32_t(cand.half);
+  const uint32_t reflector = to.object[quad];
+  const vec2 d0 = p2 - p1, d1 = p0 - p2, d2 = p1 - p0;  // edges opposite corners 0, 1, 2
+  const bool flip = area2 < 0.0f;
+  // The slack (a square root) only for centres outside an edge; 1/|area2| only on a hit.
+  float slack = -1.0f, inv = 0.0f;
+  for (int py = py0; py <= py1; ++py) {
+    const float cy = float(py) + 0.5f;
+    const float y0 = cy - p1.y, y1 = cy - p2.y, y2 = cy - p0.y;
+    const size_t row = size_t(py) * size_t(to.w);
+    for (int px = px0; px <= px1; ++px) {
+      const float cx = float(px) + 0.5f;
+      // Barycentrics from edge functions, signed by the triangle's orientation.
+      float e0 = d0.x * y0 - d0.y * (cx - p1.x), e1 = d1.x * y1 - d1.y * (cx - p2.x),
+            e2 = d2.x * y2 - d2.y * (cx - p0.x);
+      if (flip) e0 = -e0, e1 = -e1, e2 = -e2;
+      if (!(e0 >= 0.0f && e1 >= 0.0f && e2 >= 0.0f)) {  // inside: no slack needed
+        if (slack < 0.0f) slack = kEdgeSlack * std::sqrt(std::abs(area2));  // in edge-function units
+        if (e0 < -slack || e1 < -slack || e2 < -slack) continue;
+      }
+      const size_t at = row + size_t(px);
+      // Offsets stay on their reflector, so a pixel only takes its own reflector's
+      // triangles: another's (a floor mirror warped over a ball standing on it) would
+      // win the depth test there with the wrong reflection.
+      if (to.object[at] != reflector) continue;
+      if (inv == 0.0f) inv = 1.0f / std::abs(area2);
+      const float b[3] = {std::max(e0, 0.0f) * inv, std::max(e1, 0.0f) * inv, std::max(e2, 0.0f) * inv};
+      const float sum = b[0] + b[1] + b[2];
+      // (b0·z0 + b1·z1 + b2·z2) / sum, and the same of Lr (reconstruct's blend), in one.
+      const Float4 blend = (splat4(b[0]) * load_sample(to.sample[cand.corner[0]]) +
+                            splat4(b[1]) * load_sample(to.sample[cand.corner[1]]) +
+                            splat4(b[2]) * load_sample(to.sample[cand.corner[2]])) /
+                           splat4(sum);
+      const float z = blend[0];
+      if (!(z < to.depth[at])) continue;  // ties: the first triangle keeps the pixel
+      to.depth[at] = z;
+      float* lr = to.radiance + 3 * at;
+      if (nearest) {  // reconstruct's nearest corner: the largest weight (ties: the first)
+        int k = 0;
+        for (int j = 1; j < 3; ++j)
+          if (b[j] > b[k]) k = j;
+        const vec3 corner = to.sample[cand.corner[k]].lr;
+        lr[0] = corner[0], lr[1] = corner[1], lr[2] = corner[2];
+      } else {
+        lr[0] = blend[1], lr[1] = blend[2], lr[2] = blend[3];
+      }
+      to.state[at] = tri_state;
+      to.triangle[at] = id;
+    }
+  }
+}
+
 }  // namespace
 
 IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const OffsetBuffer& offsets,
@@ -293,26 +402,38 @@ IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const O
 void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& offsets, const WarpOptions& options,
                            IntermediateReflection& out) {
   const int w = key.object.width(), h = key.object.height();
-  if (out.state.width() == w && out.state.height() == h) {
-    // Only the last warp's key's reflective pixels can have been written (a pixel takes only
-    // its own reflector's triangles and splats): reset those, not four whole images per frame.
-    float* radiance = out.radiance.data().data();
-    float* depth = out.depth.data().data();
-    uint8_t* state = out.state.data().data();
-    uint32_t* triangle = out.triangle.data().data();
-    for (const uint32_t i : out.written) {
-      radiance[3 * size_t(i)] = radiance[3 * size_t(i) + 1] = radiance[3 * size_t(i) + 2] = 0.0f;
-      depth[i] = kInf;
-      state[i] = kWarpEmpty;
-      triangle[i] = kNoWarpTriangle;
-    }
+  const bool same_size = out.state.width() == w && out.state.height() == h;
+  const bool same_key = key.serial != 0 && out.key_serial == key.serial && out.index.size() == size_t(w) * size_t(h);
+  // Only the last warp's key's reflective pixels can have been written (a pixel takes only
+  // its own reflector's triangles and splats): reset those, not four whole images per frame.
+  // Under the same key they are this key's pixels: reset with the per-frame fill below.
+  const bool reset_in_fill = same_size && same_key;
+  float* radiance = nullptr;
+  float* depth = nullptr;
+  uint8_t* state = nullptr;
+  uint32_t* triangle = nullptr;
+  if (same_size) {
+    radiance = out.radiance.data().data();
+    depth = out.depth.data().data();
+    state = out.state.data().data();
+    triangle = out.triangle.data().data();
+    if (!reset_in_fill)
+      for (const uint32_t i : out.written) {
+        radiance[3 * size_t(i)] = radiance[3 * size_t(i) + 1] = radiance[3 * size_t(i) + 2] = 0.0f;
+        depth[i] = kInf;
+        state[i] = kWarpEmpty;
+        triangle[i] = kNoWarpTriangle;
+      }
   } else {
     out.radiance = ImageF(w, h, 3, 0.0f);
     out.depth = ImageF(w, h, 1, kInf);
     out.state = ImageU8(w, h, 1, kWarpEmpty);
     out.triangle = ImageU32(w, h, 1, kNoWarpTriangle);
+    radiance = out.radiance.data().data();
+    depth = out.depth.data().data();
+    state = out.state.data().data();
+    triangle = out.triangle.data().data();
   }
-  const bool same_key = key.serial != 0 && out.key_serial == key.serial && out.index.size() == size_t(w) * size_t(h);
   if (!same_key) out.written.assign(key.pixels.begin(), key.pixels.end());
   out.triangles = out.stretched = out.curved = out.discontinuous = out.edges = 0;
   const std::vector<uint32_t>& pixels = key.pixels;
@@ -327,124 +448,130 @@ void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& 
   std::copy(key_options, key_options + 4, out.key_options);
   out.key_serial = key.serial;
 
-  // Per frame: the vertices' positions and validity, compact in key.pixels order.
+  // Per frame: the vertices' positions and validity, compact in key.pixels order. The
+  // pixels are row-major: their row follows without a division.
   out.point.resize(n);
   out.valid.resize(n);
-  for (size_t j = 0; j < n; ++j) {
-    const uint32_t i = pixels[j];
-    out.point[j] = vec2(float(i % uint32_t(w)) + 0.5f, float(i / uint32_t(w)) + 0.5f) + offsets.offset[i];
-    out.valid[j] = offsets.valid[i];
+  {
+    vec2* point = out.point.data();
+    uint8_t* valid_out = out.valid.data();
+    const vec2* offset = offsets.offset.data();
+    const uint8_t* offset_valid = offsets.valid.data();
+    uint32_t y = 0, row_start = 0;
+    for (size_t j = 0; j < n; ++j) {
+      const uint32_t i = pixels[j];
+      while (i - row_start >= uint32_t(w)) ++y, row_start += uint32_t(w);
+      point[j] = vec2(float(i - row_start) + 0.5f, float(y) + 0.5f) + offset[i];
+      valid_out[j] = offset_valid[i];
+      if (reset_in_fill) {
+        radiance[3 * size_t(i)] = radiance[3 * size_t(i) + 1] = radiance[3 * size_t(i) + 2] = 0.0f;
+        depth[i] = kInf;
+        state[i] = kWarpEmpty;
+        triangle[i] = kNoWarpTriangle;
+      }
+    }
   }
   const uint8_t* valid = out.valid.data();
 
   // Triangles: quad (x, y)–(x+1, y+1) split along its main diagonal; id = 2·quad + half.
-  // Bin each into the row bands its bounding box touches (sequential: a fixed order).
-  struct Tri {
-    uint32_t candidate;
-    uint8_t state;  // WarpState its pixels get
-    bool nearest;   // an edge triangle under ReflectedEdgeRule::kNearest
-  };
+  // The per-frame tests (sequential: a fixed order) keep the live ones in the candidates'
+  // order. The kept memory stays from call to call on this thread (no allocation per frame).
+  // (A reference: the raster's worker threads must read the caller's list, not their own.)
+  static thread_local std::vector<LiveTriangle> live_kept;
+  std::vector<LiveTriangle>& live = live_kept;
+  live.clear();
+  // One thread: each triangle drawn as soon as it is kept, into all its rows.
+  const WarpTarget to{depth, radiance, state, triangle, object, pixels.data(), out.sample.data(), w};
   const int bands = (h + kBandRows - 1) / kBandRows;
-  // The bins keep their memory from call to call on this thread (no allocation per frame).
-  // (A reference: the raster's worker threads must read the caller's bins, not their own.)
-  static thread_local std::vector<std::vector<Tri>> bins;
-  std::vector<std::vector<Tri>>& band_tris = bins;
-  if (band_tris.size() < size_t(std::max(bands, 1))) band_tris.resize(size_t(std::max(bands, 1)));
-  for (std::vector<Tri>& bin : band_tris) bin.clear();
+  const bool one_pass = active_threads() <= 1 || bands <= 1;
   const bool edge_recompute_rule = options.edge_rule == ReflectedEdgeRule::kRecompute;
+  const float stretch_area = options.stretch_limit * 0.5f;  // original area: ½ pixel²
   const std::vector<WarpCandidate>& candidates = out.candidates;
+  const vec2* point = out.point.data();
+  // Counted here, stored at the end (stores through the state image could alias `out`).
+  uint64_t triangles = 0, stretched_count = 0, curved_count = 0, discontinuous = 0, edges = 0;
   for (size_t t = 0; t < candidates.size(); ++t) {
     const WarpCandidate& cand = candidates[t];
     if (!valid[cand.corner[0]] || !valid[cand.corner[1]] || !valid[cand.corner[2]]) continue;
     if (cand.flags & kCandidateDiscontinuous) {
-      ++out.discontinuous;
+      ++discontinuous;
       continue;
     }
-    ++out.triangles;
-    const vec2 a = out.point[cand.corner[0]], b = out.point[cand.corner[1]], c = out.point[cand.corner[2]];
-    const float area = 0.5f * std::abs(cross2(b - a, c - a));
-    const bool stretched = !(area <= options.stretch_limit * 0.5f);  // original area: ½ pixel²
+    ++triangles;
+    const vec2 a = point[cand.corner[0]], b = point[cand.corner[1]], c = point[cand.corner[2]];
+    const float area2 = cross2(b - a, c - a);
+    const float area = 0.5f * std::abs(area2);
+    const bool stretched = !(area <= stretch_area);
     const bool curved = (cand.flags & kCandidateCurved) != 0;
     const bool edge = (cand.flags & kCandidateEdge) != 0;
     const bool edge_recompute = edge && edge_recompute_rule;
-    const uint8_t state = curved            ? kWarpCurved
-                          : stretched       ? kWarpUnreliable
-                          : edge_recompute ? kWarpEdge
-                                            : kWarpReliable;
-    out.stretched += stretched;
-    out.curved += curved;
-    out.edges += edge;
+    const uint8_t tri_state = curved           ? kWarpCurved
+                              : stretched      ? kWarpUnreliable
+                              : edge_recompute ? kWarpEdge
+                                               : kWarpReliable;
+    stretched_count += stretched;
+    curved_count += curved;
+    edges += edge;
     const float ymin = std::min({a.y, b.y, c.y}), ymax = std::max({a.y, b.y, c.y});
-    const int r0 = std::max(0, int(std::ceil(ymin - 0.5f - kEdgeSlack)));
-    const int r1 = std::min(h - 1, int(std::floor(ymax - 0.5f + kEdgeSlack)));
+    const int r0 = std::max(0, ceil_int(ymin - 0.5f - kEdgeSlack));
+    const int r1 = std::min(h - 1, floor_int(ymax - 0.5f + kEdgeSlack));
     if (r0 > r1) continue;
-    for (int band = r0 / kBandRows; band <= r1 / kBandRows; ++band)
-      band_tris[size_t(band)].push_back({uint32_t(t), state, edge && !edge_recompute});
+    if (one_pass)
+      raster_triangle(to, cand, a, b, c, area2, tri_state, edge && !edge_recompute, r0, r1);
+    else
+      live.push_back({uint32_t(t), tri_state, edge && !edge_recompute, r0, r1});
   }
+  out.triangles = triangles, out.stretched = stretched_count, out.curved = curved_count;
+  out.discontinuous = discontinuous, out.edges = edges;
 
-  parallel_for(size_t(bands), 1, [&](size_t band_begin, size_t band_end) {
-    float* out_depth = out.depth.data().data();
-    float* out_radiance = out.radiance.data().data();
-    uint8_t* out_state = out.state.data().data();
-    uint32_t* out_triangle = out.triangle.data().data();
-    for (size_t band = band_begin; band < band_end; ++band) {
-      const int y_lo = int(band) * kBandRows, y_hi = std::min(h, y_lo + kBandRows);
-      for (const Tri& t : band_tris[band]) {
-        const WarpCandidate& cand = candidates[t.candidate];
-        Vertex v[3];
-        for (int k = 0; k < 3; ++k) v[k] = vertex_at(out, cand.corner[k]);
-        const uint32_t quad = pixels[cand.corner[0]];
-        const uint32_t id = 2u * quad + uint32_t(cand.half);
-        const uint32_t reflector = object[quad];
-        const float area2 = cross2(v[1].p - v[0].p, v[2].p - v[0].p);
-        if (std::abs(area2) < 1e-12f) continue;  // collapsed: covers no pixel centre
-        const float ymin = std::min({v[0].p.y, v[1].p.y, v[2].p.y}), ymax = std::max({v[0].p.y, v[1].p.y, v[2].p.y});
-        const float xmin = std::min({v[0].p.x, v[1].p.x, v[2].p.x}), xmax = std::max({v[0].p.x, v[1].p.x, v[2].p.x});
-        const int py0 = std::max(y_lo, int(std::ceil(ymin - 0.5f - kEdgeSlack)));
-        const int py1 = std::min(y_hi - 1, int(std::floor(ymax - 0.5f + kEdgeSlack)));
-        const int px0 = std::max(0, int(std::ceil(xmin - 0.5f - kEdgeSlack)));
-        const int px1 = std::min(w - 1, int(std::floor(xmax - 0.5f + kEdgeSlack)));
-        const float slack = kEdgeSlack * std::sqrt(std::abs(area2));  // in edge-function units
-        const float inv = 1.0f / std::abs(area2);
-        for (int py = py0; py <= py1; ++py)
-          for (int px = px0; px <= px1; ++px) {
-            const size_t at = size_t(py) * size_t(w) + size_t(px);
-            // Offsets stay on their reflector, so a pixel only takes its own reflector's
-            // triangles: another's (a floor mirror warped over a ball standing on it) would
-            // win the depth test there with the wrong reflection.
-            if (object[at] != reflector) continue;
-            const vec2 p(float(px) + 0.5f, float(py) + 0.5f);
-            // Barycentrics from edge functions, signed by the triangle's orientation.
-            float e0 = cross2(v[2].p - v[1].p, p - v[1].p), e1 = cross2(v[0].p - v[2].p, p - v[2].p),
-                  e2 = cross2(v[1].p - v[0].p, p - v[0].p);
-            if (area2 < 0.0f) e0 = -e0, e1 = -e1, e2 = -e2;
-            if (e0 < -slack || e1 < -slack || e2 < -slack) continue;
-            const float b[3] = {std::max(e0, 0.0f) * inv, std::max(e1, 0.0f) * inv, std::max(e2, 0.0f) * inv};
-            const float sum = b[0] + b[1] + b[2];
-            const float z = (b[0] * v[0].z + b[1] * v[1].z + b[2] * v[2].z) / sum;
-            if (!(z < out_depth[at])) continue;  // ties: the first triangle keeps the pixel
-            out_depth[at] = z;
-            const vec3 lr = reconstruct(v, b, t.nearest);
-            for (int c = 0; c < 3; ++c) out_radiance[3 * at + size_t(c)] = lr[c];
-            out_state[at] = t.state;
-            out_triangle[at] = id;
-          }
-      }
+  // Each pixel takes the triangles covering it in the candidates' order whatever the rows
+  // are split into: one pass on one thread, fixed row bands on more (the same result).
+  if (!one_pass) {
+    // Bin each into the row bands its bounding box touches, in order (a counting sort).
+    static thread_local std::vector<uint32_t> band_start_kept, band_list_kept;
+    std::vector<uint32_t>& band_start = band_start_kept;
+    std::vector<uint32_t>& band_list = band_list_kept;
+    band_start.assign(size_t(bands) + 1, 0u);
+    for (const LiveTriangle& t : live)
+      for (int band = t.r0 / kBandRows; band <= t.r1 / kBandRows; ++band) ++band_start[size_t(band) + 1];
+    for (int band = 0; band < bands; ++band) band_start[size_t(band) + 1] += band_start[size_t(band)];
+    band_list.resize(band_start[size_t(bands)]);
+    {
+      std::vector<uint32_t> next(band_start.begin(), band_start.end() - 1);
+      for (size_t k = 0; k < live.size(); ++k)
+        for (int band = live[k].r0 / kBandRows; band <= live[k].r1 / kBandRows; ++band)
+          band_list[next[size_t(band)]++] = uint32_t(k);
     }
-  });
+    parallel_for(size_t(bands), 1, [&](size_t band_begin, size_t band_end) {
+      for (size_t band = band_begin; band < band_end; ++band) {
+        const int y_lo = int(band) * kBandRows, y_hi = std::min(h, y_lo + kBandRows);
+        for (uint32_t k = band_start[band]; k < band_start[band + 1]; ++k) {
+          const LiveTriangle& t = live[band_list[k]];
+          const WarpCandidate& cand = candidates[t.candidate];
+          const vec2 a = point[cand.corner[0]], b = point[cand.corner[1]], c = point[cand.corner[2]];
+          raster_triangle(to, cand, a, b, c, cross2(b - a, c - a), t.state, t.nearest, std::max(y_lo, t.r0),
+                          std::min(y_hi - 1, t.r1));
+        }
+      }
+    });
+  }
   // Valid samples no triangle reached (one-pixel-wide parts of a reflector, corners next
   // to a dropped triangle) still land as points on the pixel nearest their warped position.
+  const uint8_t* flat = out.flat.data();
+  const WarpSample* sample = out.sample.data();
+  const uint8_t splat_flat = options.recompute_splats ? kWarpUnreliable : kWarpReliable;
   for (size_t j = 0; j < n; ++j) {
     const uint32_t i = pixels[j];
     if (object[i] == kNoReflector || !valid[j]) continue;
-    const Vertex v = vertex_at(out, uint32_t(j));
-    const int px = int(std::floor(v.p.x)), py = int(std::floor(v.p.y));
-    if (px < 0 || py < 0 || px >= w || py >= h || out.state.at(px, py) != kWarpEmpty ||
-        key.object.at(px, py) != object[i])
-      continue;
-    out.depth.at(px, py) = v.z;
-    for (int c = 0; c < 3; ++c) out.radiance.at(px, py, c) = v.lr[c];
-    out.state.at(px, py) = !out.flat[j] ? kWarpCurved : options.recompute_splats ? kWarpUnreliable : kWarpReliable;
+    const vec2 p = point[j];
+    const int px = floor_int(p.x), py = floor_int(p.y);
+    if (px < 0 || py < 0 || px >= w || py >= h) continue;
+    const size_t at = size_t(py) * size_t(w) + size_t(px);
+    if (state[at] != kWarpEmpty || object[at] != object[i]) continue;
+    depth[at] = sample[j].z;
+    const vec3 lr = sample[j].lr;
+    for (int c = 0; c < 3; ++c) radiance[3 * at + size_t(c)] = lr[c];
+    state[at] = !flat[j] ? uint8_t(kWarpCurved) : splat_flat;
   }
 }
 
