@@ -223,60 +223,83 @@ void build_key_tables(const ReflectionDepthImage& key, const WarpOptions& option
   out.sample.resize(n);
   out.flat.resize(n);
   out.index.resize(size_t(w) * size_t(h));  // read on reflective pixels only, each set here
+  // The key's images as plain arrays (one channel each, radiance three).
+  const uint32_t* object = key.object.data().data();
+  const float* depth = key.depth.data().data();
+  const float* distance = key.distance.data().data();
+  const float* radiance = key.radiance.data().data();
+  const float* specular = key.specular.data().data();
+  const float* spread_image = key.spread.data().data();
+  const float* lobe = key.lobe.data().data();
+  uint32_t* index = out.index.data();
+  WarpSample* sample = out.sample.data();
   // A glossy lobe averages over its cone: a reflector that bends the reflection by less
   // than the lobe's half-angle per pixel does not change a pixel's value much.
   const float pixel_angle = 1.0f / focal_length_px(key.camera);
   auto contrast = [&](int x, int y) {
-    const uint32_t object = key.object.at(x, y);
+    const size_t i = size_t(y) * size_t(w) + size_t(x);
+    const uint32_t o = object[i];
     constexpr int kStep[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
     float most = 0.0f;
     for (const auto& d : kStep) {
       const int nx = x + d[0], ny = y + d[1];
-      if (nx < 0 || ny < 0 || nx >= w || ny >= h || key.object.at(nx, ny) != object) continue;
+      if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+      const size_t ni = size_t(ny) * size_t(w) + size_t(nx);
+      if (object[ni] != o) continue;
       for (int c = 0; c < 3; ++c)
-        most = std::max(most, std::abs(key.specular.at(x, y) * key.radiance.at(x, y, c) -
-                                       key.specular.at(nx, ny) * key.radiance.at(nx, ny, c)));
+        most = std::max(most, std::abs(specular[i] * radiance[3 * i + size_t(c)] -
+                                       specular[ni] * radiance[3 * ni + size_t(c)]));
     }
     return most;
   };
+  // key.pixels are row-major: a pixel's row follows without a division.
+  uint32_t y = 0, row_start = 0;
   for (size_t j = 0; j < n; ++j) {
     const uint32_t i = pixels[j];
-    const int x = int(i % uint32_t(w)), y = int(i / uint32_t(w));
-    out.index[i] = uint32_t(j);
-    out.sample[j] = WarpSample{key.depth.at(x, y) + key.distance.at(x, y),
-                               vec3(key.radiance.at(x, y, 0), key.radiance.at(x, y, 1), key.radiance.at(x, y, 2))};
-    const float spread = key.spread.at(x, y);
-    out.flat[j] = spread <= options.spread_limit || spread * pixel_angle <= key.lobe.at(x, y) ||
-                  contrast(x, y) <= options.curved_contrast;
+    while (i - row_start >= uint32_t(w)) ++y, row_start += uint32_t(w);
+    const int x = int(i - row_start);
+    index[i] = uint32_t(j);
+    sample[j] = WarpSample{depth[i] + distance[i], vec3(radiance[3 * size_t(i)], radiance[3 * size_t(i) + 1],
+                                                        radiance[3 * size_t(i) + 2])};
+    const float spread = spread_image[i];
+    out.flat[j] = spread <= options.spread_limit || spread * pixel_angle <= lobe[i] ||
+                  contrast(x, int(y)) <= options.curved_contrast;
   }
+  const uint8_t* flat = out.flat.data();
   const float jump = 1.0f + options.depth_discontinuity;
   auto continuous = [&](std::array<float, 3> v) {
     const auto [lo, hi] = std::minmax({v[0], v[1], v[2]});
     return hi <= jump * lo;
   };
+  const bool edges = options.edge_contrast < kInf;  // else edge_triangle is false
   out.candidates.clear();
+  y = 0, row_start = 0;
   for (size_t j = 0; j < n; ++j) {  // (x, y): both halves' first corner, reflective
     const uint32_t i = pixels[j];
-    const int x = int(i % uint32_t(w)), y = int(i / uint32_t(w));
-    if (y + 1 >= h || x + 1 >= w) continue;
+    while (i - row_start >= uint32_t(w)) ++y, row_start += uint32_t(w);
+    const int x = int(i - row_start);
+    if (int(y) + 1 >= h || x + 1 >= w) continue;
+    const uint32_t o = object[i];
+    const size_t diagonal = size_t(i) + size_t(w) + 1u;  // both halves' corner
+    if (o == kNoReflector || object[diagonal] != o) continue;
     for (int half = 0; half < 2; ++half) {
-      int cx[3], cy[3];
-      for (int k = 0; k < 3; ++k) cx[k] = x + kCorner[half][k][0], cy[k] = y + kCorner[half][k][1];
-      const uint32_t o = key.object.at(cx[0], cy[0]);
-      if (o == kNoReflector || key.object.at(cx[1], cy[1]) != o || key.object.at(cx[2], cy[2]) != o) continue;
-      WarpCandidate cand{};
-      for (int k = 0; k < 3; ++k) cand.corner[k] = out.index[size_t(cy[k]) * size_t(w) + size_t(cx[k])];
+      const size_t third = half == 0 ? size_t(i) + 1u : size_t(i) + size_t(w);  // (x+1, y) or (x, y+1)
+      if (object[third] != o) continue;
+      const size_t at[3] = {size_t(i), half == 0 ? third : diagonal, half == 0 ? diagonal : third};
+      WarpCandidate& cand = out.candidates.emplace_back();  // filled in place
+      for (int k = 0; k < 3; ++k) cand.corner[k] = index[at[k]];
       cand.half = uint8_t(half);
-      const float za = out.sample[cand.corner[0]].z, zb = out.sample[cand.corner[1]].z, zc = out.sample[cand.corner[2]].z;
-      if (!continuous({key.depth.at(cx[0], cy[0]), key.depth.at(cx[1], cy[1]), key.depth.at(cx[2], cy[2])}) ||
-          !continuous({za, zb, zc})) {
+      const float za = sample[cand.corner[0]].z, zb = sample[cand.corner[1]].z, zc = sample[cand.corner[2]].z;
+      if (!continuous({depth[at[0]], depth[at[1]], depth[at[2]]}) || !continuous({za, zb, zc})) {
         cand.flags = kCandidateDiscontinuous;
       } else {
-        if (!out.flat[cand.corner[0]] || !out.flat[cand.corner[1]] || !out.flat[cand.corner[2]])
-          cand.flags |= kCandidateCurved;
-        if (edge_triangle(key, cx, cy, options.edge_contrast)) cand.flags |= kCandidateEdge;
+        if (!flat[cand.corner[0]] || !flat[cand.corner[1]] || !flat[cand.corner[2]]) cand.flags |= kCandidateCurved;
+        if (edges) {
+          int cx[3], cy[3];
+          for (int k = 0; k < 3; ++k) cx[k] = x + kCorner[half][k][0], cy[k] = int(y) + kCorner[half][k][1];
+          if (edge_triangle(key, cx, cy, options.edge_contrast)) cand.flags |= kCandidateEdge;
+        }
       }
-      out.candidates.push_back(cand);
     }
   }
 }
