@@ -446,32 +446,24 @@ void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& 
   // its own reflector's triangles and splats): reset those, not four whole images per frame.
   // Under the same key they are this key's pixels: reset with the per-frame fill below.
   const bool reset_in_fill = same_size && same_key;
-  float* radiance = nullptr;
-  float* depth = nullptr;
-  uint8_t* state = nullptr;
-  uint32_t* triangle = nullptr;
-  if (same_size) {
-    radiance = out.radiance.data().data();
-    depth = out.depth.data().data();
-    state = out.state.data().data();
-    triangle = out.triangle.data().data();
-    if (!reset_in_fill)
-      for (const uint32_t i : out.written) {
-        radiance[3 * size_t(i)] = radiance[3 * size_t(i) + 1] = radiance[3 * size_t(i) + 2] = 0.0f;
-        depth[i] = kInf;
-        state[i] = kWarpEmpty;
-        triangle[i] = kNoWarpTriangle;
-      }
-  } else {
+  if (!same_size) {
     out.radiance = ImageF(w, h, 3, 0.0f);
     out.depth = ImageF(w, h, 1, kInf);
     out.state = ImageU8(w, h, 1, kWarpEmpty);
     out.triangle = ImageU32(w, h, 1, kNoWarpTriangle);
-    radiance = out.radiance.data().data();
-    depth = out.depth.data().data();
-    state = out.state.data().data();
-    triangle = out.triangle.data().data();
   }
+  float* const radiance = out.radiance.data().data();
+  float* const depth = out.depth.data().data();
+  uint8_t* const state = out.state.data().data();
+  uint32_t* const triangle = out.triangle.data().data();
+  auto reset = [&](uint32_t i) {
+    radiance[3 * size_t(i)] = radiance[3 * size_t(i) + 1] = radiance[3 * size_t(i) + 2] = 0.0f;
+    depth[i] = kInf;
+    state[i] = kWarpEmpty;
+    triangle[i] = kNoWarpTriangle;
+  };
+  if (same_size && !reset_in_fill)
+    for (const uint32_t i : out.written) reset(i);
   reserve_for_image(out, size_t(w) * size_t(h));
   if (!same_key) out.written.assign(key.pixels.begin(), key.pixels.end());
   out.triangles = out.stretched = out.curved = out.discontinuous = out.edges = 0;
@@ -502,12 +494,7 @@ void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& 
       while (i - row_start >= uint32_t(w)) ++y, row_start += uint32_t(w);
       point[j] = vec2(float(i - row_start) + 0.5f, float(y) + 0.5f) + offset[i];
       valid_out[j] = offset_valid[i];
-      if (reset_in_fill) {
-        radiance[3 * size_t(i)] = radiance[3 * size_t(i) + 1] = radiance[3 * size_t(i) + 2] = 0.0f;
-        depth[i] = kInf;
-        state[i] = kWarpEmpty;
-        triangle[i] = kNoWarpTriangle;
-      }
+      if (reset_in_fill) reset(i);
     }
   }
   const uint8_t* valid = out.valid.data();
