@@ -118,6 +118,35 @@ float linear_to_srgb_approx(float l) { return srgb_approx(srgb_table(), l); }
 
 float linear_to_srgb_approx_error() { return kSrgbError; }
 
+namespace {
+
+// Σ_k w_k·|x_k − x| per channel, x = base + s·Lr as the risk's display() computes it, all
+// three below `bound` / kSlopeBound (`bound`: (limit − kClearMargin)·Σ w). Both display curves
+// are nearly 12.92-Lipschitz on [0, 1]: linear_to_srgb's linear piece has slope 12.92, its
+// power piece at most 12.70 (at its start), its jump between them is 2·10⁻⁸ and powf is
+// within 1.5·10⁻⁷ of it (checked on every float of [0, 1]); the table's chords are then
+// steeper by at most 2·1.5·10⁻⁷·4096 + 10⁻⁴ and its interpolation adds ≤ 2.5·10⁻⁷. The clamp
+// is 1-Lipschitz, so each table term |D(x_k) − D(x)| ≤ 12.922·|x_k − x| + 5·10⁻⁷, and the
+// table's risk ≤ 255·12.922/kSlopeBound·(limit − kClearMargin) + 1.3·10⁻⁴ (the float rounding
+// of these few sums and products: ~10⁻⁶ relative, inside the 3% between 255·12.922 and
+// kSlopeBound) < limit − kMargin: blend_risk_exceeds's table decides "no" there. NaN or
+// infinite x never pass.
+constexpr float kSlopeBound = 3400.0f;
+constexpr float kClearMargin = 0.125f;
+
+bool below_by_slope(const BlendSamples& blend, vec3 value, float s, vec3 base, float bound) {
+  float sum[3];
+  for (int c = 0; c < 3; ++c) {
+    const float at = base[c] + s * value[c];
+    float t = 0.0f;
+    for (int k = 0; k < blend.n; ++k) t += blend.w[k] * std::abs(base[c] + s * blend.lr[k][c] - at);
+    sum[c] = t;
+  }
+  return kSlopeBound * sum[0] < bound && kSlopeBound * sum[1] < bound && kSlopeBound * sum[2] < bound;
+}
+
+}  // namespace
+
 bool blend_risk_exceeds(const BlendSamples& blend, vec3 value, float s, vec3 base, float limit) {
   // The risk from the table instead of powf is off by at most 255·2·kSrgbError (each term's
   // two display values by kSrgbError, a weighted mean of non-negative weights, a max over
@@ -125,11 +154,14 @@ bool blend_risk_exceeds(const BlendSamples& blend, vec3 value, float s, vec3 bas
   // that. Outside it the decision is the exact one; inside it (and for NaN, negative
   // weights, or no weight) the exact risk decides.
   constexpr float kMargin = 2.0f * 255.0f * 2.0f * kSrgbError;
+  static_assert(kMargin + 0.02f < kClearMargin && 255.0f * 12.922f < 0.97f * kSlopeBound);
   const float* table = srgb_table();
   float total = 0.0f;
   bool usable = true;
   for (int k = 0; k < blend.n; ++k) total += blend.w[k], usable = usable && blend.w[k] >= 0.0f;
   if (usable && total > 0.0f && total < kInf) {
+    // Most blends are of similar samples: the display curve's slope settles those first.
+    if (below_by_slope(blend, value, s, base, (limit - kClearMargin) * total)) return false;
     auto display = [&](vec3 lr, int c, bool& ok) {
       const float x = base[c] + s * lr[c];
       ok = ok && x == x;
@@ -156,53 +188,50 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance, BlendSam
   const int cx = int(std::floor(q.x)), cy = int(std::floor(q.y));
   const uint8_t* state = image.state.data().data();
   const uint32_t* triangle = image.triangle.data().data();
-  uint32_t tried[9];
-  int n_tried = 0;
-  for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) {
-      const int x = cx + dx, y = cy + dy;
-      if (x < 0 || y < 0 || x >= w || y >= h) continue;
+  const uint32_t* index = image.index.data();
+  const vec2* point = image.point.data();
+  // The 3×3 pixels around q inside the image, row by row. A triangle stored at two of them
+  // is tested twice: the same test, so the same miss (a hit returns at the first).
+  const int x_lo = std::max(cx - 1, 0), x_hi = std::min(cx + 1, w - 1);
+  const int y_lo = std::max(cy - 1, 0), y_hi = std::min(cy + 1, h - 1);
+  for (int y = y_lo; y <= y_hi; ++y)
+    for (int x = x_lo; x <= x_hi; ++x) {
       const size_t at = size_t(y) * size_t(w) + size_t(x);
       if (state[at] != kWarpReliable) continue;
       const uint32_t id = triangle[at];
       if (id == kNoWarpTriangle) continue;  // a splatted point
-      if (std::find(tried, tried + n_tried, id) != tried + n_tried) continue;
-      tried[n_tried++] = id;
       const uint32_t quad = id / 2u, half = id % 2u;
       // The test reads the packed positions; the whole vertices and the corners' coordinates
       // only on a hit. Corner indices in key.pixels: those are row-major, so a corner's right
       // neighbour (also reflective) is the next index: two map reads, not three.
-      const uint32_t first = image.index[quad], diagonal = image.index[size_t(quad) + size_t(w) + 1u];
-      const uint32_t corner[3] = {first, half == 0u ? first + 1u : diagonal,
-                                  half == 0u ? diagonal : diagonal - 1u};
-      vec2 p[3];
-      for (int k = 0; k < 3; ++k) p[k] = image.point[corner[k]];
+      const uint32_t first = index[quad], diagonal = index[size_t(quad) + size_t(w) + 1u];
+      const uint32_t corner[3] = {first, half == 0u ? first + 1u : diagonal, half == 0u ? diagonal : diagonal - 1u};
+      const vec2 p[3] = {point[corner[0]], point[corner[1]], point[corner[2]]};
       const float area2 = cross2(p[1] - p[0], p[2] - p[0]);
       if (std::abs(area2) < 1e-12f) continue;
-      // Edge functions signed by the orientation, each rejected as soon as it is computed.
+      // Edge functions signed by the orientation; a clear miss of any one rejects (one
+      // branch for the three: which one misses is unpredictable).
       const float bound = -clear_miss_bound(area2);
       auto edge = [&](vec2 a, vec2 b) {
         const float e = cross2(b - a, q - a);
         return area2 < 0.0f ? -e : e;
       };
-      const float e0 = edge(p[1], p[2]);
-      if (e0 < bound) continue;
-      const float e1 = edge(p[2], p[0]);
-      if (e1 < bound) continue;
-      const float e2 = edge(p[0], p[1]);
-      if (e2 < bound) continue;
+      const float e0 = edge(p[1], p[2]), e1 = edge(p[2], p[0]), e2 = edge(p[0], p[1]);
+      if ((e0 < bound) | (e1 < bound) | (e2 < bound)) continue;
       const float slack = e0 >= 0.0f && e1 >= 0.0f && e2 >= 0.0f ? 0.0f  // inside: no slack needed
                                                                   : kEdgeSlack * std::sqrt(std::abs(area2));
       if (e0 < -slack || e1 < -slack || e2 < -slack) continue;
-      const int qx = int(quad % uint32_t(w)), qy = int(quad / uint32_t(w));
       Vertex v[3];
-      int cx3[3], cy3[3];
-      for (int k = 0; k < 3; ++k) {
-        cx3[k] = qx + kCorner[half][k][0], cy3[k] = qy + kCorner[half][k][1];
-        v[k] = vertex_at(image, corner[k]);
-      }
+      for (int k = 0; k < 3; ++k) v[k] = vertex_at(image, corner[k]);
       const float b[3] = {std::max(e0, 0.0f), std::max(e1, 0.0f), std::max(e2, 0.0f)};
-      radiance = reconstruct(v, b, edge_triangle(*mesh.key, cx3, cy3, mesh.edge_contrast));
+      bool nearest = false;
+      if (mesh.edge_contrast < kInf) {  // edge_triangle is false otherwise
+        const int qx = int(quad % uint32_t(w)), qy = int(quad / uint32_t(w));
+        int cx3[3], cy3[3];
+        for (int k = 0; k < 3; ++k) cx3[k] = qx + kCorner[half][k][0], cy3[k] = qy + kCorner[half][k][1];
+        nearest = edge_triangle(*mesh.key, cx3, cy3, mesh.edge_contrast);
+      }
+      radiance = reconstruct(v, b, nearest);
       if (blend) {
         blend->n = 3;
         for (int k = 0; k < 3; ++k) blend->lr[k] = v[k].lr, blend->w[k] = b[k];
