@@ -182,8 +182,8 @@ namespace {
 
 // warped_radiance_at's value at q of triangle `id` (corners `corner` in key.pixels, edge
 // functions e, q inside or within the slack), and the blend it is.
-void triangle_value(const WarpedMesh& mesh, uint32_t id, const uint32_t corner[3], const float e[3], vec3& radiance,
-                    BlendSamples* blend) {
+void triangle_value(const WarpedMesh& mesh, uint32_t id, const uint32_t corner[3], const float e[3],
+                    vec3& radiance, BlendSamples* blend) {
   const IntermediateReflection& image = *mesh.image;
   Vertex v[3];
   for (int k = 0; k < 3; ++k) v[k] = vertex_at(image, corner[k]);
@@ -231,7 +231,9 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance, BlendSam
   auto corners = [&](uint32_t id, uint32_t corner[3]) {
     const uint32_t quad = id / 2u, half = id % 2u;
     const uint32_t first = index[quad], diagonal = index[size_t(quad) + size_t(w) + 1u];
-    corner[0] = first, corner[1] = half == 0u ? first + 1u : diagonal, corner[2] = half == 0u ? diagonal : diagonal - 1u;
+    corner[0] = first;
+    corner[1] = half == 0u ? first + 1u : diagonal;
+    corner[2] = half == 0u ? diagonal : diagonal - 1u;
   };
   // The test, with edge functions e_k signed by the orientation: a degenerate triangle
   // (|area2| < 1e-12) covers nothing; q counts as inside when no e_k < −kEdgeSlack·√|area2|
@@ -257,8 +259,10 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance, BlendSam
       }
     }
     __m128 px[3], py[3];
-    for (int k = 0; k < 3; ++k)
-      px[k] = _mm_shuffle_ps(lo[k], hi[k], _MM_SHUFFLE(2, 0, 2, 0)), py[k] = _mm_shuffle_ps(lo[k], hi[k], _MM_SHUFFLE(3, 1, 3, 1));
+    for (int k = 0; k < 3; ++k) {
+      px[k] = _mm_shuffle_ps(lo[k], hi[k], _MM_SHUFFLE(2, 0, 2, 0));
+      py[k] = _mm_shuffle_ps(lo[k], hi[k], _MM_SHUFFLE(3, 1, 3, 1));
+    }
     auto cross = [](__m128 ax, __m128 ay, __m128 bx, __m128 by) {
       return _mm_sub_ps(_mm_mul_ps(ax, by), _mm_mul_ps(ay, bx));
     };
@@ -266,14 +270,16 @@ bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance, BlendSam
                                _mm_sub_ps(py[2], py[0]));
     const __m128 flip = _mm_and_ps(_mm_cmplt_ps(area2, _mm_setzero_ps()), sign);
     auto edge = [&](int a, int b) {
-      return _mm_xor_ps(cross(_mm_sub_ps(px[b], px[a]), _mm_sub_ps(py[b], py[a]), _mm_sub_ps(qx, px[a]), _mm_sub_ps(qy, py[a])),
+      return _mm_xor_ps(cross(_mm_sub_ps(px[b], px[a]), _mm_sub_ps(py[b], py[a]), _mm_sub_ps(qx, px[a]),
+                              _mm_sub_ps(qy, py[a])),
                         flip);
     };
     __m128 e[3] = {edge(1, 2), edge(2, 0), edge(0, 1)};
     const __m128 size = _mm_andnot_ps(sign, area2);
     const __m128 outside = _mm_xor_ps(_mm_mul_ps(_mm_set1_ps(kEdgeSlack), _mm_sqrt_ps(size)), sign);
-    const __m128 miss = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(size, _mm_set1_ps(1e-12f)), _mm_cmplt_ps(e[0], outside)),
-                                  _mm_or_ps(_mm_cmplt_ps(e[1], outside), _mm_cmplt_ps(e[2], outside)));
+    const __m128 miss =
+        _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(size, _mm_set1_ps(1e-12f)), _mm_cmplt_ps(e[0], outside)),
+                  _mm_or_ps(_mm_cmplt_ps(e[1], outside), _mm_cmplt_ps(e[2], outside)));
     const unsigned hits = ~unsigned(_mm_movemask_ps(miss)) & ((1u << lanes) - 1u);
     if (hits) {
       const int l = std::countr_zero(hits);

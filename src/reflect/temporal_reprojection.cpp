@@ -50,7 +50,9 @@ void reproject_reflections_into(const ReflectionFrame& frame, const ReflectionDe
     return vec3(p[0], p[1], p[2]);
   };
   // The pixel's WarpState, kWarpReliable without a state image.
-  auto warp_state = [&](int x, int y) { return state_px ? state_px[size_t(y) * sw + size_t(x)] : uint8_t(kWarpReliable); };
+  auto warp_state = [&](int x, int y) {
+    return state_px ? state_px[size_t(y) * sw + size_t(x)] : uint8_t(kWarpReliable);
+  };
   // project(key.camera, ·) with its per-call constants (the inverse rotation, the focal
   // length's tan) hoisted: the same operations on the same values, so the same bits.
   const quat to_camera = glm::conjugate(key.camera.orientation);
@@ -92,14 +94,16 @@ void reproject_reflections_into(const ReflectionFrame& frame, const ReflectionDe
         continue;
       }
       if (const uint8_t st = warp_state(nx, ny); st != kWarpReliable) {
-        flag = uint8_t(kReuseUnreliable | (st == kWarpCurved ? kReuseCurved : 0) | (st == kWarpEdge ? kReuseEdge : 0));
+        flag = uint8_t(kReuseUnreliable | (st == kWarpCurved ? kReuseCurved : 0) |
+                       (st == kWarpEdge ? kReuseEdge : 0));
         ++n_unreliable, n_curved += st == kWarpCurved, n_edge += st == kWarpEdge;
         continue;
       }
       BlendSamples blend;
       auto risky = [&](vec3 v) {
         const float* rgb = base + size_t(frame.pixel[i]) * 3u;  // G-buffer pixel y·width + x
-        return blend_risk_exceeds(blend, v, frame.specular[i], vec3(rgb[0], rgb[1], rgb[2]), mesh->blend_error);
+        return blend_risk_exceeds(blend, v, frame.specular[i], vec3(rgb[0], rgb[1], rgb[2]),
+                                  mesh->blend_error);
       };
       auto recompute_edge = [&] {
         value = vec3(0.0f);
@@ -133,7 +137,8 @@ void reproject_reflections_into(const ReflectionFrame& frame, const ReflectionDe
         }
       // The same edge rule as the mesh's: no blend across a reflected edge.
       const vec3 range = hi - lo;
-      const bool edge = edge_test && weight > 0.0f && std::max({range.x, range.y, range.z}) > mesh->edge_contrast;
+      const bool edge =
+          edge_test && weight > 0.0f && std::max({range.x, range.y, range.z}) > mesh->edge_contrast;
       if (edge && edge_recompute) {
         flag = uint8_t(kReuseUnreliable | kReuseEdge);
         ++n_unreliable, ++n_edge;

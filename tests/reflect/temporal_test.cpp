@@ -715,8 +715,8 @@ TEST(TemporalReflections, BlendRiskExceedsIsTheExactDecisionForSimilarSamples) {
     const float s = t % 5 == 0 ? 1.0f : uniform();
     const vec3 base = t % 7 == 0 ? vec3(0.0f) : 0.3f * vec3(uniform(), uniform(), uniform());
     const float risk = blend_risk(blend, value, s, base);
-    for (const float limit : {8.0f, 0.5f, 2.0f * uniform(), risk, risk + 0.2f, risk - 0.2f, risk * 1.1f, risk * 0.9f,
-                              risk / 0.95f, risk * 0.95f}) {
+    for (const float limit : {8.0f, 0.5f, 2.0f * uniform(), risk, risk + 0.2f, risk - 0.2f, risk * 1.1f,
+                              risk * 0.9f, risk / 0.95f, risk * 0.95f}) {
       ASSERT_EQ(blend_risk_exceeds(blend, value, s, base, limit), risk > limit)
           << "case " << t << " limit " << limit << " risk " << risk;
       exceeded += risk > limit;
@@ -815,7 +815,8 @@ TEST(TemporalReflections, WarpedRadianceAtIsTheFirstTriangleThatContainsQ) {
   const Scene scene = floor_mirror(true);
   RayScene rays(scene);
   const ReflectionFrame frame = frame_at(scene, kKeyEye);
-  const ReflectionDepthImage key = make_reflection_depth_image(frame, trace_reflections(scene, rays, frame), 1e3f);
+  const ReflectionDepthImage key =
+      make_reflection_depth_image(frame, trace_reflections(scene, rays, frame), 1e3f);
   const OffsetBuffer offsets = best_match_search(key, kKeyEye + kMove, nullptr, {});
   const IntermediateReflection mid = warp_reflections(key, offsets, {});
   const WarpedMesh mesh{&key, &offsets, &mid};
@@ -824,7 +825,8 @@ TEST(TemporalReflections, WarpedRadianceAtIsTheFirstTriangleThatContainsQ) {
   int hits = 0, misses = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      for (const vec2 d : {vec2(0.5f), vec2(0.0f), vec2(0.37f, 0.61f), vec2(0.999f, 0.25f), vec2(0.5f, 0.0001f)}) {
+      for (const vec2 d :
+           {vec2(0.5f), vec2(0.0f), vec2(0.37f, 0.61f), vec2(0.999f, 0.25f), vec2(0.5f, 0.0001f)}) {
         const vec2 q = vec2(float(x), float(y)) + d;
         bool want = false;
         uint32_t want_corner[3] = {};
@@ -861,7 +863,8 @@ TEST(TemporalReflections, WarpedRadianceAtIsTheFirstTriangleThatContainsQ) {
         ++hits;
         ASSERT_EQ(blend.n, 3);
         for (int k = 0; k < 3; ++k) {
-          ASSERT_EQ(std::bit_cast<uint32_t>(blend.w[k]), std::bit_cast<uint32_t>(want_b[k])) << q.x << " " << q.y;
+          ASSERT_EQ(std::bit_cast<uint32_t>(blend.w[k]), std::bit_cast<uint32_t>(want_b[k]))
+              << q.x << " " << q.y;
           ASSERT_TRUE(blend.lr[k] == mid.sample[want_corner[k]].lr);
         }
       }
