@@ -6,8 +6,10 @@
 #include <atomic>
 #include <cassert>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
+#include "proxima/core/camera_projection.h"
 #include "proxima/core/parallel.h"
 
 namespace proxima {
@@ -53,12 +55,7 @@ void reproject_reflections_into(const ReflectionFrame& frame, const ReflectionDe
   auto warp_state = [&](int x, int y) {
     return state_px ? state_px[size_t(y) * sw + size_t(x)] : uint8_t(kWarpReliable);
   };
-  // project(key.camera, ·) with its per-call constants (the inverse rotation, the focal
-  // length's tan) hoisted: the same operations on the same values, so the same bits.
-  const quat to_camera = glm::conjugate(key.camera.orientation);
-  const vec3 eye = key.camera.position;
-  const float focal = focal_length_px(key.camera);
-  const float half_w = 0.5f * float(key.camera.width), half_h = 0.5f * float(key.camera.height);
+  const CameraProjection project_to_key(key.camera);
   // blend_error: a reused value likely to be wrong on the display is recomputed.
   const bool gate = mesh && mesh->blend_error < kInf;
   // No channel range exceeds an infinite (or NaN) edge_contrast: the range is not needed then.
@@ -70,24 +67,24 @@ void reproject_reflections_into(const ReflectionFrame& frame, const ReflectionDe
   parallel_for(n, kSampleGrain, [&](size_t b, size_t e) {
     uint64_t n_disoccluded = 0, n_unreliable = 0, n_curved = 0, n_edge = 0;
     for (size_t i = b; i < e; ++i) {
-      const vec3 c = to_camera * (frame.position[i] - eye);
-      const float depth = -c.z;
+      const std::optional<Projection> projected = project_to_key(frame.position[i]);
       const uint32_t object = frame.reflector[i];
       vec3& value = out.radiance[i];
       uint8_t& flag = out.flag[i];
       value = vec3(0.0f);
       flag = kReuseOk;
-      if (!(depth > 0.0f)) {
+      if (!projected) {  // behind the key camera
         flag = kReuseDisoccluded, ++n_disoccluded;
         continue;
       }
+      const float depth = projected->depth;
       const float tolerance = options.depth_tolerance * depth;
       auto same_surface = [&](int x, int y) {
         if (!(x >= 0 && y >= 0 && x < kw && y < kh)) return false;
         const size_t at = size_t(y) * size_t(kw) + size_t(x);
         return key_object[at] == object && std::abs(key_depth[at] - depth) <= tolerance;
       };
-      const vec2 q(half_w + focal * c.x / depth, half_h - focal * c.y / depth);
+      const vec2 q = projected->pixel;
       const int nx = int(std::floor(q.x)), ny = int(std::floor(q.y));
       if (!same_surface(nx, ny)) {
         flag = kReuseDisoccluded, ++n_disoccluded;
