@@ -124,6 +124,19 @@ void BM_TemporalTrace(benchmark::State& state) {  // full reflection ray tracing
   for (auto _ : state) benchmark::DoNotOptimize(trace_reflections(w.scene, w.rays, w.frame));
 }
 
+// A key frame's work beyond the trace: the reflection depth image from the traced frame.
+void BM_TemporalDepthImage(benchmark::State& state) {
+  const Walk& w = walk(int(state.range(0)), state.range(1) != 0);
+  ThreadLimit limit(1);
+  const TracedReflections traced = trace_reflections(w.scene, w.rays, w.frame);
+  ReflectionDepthImage key;  // rebuilt in place, as temporal_reflections does
+  for (auto _ : state) {
+    make_reflection_depth_image_into(w.frame, traced, 100.0f * w.frame.scene_diagonal, key);
+    benchmark::DoNotOptimize(key.reflected.data());
+  }
+  state.counters["reflective"] = double(key.pixels.size());
+}
+
 #define TEMPORAL_ARGS ArgsProduct({{256, 512, 1024}, {0, 1}})->ArgNames({"side", "rules"})->Unit(benchmark::kMillisecond)
 BENCHMARK(BM_TemporalBestMatch)->TEMPORAL_ARGS;
 BENCHMARK(BM_TemporalBestMatchInto)->TEMPORAL_ARGS;
@@ -132,6 +145,7 @@ BENCHMARK(BM_TemporalReproject)
     ->ArgsProduct({{256, 512, 1024}, {0, 1}, {0, 8}})
     ->ArgNames({"side", "rules", "blend"})
     ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TemporalDepthImage)->ArgsProduct({{256, 512, 1024}, {0}})->ArgNames({"side", "rules"})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TemporalTrace)->ArgsProduct({{256, 512, 1024}, {0}})->ArgNames({"side", "rules"})->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "proxima/core/camera_projection.h"
 #include "proxima/core/error.h"
 
 namespace proxima {
@@ -43,14 +44,7 @@ float focal_length_px(const Camera& cam) {
   return 0.5f * float(cam.height) / std::tan(glm::radians(cam.vfov_deg) * 0.5f);
 }
 
-std::optional<Projection> project(const Camera& cam, vec3 world) {
-  vec3 c = world_to_camera(cam, world);
-  float depth = -c.z;
-  if (!(depth > 0.0f)) return std::nullopt;
-  float f = focal_length_px(cam);
-  vec2 pixel(0.5f * float(cam.width) + f * c.x / depth, 0.5f * float(cam.height) - f * c.y / depth);
-  return Projection{pixel, depth};
-}
+std::optional<Projection> project(const Camera& cam, vec3 world) { return CameraProjection(cam)(world); }
 
 vec3 unproject(const Camera& cam, vec2 pixel, float depth) {
   float f = focal_length_px(cam);

@@ -8,6 +8,10 @@
 #include <bit>
 #include <cmath>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "proxima/core/image_io.h"
 #include "proxima/core/parallel.h"
 
@@ -35,14 +39,6 @@ float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }
 
 // Corners of the two triangles of grid quad (x, y)–(x+1, y+1), split along its main diagonal.
 constexpr int kCorner[2][3][2] = {{{0, 0}, {1, 0}, {1, 1}}, {{0, 0}, {1, 1}, {0, 1}}};
-
-// The bound an edge function must fall below to miss whatever the slack: −kEdgeSlack·max(1,
-// |area2|) ≤ −kEdgeSlack·√|area2| (rounded square root and product are monotone), so the
-// slack test needs no square root to reject. NaN is never below it, as in the slack test.
-float clear_miss_bound(float area2) {
-  const float a = std::abs(area2);
-  return kEdgeSlack * (a < 1.0f ? 1.0f : a);
-}
 
 // Lr at barycentrics b (unnormalised, ≥ 0, not all 0): the blend, or on an edge triangle
 // the corner with the largest weight (ties: the first), so no value between the sides.
@@ -118,6 +114,35 @@ float linear_to_srgb_approx(float l) { return srgb_approx(srgb_table(), l); }
 
 float linear_to_srgb_approx_error() { return kSrgbError; }
 
+namespace {
+
+// Σ_k w_k·|x_k − x| per channel, x = base + s·Lr as the risk's display() computes it, all
+// three below `bound` / kSlopeBound (`bound`: (limit − kClearMargin)·Σ w). Both display curves
+// are nearly 12.92-Lipschitz on [0, 1]: linear_to_srgb's linear piece has slope 12.92, its
+// power piece at most 12.70 (at its start), its jump between them is 2·10⁻⁸ and powf is
+// within 1.5·10⁻⁷ of it (checked on every float of [0, 1]); the table's chords are then
+// steeper by at most 2·1.5·10⁻⁷·4096 + 10⁻⁴ and its interpolation adds ≤ 2.5·10⁻⁷. The clamp
+// is 1-Lipschitz, so each table term |D(x_k) − D(x)| ≤ 12.922·|x_k − x| + 5·10⁻⁷, and the
+// table's risk ≤ 255·12.922/kSlopeBound·(limit − kClearMargin) + 1.3·10⁻⁴ (the float rounding
+// of these few sums and products: ~10⁻⁶ relative, inside the 3% between 255·12.922 and
+// kSlopeBound) < limit − kMargin: blend_risk_exceeds's table decides "no" there. NaN or
+// infinite x never pass.
+constexpr float kSlopeBound = 3400.0f;
+constexpr float kClearMargin = 0.125f;
+
+bool below_by_slope(const BlendSamples& blend, vec3 value, float s, vec3 base, float bound) {
+  float sum[3];
+  for (int c = 0; c < 3; ++c) {
+    const float at = base[c] + s * value[c];
+    float t = 0.0f;
+    for (int k = 0; k < blend.n; ++k) t += blend.w[k] * std::abs(base[c] + s * blend.lr[k][c] - at);
+    sum[c] = t;
+  }
+  return kSlopeBound * sum[0] < bound && kSlopeBound * sum[1] < bound && kSlopeBound * sum[2] < bound;
+}
+
+}  // namespace
+
 bool blend_risk_exceeds(const BlendSamples& blend, vec3 value, float s, vec3 base, float limit) {
   // The risk from the table instead of powf is off by at most 255·2·kSrgbError (each term's
   // two display values by kSrgbError, a weighted mean of non-negative weights, a max over
@@ -125,11 +150,14 @@ bool blend_risk_exceeds(const BlendSamples& blend, vec3 value, float s, vec3 bas
   // that. Outside it the decision is the exact one; inside it (and for NaN, negative
   // weights, or no weight) the exact risk decides.
   constexpr float kMargin = 2.0f * 255.0f * 2.0f * kSrgbError;
+  static_assert(kMargin + 0.02f < kClearMargin && 255.0f * 12.922f < 0.97f * kSlopeBound);
   const float* table = srgb_table();
   float total = 0.0f;
   bool usable = true;
   for (int k = 0; k < blend.n; ++k) total += blend.w[k], usable = usable && blend.w[k] >= 0.0f;
   if (usable && total > 0.0f && total < kInf) {
+    // Most blends are of similar samples: the display curve's slope settles those first.
+    if (below_by_slope(blend, value, s, base, (limit - kClearMargin) * total)) return false;
     auto display = [&](vec3 lr, int c, bool& ok) {
       const float x = base[c] + s * lr[c];
       ok = ok && x == x;
@@ -150,65 +178,135 @@ bool blend_risk_exceeds(const BlendSamples& blend, vec3 value, float s, vec3 bas
   return blend_risk(blend, value, s, base) > limit;
 }
 
+namespace {
+
+// warped_radiance_at's value at q of triangle `id` (corners `corner` in key.pixels, edge
+// functions e, q inside or within the slack), and the blend it is.
+void triangle_value(const WarpedMesh& mesh, uint32_t id, const uint32_t corner[3], const float e[3],
+                    vec3& radiance, BlendSamples* blend) {
+  const IntermediateReflection& image = *mesh.image;
+  Vertex v[3];
+  for (int k = 0; k < 3; ++k) v[k] = vertex_at(image, corner[k]);
+  const float b[3] = {std::max(e[0], 0.0f), std::max(e[1], 0.0f), std::max(e[2], 0.0f)};
+  bool nearest = false;
+  if (mesh.edge_contrast < kInf) {  // edge_triangle is false otherwise
+    const uint32_t w = uint32_t(image.triangle.width()), quad = id / 2u, half = id % 2u;
+    const int qx = int(quad % w), qy = int(quad / w);
+    int cx[3], cy[3];
+    for (int k = 0; k < 3; ++k) cx[k] = qx + kCorner[half][k][0], cy[k] = qy + kCorner[half][k][1];
+    nearest = edge_triangle(*mesh.key, cx, cy, mesh.edge_contrast);
+  }
+  radiance = reconstruct(v, b, nearest);
+  if (blend) {
+    blend->n = 3;
+    for (int k = 0; k < 3; ++k) blend->lr[k] = v[k].lr, blend->w[k] = b[k];
+  }
+}
+
+}  // namespace
+
 bool warped_radiance_at(const WarpedMesh& mesh, vec2 q, vec3& radiance, BlendSamples* blend) {
   const IntermediateReflection& image = *mesh.image;
   const int w = image.triangle.width(), h = image.triangle.height();
   const int cx = int(std::floor(q.x)), cy = int(std::floor(q.y));
   const uint8_t* state = image.state.data().data();
   const uint32_t* triangle = image.triangle.data().data();
-  uint32_t tried[9];
-  int n_tried = 0;
-  for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) {
-      const int x = cx + dx, y = cy + dy;
-      if (x < 0 || y < 0 || x >= w || y >= h) continue;
+  const uint32_t* index = image.index.data();
+  const vec2* point = image.point.data();
+  // The triangles stored at the reliable pixels of the 3×3 around q inside the image, row by
+  // row (a splatted point stores none). One stored at two of them is tested twice: the same
+  // test, so the same answer (the first that contains q wins).
+  const int x_lo = std::max(cx - 1, 0), x_hi = std::min(cx + 1, w - 1);
+  const int y_lo = std::max(cy - 1, 0), y_hi = std::min(cy + 1, h - 1);
+  uint32_t ids[9];
+  int m = 0;
+  for (int y = y_lo; y <= y_hi; ++y)
+    for (int x = x_lo; x <= x_hi; ++x) {
       const size_t at = size_t(y) * size_t(w) + size_t(x);
-      if (state[at] != kWarpReliable) continue;
-      const uint32_t id = triangle[at];
-      if (id == kNoWarpTriangle) continue;  // a splatted point
-      if (std::find(tried, tried + n_tried, id) != tried + n_tried) continue;
-      tried[n_tried++] = id;
-      const uint32_t quad = id / 2u, half = id % 2u;
-      // The test reads the packed positions; the whole vertices and the corners' coordinates
-      // only on a hit. Corner indices in key.pixels: those are row-major, so a corner's right
-      // neighbour (also reflective) is the next index: two map reads, not three.
-      const uint32_t first = image.index[quad], diagonal = image.index[size_t(quad) + size_t(w) + 1u];
-      const uint32_t corner[3] = {first, half == 0u ? first + 1u : diagonal,
-                                  half == 0u ? diagonal : diagonal - 1u};
-      vec2 p[3];
-      for (int k = 0; k < 3; ++k) p[k] = image.point[corner[k]];
-      const float area2 = cross2(p[1] - p[0], p[2] - p[0]);
-      if (std::abs(area2) < 1e-12f) continue;
-      // Edge functions signed by the orientation, each rejected as soon as it is computed.
-      const float bound = -clear_miss_bound(area2);
-      auto edge = [&](vec2 a, vec2 b) {
-        const float e = cross2(b - a, q - a);
-        return area2 < 0.0f ? -e : e;
-      };
-      const float e0 = edge(p[1], p[2]);
-      if (e0 < bound) continue;
-      const float e1 = edge(p[2], p[0]);
-      if (e1 < bound) continue;
-      const float e2 = edge(p[0], p[1]);
-      if (e2 < bound) continue;
-      const float slack = e0 >= 0.0f && e1 >= 0.0f && e2 >= 0.0f ? 0.0f  // inside: no slack needed
-                                                                  : kEdgeSlack * std::sqrt(std::abs(area2));
-      if (e0 < -slack || e1 < -slack || e2 < -slack) continue;
-      const int qx = int(quad % uint32_t(w)), qy = int(quad / uint32_t(w));
-      Vertex v[3];
-      int cx3[3], cy3[3];
+      ids[m] = triangle[at];
+      m += state[at] == kWarpReliable && ids[m] != kNoWarpTriangle;
+    }
+  // Corner indices in key.pixels: those are row-major, so a corner's right neighbour (also
+  // reflective) is the next index: two map reads, not three.
+  auto corners = [&](uint32_t id, uint32_t corner[3]) {
+    const uint32_t quad = id / 2u, half = id % 2u;
+    const uint32_t first = index[quad], diagonal = index[size_t(quad) + size_t(w) + 1u];
+    corner[0] = first;
+    corner[1] = half == 0u ? first + 1u : diagonal;
+    corner[2] = half == 0u ? diagonal : diagonal - 1u;
+  };
+  // The test, with edge functions e_k signed by the orientation: a degenerate triangle
+  // (|area2| < 1e-12) covers nothing; q counts as inside when no e_k < −kEdgeSlack·√|area2|
+  // (a pixel centre this close outside an edge still counts; NaN is never outside). That is
+  // the warp's rule: strictly inside no e_k is negative, so its slack 0 there changes nothing,
+  // and an e_k below −kEdgeSlack·max(1, |area2|) is below the slack too.
+#if defined(__SSE2__)
+  // Four triangles at a time, in the same IEEE single operations as the scalar test (no
+  // contraction on SSE2): the same edge functions, bit for bit.
+  const __m128 sign = _mm_set1_ps(-0.0f), qx = _mm_set1_ps(q.x), qy = _mm_set1_ps(q.y);
+  for (int k0 = 0; k0 < m; k0 += 4) {
+    const int lanes = std::min(4, m - k0);
+    uint32_t corner[4][3];
+    __m128 lo[3], hi[3];  // corners k of lanes 0, 1 and 2, 3 as x, y, x, y
+    for (int l = 0; l < 4; ++l) {
+      corners(ids[k0 + (l < lanes ? l : 0)], corner[l]);
       for (int k = 0; k < 3; ++k) {
-        cx3[k] = qx + kCorner[half][k][0], cy3[k] = qy + kCorner[half][k][1];
-        v[k] = vertex_at(image, corner[k]);
+        const __m64* p = reinterpret_cast<const __m64*>(&point[corner[l][k]]);
+        if (l == 0) lo[k] = _mm_loadl_pi(_mm_setzero_ps(), p);
+        if (l == 1) lo[k] = _mm_loadh_pi(lo[k], p);
+        if (l == 2) hi[k] = _mm_loadl_pi(_mm_setzero_ps(), p);
+        if (l == 3) hi[k] = _mm_loadh_pi(hi[k], p);
       }
-      const float b[3] = {std::max(e0, 0.0f), std::max(e1, 0.0f), std::max(e2, 0.0f)};
-      radiance = reconstruct(v, b, edge_triangle(*mesh.key, cx3, cy3, mesh.edge_contrast));
-      if (blend) {
-        blend->n = 3;
-        for (int k = 0; k < 3; ++k) blend->lr[k] = v[k].lr, blend->w[k] = b[k];
-      }
+    }
+    __m128 px[3], py[3];
+    for (int k = 0; k < 3; ++k) {
+      px[k] = _mm_shuffle_ps(lo[k], hi[k], _MM_SHUFFLE(2, 0, 2, 0));
+      py[k] = _mm_shuffle_ps(lo[k], hi[k], _MM_SHUFFLE(3, 1, 3, 1));
+    }
+    auto cross = [](__m128 ax, __m128 ay, __m128 bx, __m128 by) {
+      return _mm_sub_ps(_mm_mul_ps(ax, by), _mm_mul_ps(ay, bx));
+    };
+    const __m128 area2 = cross(_mm_sub_ps(px[1], px[0]), _mm_sub_ps(py[1], py[0]), _mm_sub_ps(px[2], px[0]),
+                               _mm_sub_ps(py[2], py[0]));
+    const __m128 flip = _mm_and_ps(_mm_cmplt_ps(area2, _mm_setzero_ps()), sign);
+    auto edge = [&](int a, int b) {
+      return _mm_xor_ps(cross(_mm_sub_ps(px[b], px[a]), _mm_sub_ps(py[b], py[a]), _mm_sub_ps(qx, px[a]),
+                              _mm_sub_ps(qy, py[a])),
+                        flip);
+    };
+    __m128 e[3] = {edge(1, 2), edge(2, 0), edge(0, 1)};
+    const __m128 size = _mm_andnot_ps(sign, area2);
+    const __m128 outside = _mm_xor_ps(_mm_mul_ps(_mm_set1_ps(kEdgeSlack), _mm_sqrt_ps(size)), sign);
+    const __m128 miss =
+        _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(size, _mm_set1_ps(1e-12f)), _mm_cmplt_ps(e[0], outside)),
+                  _mm_or_ps(_mm_cmplt_ps(e[1], outside), _mm_cmplt_ps(e[2], outside)));
+    const unsigned hits = ~unsigned(_mm_movemask_ps(miss)) & ((1u << lanes) - 1u);
+    if (hits) {
+      const int l = std::countr_zero(hits);
+      alignas(16) float ev[3][4];
+      for (int k = 0; k < 3; ++k) _mm_store_ps(ev[k], e[k]);
+      const float el[3] = {ev[0][l], ev[1][l], ev[2][l]};
+      triangle_value(mesh, ids[k0 + l], corner[l], el, radiance, blend);
       return true;
     }
+  }
+#else
+  for (int j = 0; j < m; ++j) {
+    uint32_t corner[3];
+    corners(ids[j], corner);
+    const vec2 p[3] = {point[corner[0]], point[corner[1]], point[corner[2]]};
+    const float area2 = cross2(p[1] - p[0], p[2] - p[0]);
+    auto edge = [&](vec2 a, vec2 b) {
+      const float e = cross2(b - a, q - a);
+      return area2 < 0.0f ? -e : e;
+    };
+    const float e[3] = {edge(p[1], p[2]), edge(p[2], p[0]), edge(p[0], p[1])};
+    const float outside = -(kEdgeSlack * std::sqrt(std::abs(area2)));
+    if (std::abs(area2) < 1e-12f || e[0] < outside || e[1] < outside || e[2] < outside) continue;
+    triangle_value(mesh, ids[j], corner, e, radiance, blend);
+    return true;
+  }
+#endif
   return false;
 }
 

@@ -1,6 +1,7 @@
 // Temporal reuse of reflections (thesis ch. 5, Algorithm 8 and §5.4.4 key-frame policy).
 #include "proxima/reflect/temporal_reuse.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <utility>
 
@@ -54,8 +55,7 @@ void temporal_reflections_into(const Scene& scene, const RayScene& rays, const R
     TracedReflections& traced = state.traced;
     trace_reflections_into(scene, rays, frame, traced);
     make_reflection_depth_image_into(frame, traced, kEscapeDistanceScale * frame.scene_diagonal, state.key);
-    state.previous = {};
-    state.earlier = {};
+    state.warm_frames = 0;
     state.need_key = false;
     state.frames_since_key = 0;
     state.cycle_work = 1.0;
@@ -69,8 +69,8 @@ void temporal_reflections_into(const Scene& scene, const RayScene& rays, const R
     Stopwatch watch;
     BestMatchStats ms;
     OffsetBuffer offsets = std::move(state.spare);
-    best_match_search_into(state.key, frame.camera.position, state.previous.width ? &state.previous : nullptr,
-                           options.match, offsets, &ms, state.earlier.width ? &state.earlier : nullptr);
+    best_match_search_into(state.key, frame.camera.position, state.warm_frames >= 1 ? &state.previous : nullptr,
+                           options.match, offsets, &ms, state.warm_frames >= 2 ? &state.earlier : nullptr);
     st.match_ms = watch.elapsed_ms();
     st.invalid_offsets = ms.invalid;
     st.match_steps = ms.steps;
@@ -95,6 +95,7 @@ void temporal_reflections_into(const Scene& scene, const RayScene& rays, const R
     if (options.match.extrapolate) std::swap(state.earlier, state.previous);
     state.spare = std::move(state.previous);  // the oldest: the next frame writes over it
     state.previous = std::move(offsets);
+    state.warm_frames = std::min(state.warm_frames + 1, 2);
     ++state.frames_since_key;
     // §5.4.4: too much recomputed → the next frame refreshes the key frame.
     state.need_key = st.stale_fraction() > double(options.keyframe_threshold);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 
@@ -684,6 +685,48 @@ TEST(TemporalReflections, BlendRiskExceedsIsTheExactDecision) {
   EXPECT_FALSE(blend_risk_exceeds(none, vec3(0.5f), 1.0f, vec3(0.0f), 0.0f));
 }
 
+// blend_risk_exceeds settles most blends of similar samples by the display curve's slope
+// (12.92 at most) before its table: that must never change a decision. Blends of samples a
+// little apart, so the risk falls on both sides of the limit and near it.
+TEST(TemporalReflections, BlendRiskExceedsIsTheExactDecisionForSimilarSamples) {
+  // The slope bound it rests on, on a fine sweep: the curve and the table's chords.
+  constexpr int kSteps = 1 << 16;
+  for (int j = 0; j < kSteps; ++j) {
+    const float a = float(j) / float(kSteps), b = float(j + 1) / float(kSteps);
+    ASSERT_LE(std::abs(linear_to_srgb(b) - linear_to_srgb(a)), 12.92f * (b - a) + 4e-7f) << a;
+    ASSERT_LE(std::abs(linear_to_srgb_approx(b) - linear_to_srgb_approx(a)), 12.9213f * (b - a) + 6e-7f) << a;
+  }
+  uint32_t seed = 987u;
+  auto uniform = [&] {
+    seed = seed * 1664525u + 1013904223u;
+    return float(seed >> 8) / float(1u << 24);
+  };
+  int exceeded = 0, cases = 0;
+  for (int t = 0; t < 40000; ++t) {
+    BlendSamples blend;
+    blend.n = 1 + t % 4;
+    const vec3 centre(uniform(), uniform(), uniform());
+    const float spread = 0.01f * uniform() * uniform();
+    for (int k = 0; k < blend.n; ++k) {
+      blend.lr[k] = centre + spread * (vec3(uniform(), uniform(), uniform()) - 0.5f);
+      blend.w[k] = uniform();
+    }
+    const vec3 value = t % 3 == 0 ? blend.lr[0] : centre;
+    const float s = t % 5 == 0 ? 1.0f : uniform();
+    const vec3 base = t % 7 == 0 ? vec3(0.0f) : 0.3f * vec3(uniform(), uniform(), uniform());
+    const float risk = blend_risk(blend, value, s, base);
+    for (const float limit : {8.0f, 0.5f, 2.0f * uniform(), risk, risk + 0.2f, risk - 0.2f, risk * 1.1f,
+                              risk * 0.9f, risk / 0.95f, risk * 0.95f}) {
+      ASSERT_EQ(blend_risk_exceeds(blend, value, s, base, limit), risk > limit)
+          << "case " << t << " limit " << limit << " risk " << risk;
+      exceeded += risk > limit;
+      ++cases;
+    }
+  }
+  EXPECT_GT(exceeded, cases / 10);
+  EXPECT_LT(exceeded, cases * 9 / 10);
+}
+
 namespace {
 // The same images and counters, bit for bit.
 void expect_same_warp(const IntermediateReflection& reused, const IntermediateReflection& fresh) {
@@ -761,6 +804,72 @@ TEST(TemporalReflections, WarpAfterAKeyRebuiltInPlaceIsAFreshWarp) {
       }
     EXPECT_GT(hits, 0);
   }
+}
+
+// warped_radiance_at (four triangles at a time) is the rule it states, as a plain loop: the
+// triangles stored at the reliable pixels of the 3×3 around q, row by row, the first whose
+// edge functions (signed by the orientation) are all ≥ 0, or ≥ −kEdgeSlack·√|area2| (1e-3),
+// wins; its barycentrics are those edge functions clamped at 0. Bit for bit, at points
+// around every pixel of a warp: near vertices, on edges, outside.
+TEST(TemporalReflections, WarpedRadianceAtIsTheFirstTriangleThatContainsQ) {
+  const Scene scene = floor_mirror(true);
+  RayScene rays(scene);
+  const ReflectionFrame frame = frame_at(scene, kKeyEye);
+  const ReflectionDepthImage key =
+      make_reflection_depth_image(frame, trace_reflections(scene, rays, frame), 1e3f);
+  const OffsetBuffer offsets = best_match_search(key, kKeyEye + kMove, nullptr, {});
+  const IntermediateReflection mid = warp_reflections(key, offsets, {});
+  const WarpedMesh mesh{&key, &offsets, &mid};
+  const int w = key.object.width(), h = key.object.height();
+  auto cross = [](vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; };
+  int hits = 0, misses = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (const vec2 d :
+           {vec2(0.5f), vec2(0.0f), vec2(0.37f, 0.61f), vec2(0.999f, 0.25f), vec2(0.5f, 0.0001f)}) {
+        const vec2 q = vec2(float(x), float(y)) + d;
+        bool want = false;
+        uint32_t want_corner[3] = {};
+        float want_b[3] = {};
+        for (int yy = y - 1; yy <= y + 1 && !want; ++yy)
+          for (int xx = x - 1; xx <= x + 1 && !want; ++xx) {
+            if (xx < 0 || yy < 0 || xx >= w || yy >= h || mid.state.at(xx, yy) != kWarpReliable) continue;
+            const uint32_t id = mid.triangle.at(xx, yy);
+            if (id == kNoWarpTriangle) continue;
+            const uint32_t quad = id / 2u, half = id % 2u, qx = quad % uint32_t(w), qy = quad / uint32_t(w);
+            const uint32_t c[3] = {mid.index[quad], mid.index[(qy + half) * uint32_t(w) + qx + 1u],
+                                   mid.index[(qy + 1u) * uint32_t(w) + qx + 1u - half]};
+            const vec2 p[3] = {mid.point[c[0]], mid.point[c[1]], mid.point[c[2]]};
+            const float area2 = cross(p[1] - p[0], p[2] - p[0]);
+            if (std::abs(area2) < 1e-12f) continue;
+            float e[3];
+            for (int k = 0; k < 3; ++k) {
+              const vec2 a = p[(k + 1) % 3], b = p[(k + 2) % 3];
+              e[k] = area2 < 0.0f ? -cross(b - a, q - a) : cross(b - a, q - a);
+            }
+            const bool inside = e[0] >= 0.0f && e[1] >= 0.0f && e[2] >= 0.0f;
+            const float slack = inside ? 0.0f : 1e-3f * std::sqrt(std::abs(area2));
+            if (e[0] < -slack || e[1] < -slack || e[2] < -slack) continue;
+            want = true;
+            for (int k = 0; k < 3; ++k) want_corner[k] = c[k], want_b[k] = std::max(e[k], 0.0f);
+          }
+        vec3 radiance(-1.0f);
+        BlendSamples blend;
+        ASSERT_EQ(warped_radiance_at(mesh, q, radiance, &blend), want) << q.x << " " << q.y;
+        if (!want) {
+          ++misses;
+          continue;
+        }
+        ++hits;
+        ASSERT_EQ(blend.n, 3);
+        for (int k = 0; k < 3; ++k) {
+          ASSERT_EQ(std::bit_cast<uint32_t>(blend.w[k]), std::bit_cast<uint32_t>(want_b[k]))
+              << q.x << " " << q.y;
+          ASSERT_TRUE(blend.lr[k] == mid.sample[want_corner[k]].lr);
+        }
+      }
+  EXPECT_GT(hits, 1000);
+  EXPECT_GT(misses, 100);
 }
 }  // namespace proxima
 

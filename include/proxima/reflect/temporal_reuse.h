@@ -38,9 +38,11 @@ struct TemporalOptions {
 // What persists between frames.
 struct TemporalState {
   ReflectionDepthImage key;
-  OffsetBuffer previous;   // last frame's offsets (warm start), empty after a key frame
-  OffsetBuffer earlier;    // the frame's before those (BestMatchOptions::extrapolate), empty likewise
+  OffsetBuffer previous;   // last frame's offsets (warm start) when warm_frames ≥ 1
+  OffsetBuffer earlier;    // the frame's before those (BestMatchOptions::extrapolate) when warm_frames ≥ 2
   OffsetBuffer spare;      // the oldest offsets, recycled as the next frame's (best_match_search_into)
+  int warm_frames = 0;     // reuse frames since the key frame whose offsets are kept; the three
+                           // buffers keep their memory across key frames (no fresh pages)
   IntermediateReflection warp;  // the last warp: its buffers are reused by the next
   // Buffers reused frame to frame (fresh large allocations cost page faults):
   TracedReflections traced;             // the last key frame's trace
