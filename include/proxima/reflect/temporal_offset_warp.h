@@ -121,7 +121,8 @@ struct IntermediateReflection {
   uint64_t triangles = 0, stretched = 0, curved = 0, discontinuous = 0, edges = 0;
 };
 
-// Deterministic for any thread count (fixed row bands, triangles in a fixed order per band).
+// Deterministic for any thread count: each pixel takes the triangles covering it in one fixed
+// order (one pass on one thread, fixed row bands on more).
 IntermediateReflection warp_reflections(const ReflectionDepthImage& key, const OffsetBuffer& offsets,
                                         const WarpOptions& options);
 
