@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc)
 BUILD ?= build/release
 TYPE ?= Release
 
-.PHONY: all deps build demo test bench asan fuzz clean
+.PHONY: all deps build demo test test-real bench asan fuzz clean
 
 all: build
 
@@ -20,6 +20,15 @@ demo: build
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# The real-content tier (docs/real-content.md): scripts/real-content.sh installs the Debian
+# packages that ship real models and builds the corpus in REAL_CONTENT, then every technique
+# runs on it with the built-in scenes' bounds (tests/real/). The script exits 3 when the
+# packages cannot be installed here (.ci/run runs it first and skips the tier then).
+REAL_CONTENT ?= build/real-content
+test-real: build
+	@bash scripts/real-content.sh --out $(REAL_CONTENT)
+	PROXIMA_REAL_CONTENT=$(abspath $(REAL_CONTENT)) $(BUILD)/proxima_tests --gtest_filter='RealContent.*'
 
 bench: build
 	$(BUILD)/proxima bench trace --out out/bench-trace
