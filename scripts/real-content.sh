@@ -220,7 +220,10 @@ JSON
       {"time": 0, "position": [-4.5, 1.65, 3.2], "target": [-2, 1.2, -1.5]},
       {"time": 1, "position": [-1.5, 1.65, 2.6], "target": [0, 1.2, -1.8]},
       {"time": 2, "position": [1.5, 1.65, 2.6], "target": [3, 1.3, 0]},
-      {"time": 3, "position": [4.5, 1.65, 3.2], "target": [3, 1.2, -1.5]}]}
+      {"time": 3, "position": [4.5, 1.65, 3.2], "target": [3, 1.2, -1.5]}]},
+    {"name": "pan", "frames": 100, "keys": [
+      {"time": 0, "position": [1.0, 1.65, 2.9], "target": [3, 1.2, 1.0]},
+      {"time": 1, "position": [2.6, 1.65, 3.0], "target": [2.5, 1.2, 0.0]}]}
   ]
 }
 JSON
@@ -348,7 +351,10 @@ house_cameras() {
       {"time": 0, "position": [0.9, 1.6, -0.7], "target": [5, 1.0, -3.5]},
       {"time": 1, "position": [3.5, 1.6, -0.8], "target": [6.5, 1.0, -3.2]},
       {"time": 2, "position": [6.5, 1.6, -0.9], "target": [4.5, 1.0, -3.6]},
-      {"time": 3, "position": [7.8, 1.6, -1.8], "target": [2, 1.0, -2.5]}]}
+      {"time": 3, "position": [7.8, 1.6, -1.8], "target": [2, 1.0, -2.5]}]},
+    {"name": "pan", "frames": 100, "keys": [
+      {"time": 0, "position": [3.5, 1.6, -0.8], "target": [6.5, 1.0, -3.2]},
+      {"time": 1, "position": [5.1, 1.6, -0.7], "target": [5.6, 0.6, -3.0]}]}
   ],
 JSON
 }

@@ -1,0 +1,264 @@
+// The real-content tier (`make test-real`, docs/real-content.md): every technique on the
+// scenes scripts/real-content.sh builds from models no one here wrote, held to the bounds
+// the built-in scenes are held to (docs/RESULTS.md, the issues' "Must show"). Skipped unless
+// PROXIMA_REAL_CONTENT names the corpus directory. Each run keeps its output (images,
+// results.json) in $PROXIMA_REAL_CONTENT/out/<run>.
+//
+// A bound a technique is known to miss on real content is checked by `known_failure`: the
+// measured figure and the bound are printed, the test does not fail on it, and the list in
+// docs/real-content.md says why. Every other bound fails the test when missed.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <variant>
+
+#include "cli/cli_util.h"
+#include "proxima/eval/results.h"
+
+namespace proxima {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The corpus directory, or empty when the tier does not run here.
+fs::path corpus() {
+  const char* dir = std::getenv("PROXIMA_REAL_CONTENT");
+  if (!dir || !*dir || !fs::exists(fs::path(dir) / "house.json")) return {};
+  return fs::path(dir);
+}
+
+#define REQUIRE_CORPUS()                                                                      \
+  const fs::path dir = corpus();                                                              \
+  if (dir.empty()) GTEST_SKIP() << "PROXIMA_REAL_CONTENT is not a corpus (scripts/real-content.sh)"
+
+// `proxima COMMAND --scene SCENE ARGS --out DIR/out/RUN`; the run must succeed. Returns its
+// results.json.
+Results run(const fs::path& dir, const std::string& run_name, const std::string& command, const std::string& scene,
+            const std::string& args) {
+  const fs::path out = dir / "out" / run_name;
+  fs::remove_all(out);
+  const std::string cmd = command + " --scene " + (dir / scene).string() + " " + args + " --out " + out.string();
+  std::cout << "[real-content] proxima " << cmd << "\n";
+  const RunResult r = run_cli(cmd);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  if (r.exit_code != 0) return {};
+  return read_results_json(out / "results.json");
+}
+
+double metric(const Results& r, const std::string& name) {
+  auto it = r.metrics.find(name);
+  EXPECT_NE(it, r.metrics.end()) << "no metric " << name;
+  return it == r.metrics.end() ? std::nan("") : it->second;
+}
+
+// Column `column` of the table whose title starts with `title`, as numbers.
+std::vector<double> column(const Results& r, const std::string& title, const std::string& column) {
+  for (const Table& t : r.tables) {
+    if (t.title.rfind(title, 0) != 0) continue;
+    for (size_t c = 0; c < t.columns.size(); ++c) {
+      if (t.columns[c] != column) continue;
+      std::vector<double> v;
+      for (const auto& row : t.rows)
+        if (const double* d = std::get_if<double>(&row[c])) v.push_back(*d);
+      return v;
+    }
+  }
+  ADD_FAILURE() << "no table '" << title << "' with column " << column;
+  return {};
+}
+
+std::string figure(const std::string& what, double measured, const char* op, double bound) {
+  std::ostringstream s;
+  s << what << ": " << measured << " (bound " << op << " " << bound << ")";
+  return s.str();
+}
+
+// A bound that holds on the built-in scenes: fails the test when missed.
+void expect_le(const std::string& what, double measured, double bound) {
+  std::cout << "[real-content] " << figure(what, measured, "≤", bound) << "\n";
+  EXPECT_LE(measured, bound) << what;
+}
+void expect_ge(const std::string& what, double measured, double bound) {
+  std::cout << "[real-content] " << figure(what, measured, "≥", bound) << "\n";
+  EXPECT_GE(measured, bound) << what;
+}
+
+// A bound listed in docs/real-content.md "Known failures": printed, not failed.
+void known_failure(const std::string& what, double measured, const char* op, double bound, bool holds) {
+  std::cout << "[real-content] " << (holds ? "KNOWN FAILURE NOW HOLDS (update docs/real-content.md): "
+                                           : "KNOWN FAILURE: ")
+            << figure(what, measured, op, bound) << "\n";
+}
+
+// Every scene renders, the same bits at 1 and 2 threads (DESIGN.md determinism), and the
+// camera sees geometry.
+TEST(RealContent, ReferenceRendersEveryScene) {
+  REQUIRE_CORPUS();
+  for (const char* scene : {"house", "trees", "gallery"}) {
+    const std::string args = "--camera main --width 160 --height 120 --spp 1";
+    const Results a = run(dir, std::string("render-") + scene + "-t1", "render --threads 1", std::string(scene) + ".json", args);
+    const Results b = run(dir, std::string("render-") + scene + "-t2", "render --threads 2", std::string(scene) + ".json", args);
+    expect_ge(std::string(scene) + " coverage_pct", metric(a, "coverage_pct"), 50.0);
+    for (const char* file : {"color.exr", "depth.exr", "id.exr"}) {
+      std::ifstream fa(dir / "out" / (std::string("render-") + scene + "-t1") / file, std::ios::binary);
+      std::ifstream fb(dir / "out" / (std::string("render-") + scene + "-t2") / file, std::ios::binary);
+      const std::string da((std::istreambuf_iterator<char>(fa)), {}), db((std::istreambuf_iterator<char>(fb)), {});
+      EXPECT_FALSE(da.empty()) << scene << " " << file;
+      EXPECT_TRUE(da == db) << scene << " " << file << " differs between 1 and 2 threads";
+    }
+  }
+}
+
+// Environment maps with distance (issue 6 and issue 25): rectified ≤ 1/3 of plain's error;
+// layered at or below rectified's, its maps built in ≤ 2× the single map's time.
+TEST(RealContent, EnvMapsOnTheHouseWithAMirrorSphere) {
+  REQUIRE_CORPUS();
+  const Results r = run(dir, "envmap-house-sphere", "reflect", "house-sphere.json",
+                        "--camera sphere --compare --width 320 --height 240 --cube-size 128 --light-samples 2 --reps 1");
+  const double plain = metric(r, "envmap_mae"), rect = metric(r, "rectified_mae"), layered = metric(r, "layered_mae");
+  expect_ge("house-sphere reflector_pixels", metric(r, "reflector_pixels"), 1000.0);
+  expect_le("house-sphere rectified_mae vs envmap_mae / 3", rect, plain / 3.0);
+  known_failure("house-sphere layered_mae vs rectified_mae", layered, "≤", rect, layered <= rect);
+  const double build_ratio = metric(r, "layered_build_ms") / metric(r, "envmap_build_ms");
+  known_failure("house-sphere layered_build_ms / envmap_build_ms", build_ratio, "≤", 2.0, build_ratio <= 2.0);
+}
+
+TEST(RealContent, EnvMapsInTheGallery) {
+  REQUIRE_CORPUS();
+  const Results r = run(dir, "envmap-gallery", "reflect", "gallery.json",
+                        "--camera mirror --compare --width 320 --height 240 --cube-size 128 --light-samples 2 --reps 1");
+  expect_ge("gallery reflector_pixels", metric(r, "reflector_pixels"), 1000.0);
+  const double plain = metric(r, "envmap_mae"), rect = metric(r, "rectified_mae");
+  expect_le("gallery rectified_mae vs envmap_mae", rect, plain);
+  known_failure("gallery rectified_mae vs envmap_mae / 3", rect, "≤", plain / 3.0, rect <= plain / 3.0);
+}
+
+// Cluster depth-image reflections (issue 7): mean error per channel ≤ 6 / 3 / 9 (the
+// thesis'), occlusion-error samples ≤ 3 % on average.
+void cluster_bounds(const fs::path& dir, const std::string& scene, bool known) {
+  const Results r = run(dir, "cluster-" + scene, "reflect --method cluster", scene + ".json",
+                        "--path walk --frames 100 --frame-step 50 --width 256 --height 192 --ss 2 --compare");
+  const char* ch[] = {"r", "g", "b"};
+  const double bound[] = {6.0, 3.0, 9.0};
+  for (int c = 0; c < 3; ++c)
+    expect_le(scene + " cluster_mae_" + ch[c], metric(r, std::string("cluster_mae_") + ch[c]), bound[c]);
+  const double occ = metric(r, "occlusion_error_pct_avg");
+  if (known)
+    known_failure(scene + " occlusion_error_pct_avg", occ, "≤", 3.0, occ <= 3.0);
+  else
+    expect_le(scene + " occlusion_error_pct_avg", occ, 3.0);
+}
+TEST(RealContent, ClusterReflectionsInTheHouse) {
+  REQUIRE_CORPUS();
+  cluster_bounds(dir, "house", true);
+}
+TEST(RealContent, ClusterReflectionsInTheGallery) {
+  REQUIRE_CORPUS();
+  cluster_bounds(dir, "gallery", false);
+}
+
+// Temporal reuse of reflections (issue 8): mean error ≤ 1.0 on 0–255, ≤ 25 % of the
+// reflective pixels recomputed. Path `pan`: 1.6 m in 100 frames, the camera speed per frame
+// of the built-in runs (living-room / walk, 500 frames).
+void temporal_bounds(const fs::path& dir, const std::string& scene, bool mae_known) {
+  const Results r = run(dir, "temporal-" + scene, "reflect --method temporal", scene + ".json",
+                        "--path pan --frames 100 --width 96 --height 96 --compare");
+  const double mae = metric(r, "temporal_mae_avg");
+  if (mae_known)
+    known_failure(scene + " temporal_mae_avg", mae, "≤", 1.0, mae <= 1.0);
+  else
+    expect_le(scene + " temporal_mae_avg", mae, 1.0);
+  expect_le(scene + " recompute_pct_avg", metric(r, "recompute_pct_avg"), 25.0);
+}
+TEST(RealContent, TemporalReuseInTheHouse) {
+  REQUIRE_CORPUS();
+  temporal_bounds(dir, "house", false);
+}
+TEST(RealContent, TemporalReuseInTheGallery) {
+  REQUIRE_CORPUS();
+  temporal_bounds(dir, "gallery", false);
+}
+
+// Soft shadows from reconstructed depth images (issue 5): NRR's mean visibility error below
+// conventional's.
+void shadow_bounds(const fs::path& dir, const std::string& scene) {
+  const Results r = run(dir, "shadows-" + scene, "shadows", scene + ".json",
+                        "--sampling nrr,conventional,peeling --ref-res 256 --out-res 128 --light-samples 4");
+  const double nrr = metric(r, "nrr_visibility_error_mean"), conv = metric(r, "conventional_visibility_error_mean");
+  std::cout << "[real-content] " << scene << " peeling_visibility_error_mean: " << metric(r, "peeling_visibility_error_mean") << "\n";
+  expect_le(scene + " nrr_visibility_error_mean vs conventional's", nrr, conv);
+}
+TEST(RealContent, SoftShadows) {
+  REQUIRE_CORPUS();
+  for (const char* scene : {"house", "trees", "gallery"}) shadow_bounds(dir, scene);
+}
+
+// Depth-image sampling (issue 4): NRR images hold no sample redundant with an earlier image
+// under their own definition, nor do depth-peeling layers under pixel redundancy. The
+// available samples per output frame are printed (the thesis' claim, docs/real-content.md).
+void sampling_bounds(const fs::path& dir, const std::string& scene) {
+  const Results r = run(dir, "sample-" + scene, "sample", scene + ".json",
+                        "--method conventional,peeling,nrr-pixel --width 128 --frames 50 --no-images");
+  for (int i = 1; i < 3; ++i) {
+    const std::string k = std::to_string(i);
+    expect_le(scene + " nrr_pixel_redundant_pct_" + k, metric(r, "nrr_pixel_redundant_pct_" + k), 0.0);
+    expect_le(scene + " peeling_redundant_pct_" + k, metric(r, "peeling_redundant_pct_" + k), 0.0);
+  }
+  for (const char* m : {"conventional", "peeling", "nrr_pixel"})
+    std::cout << "[real-content] " << scene << " " << m << "_available_avg_pct: " << metric(r, std::string(m) + "_available_avg_pct") << "\n";
+  const Results v = run(dir, "sample-visibility-" + scene, "sample", scene + ".json",
+                        "--method nrr-visibility --width 128 --frames 20 --no-images");
+  for (int i = 1; i < 3; ++i)
+    expect_le(scene + " nrr-visibility redundant_pct_" + std::to_string(i), metric(v, "redundant_pct_" + std::to_string(i)), 0.0);
+}
+TEST(RealContent, SamplingTreesAndPlants) {
+  REQUIRE_CORPUS();
+  for (const char* scene : {"trees", "tree-maple", "plant-yucca"}) sampling_bounds(dir, scene);
+}
+TEST(RealContent, SamplingTheGallery) {
+  REQUIRE_CORPUS();
+  sampling_bounds(dir, "gallery");
+}
+
+// Exact visibility maps on the corpus' building (issue 9, issue 25): at every viewpoint
+// agreement with Embree ≥ 99.9 %, ≥ 99.99 % away from map edges; no sample labelled with an
+// occluded polygon; no fragment the BSP could not place.
+TEST(RealContent, ExactVisibilityInTheHouse) {
+  REQUIRE_CORPUS();
+  const Results r = run(dir, "visibility-house", "visibility", "house-bare.json",
+                        "--path walk --frames 10 --width 256 --height 192 --no-images");
+  const std::vector<double> all = column(r, "visibility maps", "agreement_pct");
+  const std::vector<double> interior = column(r, "visibility maps", "agreement_interior_pct");
+  ASSERT_EQ(all.size(), 10u);
+  const double worst = *std::min_element(all.begin(), all.end());
+  const double worst_interior = *std::min_element(interior.begin(), interior.end());
+  known_failure("house worst view agreement_pct", worst, "≥", 99.9, worst >= 99.9);
+  known_failure("house worst view agreement_interior_pct", worst_interior, "≥", 99.99, worst_interior >= 99.99);
+  expect_le("house occluded_label_samples", metric(r, "occluded_label_samples"), 0.0);
+  const double unplaced = metric(r, "unplaced_fragments");
+  known_failure("house unplaced_fragments", unplaced, "≤", 0.0, unplaced <= 0.0);
+}
+
+// Hybrid geometry- and image-based rendering (issue 10): visibility-map mapping beats
+// item-buffer mapping in PSNR and near silhouettes.
+TEST(RealContent, GibrInTheHouse) {
+  REQUIRE_CORPUS();
+  const Results r = run(dir, "gibr-house", "gibr", "house-bare.json",
+                        "--photos 8 --views path --frames 2 --width 160 --height 120 --photo-width 160 --photo-height 120");
+  const double pv = metric(r, "psnr_vismap"), pi = metric(r, "psnr_itembuffer");
+  const double sv = metric(r, "silhouette_mae_vismap"), si = metric(r, "silhouette_mae_itembuffer");
+  expect_ge("house psnr_vismap", pv, 20.0);  // the views are rendered at all
+  known_failure("house psnr_vismap vs psnr_itembuffer", pv, ">", pi, pv > pi);
+  known_failure("house silhouette_mae_vismap vs silhouette_mae_itembuffer", sv, "<", si, sv < si);
+}
+
+}  // namespace
+}  // namespace proxima
