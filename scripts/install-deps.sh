@@ -9,7 +9,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libglm-dev libembree-dev libtbb-dev libassimp-dev
-  libstb-dev libtinyexr-dev nlohmann-json3-dev libcli11-dev
+  libstb-dev libtinyexr-dev libturbojpeg0-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   # Optional llvmpipe harness of `proxima bench raster` (bench/llvmpipe): Mesa's
   # software OpenGL through EGL, measured side by side with proxima's rasterizer.

@@ -1,21 +1,25 @@
 #include "proxima/core/image_io.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <string>
+#include <vector>
 
 #define STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STBI_FAILURE_USERMSG
-// PNG only: the least decoder code facing untrusted files. stb's JPEG decoder (Debian's
-// 2022-09 stb) writes past its Huffman size table on a malformed DHT segment (found by
-// png_fuzz), so JPEG needs a safer decoder before it comes back.
+// stb decodes PNG only: the least decoder code facing untrusted files. stb's JPEG decoder
+// (Debian's 2022-09 stb) writes past its Huffman size table on a malformed DHT segment
+// (found by png_fuzz); JPEG goes through libjpeg-turbo's TurboJPEG API instead.
 #define STBI_ONLY_PNG
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 #include <tinyexr.h>
+#include <turbojpeg.h>
 
 #include "proxima/core/atomic_file.h"
 #include "proxima/core/error.h"
@@ -75,6 +79,91 @@ void check_channels(const fs::path& path, int channels, int lo, int hi) {
     fail_input(path.string() + ": cannot store an image with " + std::to_string(channels) + " channels");
 }
 
+enum class ImageKind { kPng, kJpeg, kUnknown };
+
+// By content, not by extension: a texture named .png may hold a JPEG and vice versa.
+ImageKind image_kind(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char magic[8] = {};
+  in.read(reinterpret_cast<char*>(magic), 8);
+  const auto got = size_t(in.gcount());
+  if (got >= 3 && magic[0] == 0xFF && magic[1] == 0xD8 && magic[2] == 0xFF) return ImageKind::kJpeg;  // SOI, then a marker
+  if (got == 8 && std::memcmp(magic, "\x89PNG\r\n\x1a\n", 8) == 0) return ImageKind::kPng;
+  return ImageKind::kUnknown;
+}
+
+// 8-bit sRGB samples, `in_channels` per pixel (3, or 4 with a linear alpha), → linear floats
+// with `channels` channels (3 or 4; a missing alpha is 1).
+ImageF srgb8_to_linear(const unsigned char* src, int w, int h, int in_channels, int channels) {
+  static const auto lut = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i) t[size_t(i)] = srgb_to_linear(float(i) / 255.0f);
+    return t;
+  }();
+  ImageF img(w, h, channels);
+  auto dst = img.data();
+  const size_t n = img.pixel_count();
+  for (size_t p = 0; p < n; ++p) {
+    const unsigned char* s = src + p * size_t(in_channels);
+    float* d = dst.data() + p * size_t(channels);
+    for (int c = 0; c < 3; ++c) d[c] = lut[s[c]];
+    if (channels == 4) d[3] = in_channels == 4 ? float(s[3]) / 255.0f : 1.0f;
+  }
+  return img;
+}
+
+// JPEG through TurboJPEG. Warnings (a truncated file, corrupt entropy data) are errors:
+// libjpeg would otherwise fill the missing part with gray and succeed. Progressive files
+// are limited to 500 scans (TJFLAG_LIMITSCANS), the known way to make a small file decode
+// for minutes.
+ImageF read_jpeg_linear(const fs::path& path, int channels) {
+  std::error_code ec;
+  const uint64_t size = fs::file_size(path, ec);
+  if (ec) fail_input(path.string() + ": cannot read image: " + ec.message());
+  // A JPEG is smaller than its decoded pixels (a few bytes per pixel at most), so a file
+  // larger than the memory limit cannot decode within it.
+  if (size > limits().max_memory_mb << 20)
+    fail_input(path.string() + ": cannot read image: file of " + std::to_string(size >> 20) +
+               " MiB exceeds the memory limit (--max-memory-mb, PROXIMA_MAX_MEMORY_MB)");
+  std::vector<unsigned char> bytes(size);
+  std::ifstream in(path, std::ios::binary);
+  if (!in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size)))
+    fail_input(path.string() + ": cannot read image: read error");
+
+  const std::unique_ptr<void, int (*)(tjhandle)> tj(tjInitDecompress(), tjDestroy);
+  if (!tj) fail_input(path.string() + ": cannot read JPEG: " + tjGetErrorStr2(nullptr));
+  auto fail = [&] { fail_input(path.string() + ": cannot read JPEG: " + tjGetErrorStr2(tj.get())); };
+  int w = 0, h = 0, subsamp = 0, colorspace = 0;
+  if (tjDecompressHeader3(tj.get(), bytes.data(), (unsigned long)size, &w, &h, &subsamp, &colorspace) != 0) fail();
+  if (w <= 0 || h <= 0) fail_input(path.string() + ": cannot read JPEG: empty image");
+  // The header's size is checked before decoding. The budget counts the float image plus one
+  // float's worth per pixel for the 8-bit decode buffer (≤ 4 B) and libjpeg's progressive
+  // coefficient arrays (≤ 8 B, freed before the float image is made).
+  check_image_budget(path.string(), uint64_t(w), uint64_t(h), uint64_t(channels) + 1);
+
+  // CMYK files (Adobe's, inverted as libjpeg-turbo stores them) are decoded as CMYK and
+  // converted here: TurboJPEG has no CMYK → RGB conversion. Gray and YCbCr decode to RGB.
+  const bool cmyk = colorspace == TJCS_CMYK || colorspace == TJCS_YCCK;
+  const int format = cmyk ? TJPF_CMYK : TJPF_RGB;
+  const int pixel_size = cmyk ? 4 : 3;
+  std::vector<unsigned char> pixels(size_t(w) * size_t(h) * size_t(pixel_size));
+  if (tjDecompress2(tj.get(), bytes.data(), (unsigned long)size, pixels.data(), w, 0, h, format,
+                    TJFLAG_STOPONWARNING | TJFLAG_LIMITSCANS) != 0)
+    fail();
+  if (cmyk) {
+    // libjpeg-turbo's own rule (cmyk.h): R = C·K / 255, in place, RGB packed into the front.
+    const size_t n = size_t(w) * size_t(h);
+    for (size_t p = 0; p < n; ++p) {
+      const unsigned char* s = pixels.data() + 4 * p;
+      const unsigned k = s[3];
+      unsigned char rgb[3];
+      for (int c = 0; c < 3; ++c) rgb[c] = (unsigned char)((unsigned(s[c]) * k + 127) / 255);
+      std::memcpy(pixels.data() + 3 * p, rgb, 3);
+    }
+  }
+  return srgb8_to_linear(pixels.data(), w, h, 3, channels);
+}
+
 }  // namespace
 
 void write_png(const fs::path& path, const ImageU8& image) {
@@ -104,6 +193,11 @@ void write_png_linear(const fs::path& path, const ImageF& linear) {
 ImageF read_image_linear(const fs::path& path, int channels) {
   check_channels(path, channels, 3, 4);
   check_regular_file(path);
+  switch (image_kind(path)) {
+    case ImageKind::kJpeg: return read_jpeg_linear(path, channels);
+    case ImageKind::kPng: break;
+    case ImageKind::kUnknown: fail_input(path.string() + ": cannot read image: not a PNG or JPEG file");
+  }
   check_png_chunks(path);
   int w = 0, h = 0, n = 0;
   // The header's size is checked before decoding: a small PNG can claim gigapixels.
@@ -112,14 +206,8 @@ ImageF read_image_linear(const fs::path& path, int channels) {
   check_image_budget(path.string(), uint64_t(w), uint64_t(h), uint64_t(channels));
   stbi_uc* pixels = stbi_load(path.c_str(), &w, &h, &n, channels);
   if (!pixels) fail_input(path.string() + ": cannot read image: " + stbi_failure_reason());
-  ImageF img(w, h, channels);
-  auto dst = img.data();
-  for (size_t i = 0; i < dst.size(); ++i) {
-    float v = float(pixels[i]) / 255.0f;
-    dst[i] = (channels == 4 && i % 4 == 3) ? v : srgb_to_linear(v);
-  }
-  stbi_image_free(pixels);
-  return img;
+  const std::unique_ptr<stbi_uc, void (*)(void*)> owned(pixels, stbi_image_free);
+  return srgb8_to_linear(pixels, w, h, channels, channels);
 }
 
 void write_exr(const fs::path& path, const ImageF& image) {
