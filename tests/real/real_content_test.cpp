@@ -191,22 +191,18 @@ TEST(RealContent, TemporalReuseInTheGallery) {
 }
 
 // Soft shadows from reconstructed depth images (issue 5): NRR's mean visibility error below
-// conventional's.
-void shadow_bounds(const fs::path& dir, const std::string& scene, bool known) {
+// conventional's (issue 5 asks it at ref-res 1024; on the trees it holds from 512 on and
+// misses by 0.02 at 256: docs/real-content.md).
+void shadow_bounds(const fs::path& dir, const std::string& scene) {
   const Results r = run(dir, "shadows-" + scene, "shadows", scene + ".json",
-                        "--sampling nrr,conventional,peeling --ref-res 256 --out-res 128 --light-samples 4");
+                        "--sampling nrr,conventional,peeling --ref-res 512 --out-res 256 --light-samples 4 --no-images");
   const double nrr = metric(r, "nrr_visibility_error_mean"), conv = metric(r, "conventional_visibility_error_mean");
   std::cout << "[real-content] " << scene << " peeling_visibility_error_mean: " << metric(r, "peeling_visibility_error_mean") << "\n";
-  if (known)
-    known_failure(scene + " nrr_visibility_error_mean vs conventional's", nrr, "<", conv, nrr < conv);
-  else
-    expect_le(scene + " nrr_visibility_error_mean vs conventional's", nrr, conv);
+  expect_le(scene + " nrr_visibility_error_mean vs conventional's", nrr, conv);
 }
 TEST(RealContent, SoftShadows) {
   REQUIRE_CORPUS();
-  shadow_bounds(dir, "house", false);
-  shadow_bounds(dir, "trees", true);
-  shadow_bounds(dir, "gallery", false);
+  for (const char* scene : {"house", "trees", "gallery"}) shadow_bounds(dir, scene);
 }
 
 // Depth-image sampling (issue 4): NRR images hold no sample redundant with an earlier image
