@@ -1,7 +1,7 @@
 // The real-content tier (`make test-real`, docs/real-content.md): every technique on the
 // scenes scripts/real-content.sh builds from models no one here wrote, held to the bounds
-// the built-in scenes are held to (docs/RESULTS.md, the issues' "Must show"). Skipped unless
-// PROXIMA_REAL_CONTENT names the corpus directory. Each run keeps its output (images,
+// the built-in scenes are held to (docs/RESULTS.md, the issues' "Must show"). Skipped when
+// PROXIMA_REAL_CONTENT (the corpus directory) is unset, failed when it names no corpus. Each run keeps its output (images,
 // results.json) in $PROXIMA_REAL_CONTENT/out/<run>.
 //
 // A bound a technique is known to miss on real content is checked by `known_failure`: the
@@ -28,16 +28,20 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The corpus directory, or empty when the tier does not run here.
+// The corpus directory named by PROXIMA_REAL_CONTENT, or empty when it is unset (the tier
+// does not run here).
 fs::path corpus() {
   const char* dir = std::getenv("PROXIMA_REAL_CONTENT");
-  if (!dir || !*dir || !fs::exists(fs::path(dir) / "house.json")) return {};
-  return fs::path(dir);
+  return dir ? fs::path(dir) : fs::path();
 }
 
-#define REQUIRE_CORPUS()                                                                      \
-  const fs::path dir = corpus();                                                              \
-  if (dir.empty()) GTEST_SKIP() << "PROXIMA_REAL_CONTENT is not a corpus (scripts/real-content.sh)"
+// Skips the test when PROXIMA_REAL_CONTENT is unset; fails it when the variable names no
+// corpus (a tier asked for must not pass by skipping).
+#define REQUIRE_CORPUS()                                                                            \
+  const fs::path dir = corpus();                                                                    \
+  if (dir.empty()) GTEST_SKIP() << "PROXIMA_REAL_CONTENT is unset (make test-real sets it)";        \
+  ASSERT_TRUE(fs::exists(dir / "house.json")) << "PROXIMA_REAL_CONTENT=" << dir                     \
+                                              << " is not a corpus: run scripts/real-content.sh --out " << dir
 
 // `proxima COMMAND --scene SCENE ARGS --out DIR/out/RUN`; the run must succeed. Returns its
 // results.json.
