@@ -23,6 +23,8 @@ while [ $# -gt 0 ]; do
     *) echo "real-content: unknown option $1 (--out DIR)" >&2; exit 2 ;;
   esac
 done
+[ -n "$out" ] || { echo "real-content: --out: empty directory name" >&2; exit 2; }
+[ "$out" = / ] || out="${out%/}"  # model paths in the scene files are relative to it
 
 # --- packages ---------------------------------------------------------------------------
 packages=(assimp-utils assimp-testmodels sweethome3d-furniture glmark2-data libcgal-demo
