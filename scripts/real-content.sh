@@ -79,8 +79,9 @@ convert() {  # convert SRC DST (any format assimp reads → .obj/.glb)
   [ -f "${tmp%.*}.mtl" ] && { sed -i "s/$(basename "${tmp%.*}").mtl/$(basename "${dst%.*}").mtl/" "$tmp"; mv "${tmp%.*}.mtl" "${dst%.*}.mtl"; }
   mv "$tmp" "$dst"
 }
-convert "$fzk" "$models/fzk-haus.obj"
-[ -s "$models/2CylinderEngine.glb" ] || cp "$engine" "$models/2CylinderEngine.glb"
+# OBJ bakes the glTF node transforms into the vertices, so `assimp info` reports the bounds
+# proxima sees (it reports the glTF's untransformed ones).
+convert "$engine" "$models/2CylinderEngine.obj"
 [ -s "$models/bunny.obj" ] || cp "$bunny" "$models/bunny.obj"
 for m in armadillo elephant ChineseDragon-10kv; do
   if [ ! -s "$models/$m.obj" ]; then
@@ -101,14 +102,11 @@ sh3d_model() {  # sh3d_model CATALOG DIR → the .obj path
 }
 
 # --- placement --------------------------------------------------------------------------
-# bounds FILE → "minx miny minz maxx maxy maxz" as assimp reads it (node transforms applied).
-declare -A bounds_cache
+# bounds FILE → "minx miny minz maxx maxy maxz" of the file's vertices, as `assimp info`
+# reports them (node transforms not applied: used on OBJ files only).
 bounds() {
-  if [ -z "${bounds_cache[$1]:-}" ]; then
-    bounds_cache[$1]=$(assimp info "$1" 2>/dev/null | tr '()' '  ' |
-      awk '/Minimum point/ {a=$3" "$4" "$5} /Maximum point/ {b=$3" "$4" "$5} END {print a" "b}')
-  fi
-  echo "${bounds_cache[$1]}"
+  assimp info "$1" 2>/dev/null | tr '()' '  ' |
+    awk '/Minimum point/ {a=$3" "$4" "$5} /Maximum point/ {b=$3" "$4" "$5} END {print a" "b}'
 }
 
 # transform FILE HEIGHT PITCH YAW X FLOOR Z → a scene-file "transform" object that scales
@@ -119,9 +117,9 @@ transform() {
   b=$(bounds "$1")
   awk -v b="$b" -v H="$2" -v pitch="$3" -v yaw="$4" -v px="$5" -v fl="$6" -v pz="$7" 'BEGIN {
     split(b, v, " "); cx = (v[1] + v[4]) / 2; cy = (v[2] + v[5]) / 2; cz = (v[3] + v[6]) / 2
-    if (pitch == -90) { h = v[6] - v[3]; ymin = v[3]; ry = cz; rz = -cy }
-    else if (pitch == 90) { h = v[6] - v[3]; ymin = -v[6]; ry = -cz; rz = cy }
-    else { h = v[5] - v[2]; ymin = v[2]; ry = cy; rz = cz }
+    if (pitch == -90) { h = v[6] - v[3]; ymin = v[3]; rz = -cy }
+    else if (pitch == 90) { h = v[6] - v[3]; ymin = -v[6]; rz = cy }
+    else { h = v[5] - v[2]; ymin = v[2]; rz = cz }
     s = H / h; t = yaw * 3.14159265358979 / 180
     x2 = cx * cos(t) + rz * sin(t); z2 = -cx * sin(t) + rz * cos(t)
     printf "{\"translate\": [%.5f, %.5f, %.5f], \"rotate_deg\": [%g, %g, 0], \"scale\": %.7g}",
@@ -195,7 +193,7 @@ JSON
   mesh armadillo "$models/armadillo.obj" 0.8 0 180 -1.5 1.0 -2 '"material": "clay"'; echo ,
   mesh elephant "$models/elephant.obj" 0.6 0 -30 1.5 1.0 -2 '"material": "stone"'; echo ,
   mesh dragon "$models/ChineseDragon-10kv.obj" 0.6 0 0 4 1.0 -1.5 '"material": "jade"'; echo ,
-  mesh engine "$models/2CylinderEngine.glb" 0.6 0 0 -3 1.0 1.5; echo ,
+  mesh engine "$models/2CylinderEngine.obj" 0.25 0 0 -3 1.0 1.5; echo ,
   cat <<JSON
     {"type": "sphere", "name": "mirror_sphere", "radius": 0.35, "segments": 64, "rings": 32,
      "material": "mirror", "transform": {"translate": [3, 1.35, 1.5]}},
