@@ -120,8 +120,8 @@ ImageF read_jpeg_linear(const fs::path& path, int channels) {
   std::error_code ec;
   const uint64_t size = fs::file_size(path, ec);
   if (ec) fail_input(path.string() + ": cannot read image: " + ec.message());
-  // A JPEG is smaller than its decoded pixels (a few bytes per pixel at most), so a file
-  // larger than the memory limit cannot decode within it.
+  // The whole file is held in memory while decoding: one larger than the memory limit is
+  // refused before it is read.
   if (size > limits().max_memory_mb << 20)
     fail_input(path.string() + ": cannot read image: file of " + std::to_string(size >> 20) +
                " MiB exceeds the memory limit (--max-memory-mb, PROXIMA_MAX_MEMORY_MB)");
