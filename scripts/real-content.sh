@@ -27,8 +27,9 @@ done
 [ "$out" = / ] || out="${out%/}"  # model paths in the scene files are relative to it
 
 # --- packages ---------------------------------------------------------------------------
-packages=(assimp-utils assimp-testmodels sweethome3d-furniture glmark2-data libcgal-demo
-          blender-data unzip)
+# (blender-data's CC0 HDR environments are latitude-longitude maps; scene files take six
+# cube faces, so they are not used and not installed.)
+packages=(assimp-utils assimp-testmodels sweethome3d-furniture glmark2-data libcgal-demo unzip)
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed'; then
