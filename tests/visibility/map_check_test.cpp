@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "cli/cli_util.h"
+#include "proxima/gibr/gibr_model.h"
 #include "proxima/scene/builtin_scenes.h"
 #include "proxima/visibility/bsp_build.h"
 #include "proxima/visibility/winged_pair_io.h"
@@ -217,6 +218,19 @@ TEST(MapCheckCli, StrictExitsNonZeroOnAFailingMap) {
 
   RunResult strict = run_cli(args + " --strict --out " + (dir.path / "strict").string());
   EXPECT_EQ(strict.exit_code, 3) << strict.output;
+}
+
+// GIBR checks the visibility map of every photograph the same way.
+TEST(MapCheck, GibrChecksEveryPhotographsMap) {
+  gibr::GibrModelOptions o;
+  o.photos = 3;
+  o.photo_width = 64;
+  o.photo_height = 48;
+  o.supersample = 1;
+  const gibr::GibrModel g = gibr::build_gibr_model(make_builtin_scene("rooms"), o);
+  EXPECT_EQ(g.stats.maps_failed_selfcheck, 0u);
+  EXPECT_TRUE(g.stats.selfcheck_failures.empty());
+  EXPECT_GT(g.stats.selfcheck_ms, 0.0);
 }
 
 }  // namespace
