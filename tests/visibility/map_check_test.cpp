@@ -220,6 +220,15 @@ TEST(MapCheckCli, StrictExitsNonZeroOnAFailingMap) {
   EXPECT_EQ(strict.exit_code, 3) << strict.output;
 }
 
+TEST(MapCheckCli, BadSelfcheckRaysIsAnInputError) {
+  TempDir dir;
+  RunResult r = run_cli("visibility --scene rooms --frames 1 --width 32 --height 24 --selfcheck-rays 0 --out " +
+                        dir.path.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--selfcheck-rays"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "results.json"));
+}
+
 // GIBR checks the visibility map of every photograph the same way.
 TEST(MapCheck, GibrChecksEveryPhotographsMap) {
   gibr::GibrModelOptions o;
