@@ -13,7 +13,26 @@ OracleCounts& OracleCounts::operator+=(const OracleCounts& o) {
   interior += o.interior;
   interior_agree += o.interior_agree;
   occluded_label += o.occluded_label;
+  ties += o.ties;
+  interior_ties += o.interior_ties;
   return *this;
+}
+
+bool polygon_through_hit(const ModelPolygons& model, uint32_t polygon, const dvec3& origin, const dvec3& dir,
+                         double t_hit) {
+  const InputPolygon& poly = model.polygons[polygon];
+  const double denom = glm::dot(poly.plane.normal, dir);
+  if (std::abs(denom) < 1e-12) return false;
+  const double t = -poly.plane.distance(origin) / denom;
+  if (!(std::abs(t - t_hit) <= 2e-6 * t_hit + 1e-7 * model.scale)) return false;
+  const dvec3 p = origin + t * dir;
+  const size_t n = poly.vertices.size();
+  for (size_t i = 0; i < n; ++i) {
+    const dvec3 a = poly.vertices[i], e = poly.vertices[(i + 1) % n] - a;
+    const double len = glm::length(e);
+    if (len > 0.0 && glm::dot(glm::cross(e, p - a), poly.plane.normal) / len < -1e-6 * model.scale) return false;
+  }
+  return true;
 }
 
 OracleCounts compare_with_ray_casts(const VisibilityMap& map, const ModelPolygons& model,
@@ -30,18 +49,24 @@ OracleCounts compare_with_ray_casts(const VisibilityMap& map, const ModelPolygon
       const uint32_t label = labels.at(x, y);
       ++c.samples;
       c.agree += label == truth;
-      if (near_edge.at(x, y)) continue;
-      ++c.interior;
-      c.interior_agree += label == truth;
+      const bool interior = !near_edge.at(x, y);
+      c.interior += interior;
+      c.interior_agree += interior && label == truth;
       if (label == truth || label == kNone || truth == kNone) continue;
-      // The labeled polygon is occluded if the ray hits something before reaching its plane.
       const Ray ray = ray_through(camera, vec2(float(x) + 0.5f, float(y) + 0.5f));
+      const double t_hit = glm::length(dvec3(item.position.at(x, y, 0), item.position.at(x, y, 1),
+                                             item.position.at(x, y, 2)) - eye);
+      if (polygon_through_hit(model, label, eye, dvec3(ray.dir), t_hit)) {
+        ++c.ties;
+        c.interior_ties += interior;
+        continue;
+      }
+      if (!interior) continue;
+      // The labeled polygon is occluded if the ray hits something before reaching its plane.
       const Plane& pl = model.polygons[label].plane;
       const double denom = glm::dot(pl.normal, dvec3(ray.dir));
       if (std::abs(denom) < 1e-12) continue;
       const double t_label = -pl.distance(eye) / denom;
-      const double t_hit = glm::length(dvec3(item.position.at(x, y, 0), item.position.at(x, y, 1),
-                                             item.position.at(x, y, 2)) - eye);
       c.occluded_label += t_hit < t_label - 1e-4 * model.scale;
     }
   return c;
