@@ -13,8 +13,6 @@
 #include <algorithm>
 #include <cmath>
 #include <vector>
-#include <cstdio>
-#include <cstdlib>
 
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
@@ -238,13 +236,6 @@ std::vector<uint8_t> reachable_tiles(const DistanceCubeMap& geometry, const std:
       }
     }
   });
-  if (std::getenv("PROXIMA_DEBUG_REACH")) {
-    size_t kept = 0;
-    float amax = 0;
-    for (size_t i = 0; i < n_tiles; ++i) kept += out[i];
-    for (size_t j : edges) amax = std::max(amax, reach[j]);
-    std::fprintf(stderr, "reach: %zu tiles, %zu edge tiles (max %.3f rad), %zu kept\n", n_tiles, edges.size(), amax, kept);
-  }
   return out;
 }
 
@@ -335,7 +326,7 @@ namespace {
 // Returns the covered weight (the sum of the non-empty taps' weights).
 template <bool kColor>
 float filter(const DistanceCubeMap& map, vec3 dir, vec3* color, float* distance, uint32_t* object,
-             float* tap_min = nullptr, float* tap_max = nullptr) {
+             float* tap_min = nullptr, float* tap_max = nullptr, bool* one_object = nullptr) {
   // The face and continuous pixel of cube_lookup(), with the cached face frames.
   const vec3 a = glm::abs(dir);
   int face;
@@ -372,6 +363,7 @@ float filter(const DistanceCubeMap& map, vec3 dir, vec3* color, float* distance,
   }
 
   float covered = 0.0f, best = -1.0f, d_sum = 0.0f;
+  uint32_t first_object = kNoObject;
   vec3 c_sum(0.0f);
   for (int k = 0; k < 4; ++k) {
     if (weights[k] <= 0.0f) continue;
@@ -382,12 +374,16 @@ float filter(const DistanceCubeMap& map, vec3 dir, vec3* color, float* distance,
     const float* texel = &img.at(tap.x, tap.y, 0);
     const float d = kColor ? texel[3] : texel[0];
     if (d == kDistanceInf) continue;
-    covered += weights[k];
     d_sum += weights[k] * d;
+    if constexpr (!kColor) covered += weights[k];
     if constexpr (kColor) {
+      const uint32_t o = map.objects[size_t(tap.face)].at(tap.x, tap.y);
+      if (covered > 0.0f && o != first_object) *one_object = false;
+      first_object = o;
       *tap_min = std::min(*tap_min, d);
       *tap_max = std::max(*tap_max, d);
       c_sum += weights[k] * vec3(texel[0], texel[1], texel[2]);
+      covered += weights[k];
       if (weights[k] > best) {
         best = weights[k];
         *object = map.objects[size_t(tap.face)].at(tap.x, tap.y);
@@ -408,7 +404,9 @@ CubeSample sample_cube(const DistanceCubeMap& map, vec3 dir) {
   uint32_t object = s.object;
   vec3 color(0.0f);
   float distance = kDistanceInf, tap_min = kDistanceInf, tap_max = 0.0f;
-  if (filter<true>(map, dir, &color, &distance, &object, &tap_min, &tap_max) < 0.5f) return s;
+  bool one_object = true;
+  if (filter<true>(map, dir, &color, &distance, &object, &tap_min, &tap_max, &one_object) < 0.5f) return s;
+  s.one_object = one_object;
   s.empty = false;
   s.tap_min = tap_min;
   s.tap_max = tap_max;

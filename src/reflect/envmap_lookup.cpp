@@ -189,8 +189,10 @@ EnvLookup layered_lookup(std::span<const DistanceCubeMap> layers, const Environm
   };
   const float min_width = 1e-3f * options.d_e;
   // Bisection on Δd_m over [*a, b] (in front of layer m at *a, behind it at b). A root with
-  // |Δd| < d_e whose filter taps lie on one surface is a hit (written to r); otherwise the
-  // ray passed behind a silhouette of layer m and *a moves to the last point in front.
+  // |Δd| < d_e whose filter taps lie on one surface — one object, or distances within
+  // edge_jump — is a hit (written to r); otherwise (no root, or a filtered ramp between two
+  // objects across a silhouette) the ray passed behind a silhouette of layer m and *a moves
+  // to the last point in front.
   auto refine = [&](int m, float* a, float b) {
     float lo = *a, hi = b;
     while (hi - lo > min_width) {
@@ -199,7 +201,7 @@ EnvLookup layered_lookup(std::span<const DistanceCubeMap> layers, const Environm
       if (std::abs(delta) < options.d_e) {
         const CubeSample s = sample_cube(layers[size_t(m)], ray.at(mid));
         ++ray.samples;
-        if (!s.empty && s.tap_max - s.tap_min <= options.edge_jump * s.tap_min + options.d_e) {
+        if (!s.empty && (s.one_object || s.tap_max - s.tap_min <= options.edge_jump * s.tap_min + options.d_e)) {
           r.color = s.color;
           r.object = s.object;
           r.query = c + ray.at(mid);

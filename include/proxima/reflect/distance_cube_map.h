@@ -107,6 +107,7 @@ struct CubeSample {
   // Smallest and largest distance among the non-empty taps of positive weight: a large
   // spread means the filter straddles a silhouette (kDistanceInf, 0 if empty).
   float tap_min = kDistanceInf, tap_max = 0.0f;
+  bool one_object = false;  // those taps all show the same object
 };
 
 // Bilinear lookup of direction `dir` (need not be unit; 0 or NaN → empty) with seams: a tap beyond a

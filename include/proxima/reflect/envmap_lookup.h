@@ -70,7 +70,7 @@ EnvLookup average_lookup(const DistanceCubeMap& map, const Environment& env, vec
 // at each sample it is behind layers 0 … n − 1 (d_k < |l1|) and in front of layer n.
 // Where n grows between samples the ray crossed layer n's surface or passed behind one of
 // its silhouettes: bisection on Δd_n = d_n − |l1| in that interval; |Δd_n| < d_e whose
-// filter taps lie on one surface (spread ≤ edge_jump) is a hit — the nearest along the ray,
+// filter taps lie on one surface (one object, or spread ≤ edge_jump) is a hit — the nearest along the ray,
 // its layer's color — else a silhouette, and the next layer is searched in the same
 // interval. A ray that ends in front of every layer escapes (environment radiance, miss);
 // one that ends behind a layer without a hit (the surface it meets is deeper than the
