@@ -119,6 +119,7 @@ void store_face(const Scene& scene, const DirectLight& light, const DistanceCube
         objects.at(x, y) = g.object.at(x, y);
       }
   });
+  for (float d : distance.data()) map.min_distance = std::min(map.min_distance, d);
 }
 
 RasterOptions gbuffer_options(const std::vector<uint32_t>& objects, const std::vector<Bounds3>& bounds) {

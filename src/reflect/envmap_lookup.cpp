@@ -176,18 +176,30 @@ EnvLookup layered_lookup(std::span<const DistanceCubeMap> layers, const Environm
   // Samples t(s), s = i/S: the direction from c moves linearly along the chord between
   // the ray's start direction and that of its end t_hi = 2D, so samples are about equally
   // far apart in the map (x at c: the ray is radial, one interval).
+  // The march starts where the ray is first as far from c as the nearest surface of layer
+  // 0 (every deeper layer lies behind it): before that it is in front of everything.
   const float t_hi = 2.0f * options.D;
-  const float len0 = std::max(glm::length(ray.xr), 1e-6f * options.D);
+  const float near = 0.999f * base.min_distance;
+  const float xl = glm::dot(ray.xr, l), xx = glm::dot(ray.xr, ray.xr);
+  const float t_lo = xx < near * near ? -xl + std::sqrt(std::max(0.0f, xl * xl - xx + near * near)) : 0.0f;
+  if (!(t_lo < t_hi)) {  // an empty map, or nothing within reach
+    r.color = environment_radiance(env, l);
+    r.query = c + ray.at(t_hi);
+    r.saw_inf = r.miss = true;
+    return r;
+  }
+  const vec3 v0 = ray.at(t_lo);
+  const float len0 = std::max(glm::length(v0), 1e-6f * options.D);
   const float len1 = glm::length(ray.at(t_hi));
-  const float arc = std::acos(std::clamp(glm::dot(ray.xr / len0, ray.at(t_hi) / len1), -1.0f, 1.0f));
+  const float arc = std::acos(std::clamp(glm::dot(v0 / len0, ray.at(t_hi) / len1), -1.0f, 1.0f));
   const float texel = 2.0f / float(base.camera.resolution);  // angle of a texel at a face centre
   const int steps = std::clamp(int(std::ceil(arc / (2.0f * texel))), 1, std::max(1, options.max_march_steps));
   auto t_of = [&](int i) {
     if (i >= steps) return t_hi;
     const float s = float(i) / float(steps);
-    return t_hi * (s / len1) / ((1.0f - s) / len0 + s / len1);
+    return t_lo + (t_hi - t_lo) * (s / len1) / ((1.0f - s) / len0 + s / len1);
   };
-  const float min_width = 1e-3f * options.d_e;
+  const float min_width = 0.05f * options.d_e;
   // Bisection on Δd_m over [*a, b] (in front of layer m at *a, behind it at b). A root with
   // |Δd| < d_e whose filter taps lie on one surface — one object, or distances within
   // edge_jump — is a hit (written to r); otherwise (no root, or a filtered ramp between two
@@ -217,9 +229,9 @@ EnvLookup layered_lookup(std::span<const DistanceCubeMap> layers, const Environm
     return false;
   };
   int n_prev = 0;  // x lies in front of every layer (nothing of the environment inside the reflector)
-  float t_prev = 0.0f;
+  float t_prev = t_lo;
   float front_prev = kDistanceInf;
-  if (ray.behind(0.0f, &front_prev) != 0) front_prev = kDistanceInf;
+  if (ray.behind(t_lo, &front_prev) != 0) front_prev = kDistanceInf;
   for (int i = 1; i <= steps; ++i) {
     const float t = t_of(i);
     float front = kDistanceInf;

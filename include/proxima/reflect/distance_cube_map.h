@@ -39,6 +39,7 @@ struct DistanceCubeMap {
   // empty because no ray from the viewer sphere can reach them (0 for a single map).
   size_t hidden_texels = 0;
   size_t shaded_texels = 0;  // texels shaded (covered and stored)
+  float min_distance = kDistanceInf;  // smallest stored distance (kDistanceInf when empty)
 };
 
 struct DistanceCubeMapOptions {
