@@ -173,11 +173,8 @@ EnvLookup layered_lookup(std::span<const DistanceCubeMap> layers, const Environm
   const DistanceCubeMap& base = layers[0];
   const vec3 c = base.camera.center;
   LayeredRay ray{layers, x - c, l};
-  // Samples t(s), s = i/S: the direction from c moves linearly along the chord between
-  // the ray's start direction and that of its end t_hi = 2D, so samples are about equally
-  // far apart in the map (x at c: the ray is radial, one interval).
-  // The march starts where the ray is first as far from c as the nearest surface of layer
-  // 0 (every deeper layer lies behind it): before that it is in front of everything.
+  // The march starts at t_lo, where the ray is first as far from c as the nearest surface
+  // of layer 0 (every deeper layer lies behind it): before that it is in front of everything.
   const float t_hi = 2.0f * options.D;
   const float near = 0.999f * base.min_distance;
   const float xl = glm::dot(ray.xr, l), xx = glm::dot(ray.xr, ray.xr);
@@ -194,6 +191,9 @@ EnvLookup layered_lookup(std::span<const DistanceCubeMap> layers, const Environm
   const float arc = std::acos(std::clamp(glm::dot(v0 / len0, ray.at(t_hi) / len1), -1.0f, 1.0f));
   const float texel = 2.0f / float(base.camera.resolution);  // angle of a texel at a face centre
   const int steps = std::clamp(int(std::ceil(arc / (2.0f * texel))), 1, std::max(1, options.max_march_steps));
+  // Samples t(s), s = i/S: the direction from c moves linearly along the chord between
+  // the directions of the ray at t_lo and at its end t_hi = 2D, so samples are about equally
+  // far apart in the map, about two texels (a radial ray: one interval).
   auto t_of = [&](int i) {
     if (i >= steps) return t_hi;
     const float s = float(i) / float(steps);

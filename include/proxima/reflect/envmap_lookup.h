@@ -65,16 +65,19 @@ float average_distance(const DistanceCubeMap& map, float step_rad);
 EnvLookup average_lookup(const DistanceCubeMap& map, const Environment& env, vec3 x, vec3 dir, float d_bar);
 
 // Layered lookup over `layers` (render_distance_cube_layers: layer 0 the ordinary map,
-// layer k the surfaces behind layer k − 1 as seen from c). The ray x + t·l̂, t ∈ (0, 2D],
-// is marched in steps about two texels apart as seen from c (at most max_march_steps);
-// at each sample it is behind layers 0 … n − 1 (d_k < |l1|) and in front of layer n.
-// Where n grows between samples the ray crossed layer n's surface or passed behind one of
-// its silhouettes: bisection on Δd_n = d_n − |l1| in that interval; |Δd_n| < d_e whose
-// filter taps lie on one surface (one object, or spread ≤ edge_jump) is a hit — the nearest along the ray,
+// layer k the surfaces behind layer k − 1 as seen from c). The ray x + t·l̂ is marched
+// over t ∈ [t0, 2D] (t0: where |l1| first reaches the nearest distance of layer 0) in
+// steps about two texels apart as seen from c, at most max_march_steps; at each sample it
+// is behind layers 0 … n − 1 (d_k < |l1|) and in front of layer n. Where n grows between
+// samples the ray crossed layer n's surface or passed behind one of its silhouettes:
+// bisection on Δd_n = d_n − |l1| in that interval; |Δd_n| < d_e whose filter taps lie on
+// one surface (one object, or spread ≤ edge_jump) is a hit — the nearest along the ray,
 // its layer's color — else a silhouette, and the next layer is searched in the same
-// interval. A ray that ends in front of every layer escapes (environment radiance, miss);
-// one that ends behind a layer without a hit (the surface it meets is deeper than the
-// layers, or between two samples) takes the §2.2 rectified lookup on layer 0 (fallback).
+// interval. Where layer n's distance jumps from near to far between samples, the near
+// side of the silhouette is checked for a crossing too. A ray that ends in front of every
+// layer escapes (environment radiance, miss); one that ends behind a layer without a hit
+// (its surface is deeper than the layers, unreachable, or between two samples) takes the
+// §2.2 rectified lookup on layer 0 (fallback = true). Deterministic; thread-safe.
 EnvLookup layered_lookup(std::span<const DistanceCubeMap> layers, const Environment& env, vec3 x, vec3 dir,
                          const RectifyOptions& options);
 
