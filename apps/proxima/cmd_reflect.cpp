@@ -39,7 +39,8 @@ struct ReflectFlags {
   int light_samples = 4;
   int glossy_rays = 16;
   int reps = 3;
-  double per_pixel_coverage = 0.05;  // LayerOptions::per_pixel_min_coverage
+  int layers = 3;                    // DistanceCubeLayerOptions::layers
+  int march_steps = 64;              // RectifyOptions::max_march_steps
   TemporalReflectFlags temporal;     // --method temporal (cmd_reflect_temporal.h)
 };
 
@@ -69,8 +70,8 @@ void validate(const ReflectFlags& f) {
   if (f.light_samples < 1 || f.light_samples > 64) fail_input("--light-samples: must be in 1..64");
   if (f.glossy_rays < 1 || f.glossy_rays > 4096) fail_input("--glossy-rays: must be in 1..4096");
   if (f.reps < 1 || f.reps > 100) fail_input("--reps: must be in 1..100");
-  if (!(f.per_pixel_coverage >= 0.0 && f.per_pixel_coverage <= 1.0))
-    fail_input("--per-pixel-coverage: must be in [0, 1]");
+  if (f.layers < 1 || f.layers > kMaxDistanceCubeLayers) fail_input("--layers: must be in 1..16");
+  if (f.march_steps < 1 || f.march_steps > 4096) fail_input("--march-steps: must be in 1..4096");
   if (f.common.threads < 0) fail_input("--threads: must be ≥ 0");
 }
 
@@ -173,9 +174,10 @@ Command register_reflect(CLI::App& root) {
   app->add_option("--light-samples", f.light_samples, "N×N samples per area light")->capture_default_str();
   app->add_option("--glossy-rays,--gloss-rays", f.glossy_rays, "rays (lookups) per glossy lobe (cluster: 8)")
       ->capture_default_str();
-  app->add_option("--per-pixel-coverage", f.per_pixel_coverage,
-                  "layered: layers covering at least this fraction of the cube are rectified per pixel, "
-                  "smaller ones by their average distance")
+  app->add_option("--layers", f.layers,
+                  "layered: depth layers peeled from the map's center (layer 0 = the ordinary distance map)")
+      ->capture_default_str();
+  app->add_option("--march-steps", f.march_steps, "layered: ray-march samples per lookup at most")
       ->capture_default_str();
   app->add_option("--reps", f.reps,
                   "timed frames per method, round-robin over the methods (median reported; cluster: 1 per frame)")
@@ -235,7 +237,7 @@ Command register_reflect(CLI::App& root) {
         const ImageF reference = render_reference(scene, rays, camera, ro);
         const ItemBuffer item = trace_item_buffer(scene, rays, camera);
 
-        // Maps: one for plain / rectified / average, one per layer for layered. Built once
+        // Maps: one for plain / rectified / average, K depth layers for layered. Built once
         // (a static environment), timed apart from the per-frame work.
         DistanceCubeMapOptions mo;
         mo.resolution = f.cube_size;
@@ -254,16 +256,20 @@ Command register_reflect(CLI::App& root) {
           results.metrics["average_distance_ms"] = w.elapsed_ms();
           results.metrics["average_distance_m"] = d_bar;
         }
-        std::vector<EnvmapLayer> layers;
+        std::vector<DistanceCubeMap> layers;
         if (wants("layered")) {
-          LayerOptions lo;
-          lo.map = mo;
-          lo.angle_step_rad = step;
-          lo.per_pixel_min_coverage = f.per_pixel_coverage;
+          DistanceCubeLayerOptions lo;
+          lo.layers = f.layers;
+          lo.viewer_radius = viewer_radius(scene, reflectors, center);
           Stopwatch w;
-          layers = build_layers(scene, rays, center, reflectors, lo);
+          layers = render_distance_cube_layers(scene, rays, center, mo, lo);
           results.metrics["layered_build_ms"] = w.elapsed_ms();
           results.metrics["layers"] = double(layers.size());
+          results.metrics["viewer_radius_m"] = lo.viewer_radius;
+          for (size_t k = 0; k < layers.size(); ++k) {
+            results.metrics["layer" + std::to_string(k) + "_shaded_texels"] = double(layers[k].shaded_texels);
+            results.metrics["layer" + std::to_string(k) + "_hidden_texels"] = double(layers[k].hidden_texels);
+          }
         }
 
         EnvmapInputs in;
@@ -273,6 +279,7 @@ Command register_reflect(CLI::App& root) {
         in.rectify.D = f.distance > 0.0f ? f.distance : scene_bounds(scene).diagonal();
         in.rectify.d_e = f.d_e;
         in.rectify.edge = f.edge == "fallback" ? EdgeRule::PlainFallback : EdgeRule::Black;
+        in.rectify.max_march_steps = f.march_steps;
         in.area_light_samples = f.light_samples;
         in.glossy_rays = f.glossy_rays;
         in.seed = f.common.seed;
@@ -339,6 +346,10 @@ Command register_reflect(CLI::App& root) {
                            ? 100.0 * double(frame.stats.edge_lookups) / double(frame.stats.lookups)
                            : 0.0;
             results.metrics[m + "_edge_pct"] = edge_pct;
+            if (m == "layered")
+              results.metrics["layered_fallback_pct"] =
+                  frame.stats.lookups ? 100.0 * double(frame.stats.fallback_lookups) / double(frame.stats.lookups)
+                                      : 0.0;
             match_pct = object_match_pct(frame.object, reference_objects, mask, mask_pixels);
             results.metrics[m + "_samples_per_lookup"] =
                 frame.stats.lookups ? double(frame.stats.map_samples) / double(frame.stats.lookups) : 0.0;

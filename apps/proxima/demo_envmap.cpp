@@ -39,7 +39,8 @@ void envmap_section(Context& c) {
                   "one point: plain environment mapping looks up the reflected direction and ignores where on "
                   "the reflector the ray starts; rectified searches along the ray, by bisection over the "
                   "map's distances, for the texel the ray actually meets (tolerance d_e = 0.01 m); average "
-                  "uses one mean distance; layered gives near objects their own maps. Compared with the "
+                  "uses one mean distance; layered peels the map into depth layers (3) so surfaces hidden from its "
+                  "center show in the mirror. Compared with the "
                   "Embree reference on the same camera and pixels (mirror, one bounce). docs/envmap.md.\n\n"
                   "This run: " + size + ", " + std::to_string(s.cube) + "² cube faces, median of " +
                       std::to_string(s.reps) + " frames per method; the paper's table is at 1024×768 on a GPU, "

@@ -16,7 +16,7 @@
 //   s, (m,n) sampling angle step and indices      step_rad, (m, k) in average_distance
 //   d̄, K     average distance, valid samples      sum / count
 //   l_rec    eq. 4 query vector                   xr + d_bar·l
-//   L_1..L_M layers sorted near → far             layers[0 .. M−1]
+//   (layered) layer k of the peeled map           layers[k]; n = layers the ray is behind
 #include "proxima/reflect/envmap_lookup.h"
 
 #include <algorithm>
@@ -116,83 +116,171 @@ EnvLookup average_lookup(const DistanceCubeMap& map, const Environment& env, vec
 
 namespace {
 
-// True when c is strictly in front of every triangle of the object: seen from c, the
-// object shows only front faces and cannot hide another such object (for a room shell).
-bool faces_center(const Scene& scene, uint32_t object, vec3 c) {
-  const Object& o = scene.objects[object];
-  for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) {
-    const vec3 p0 = scene.positions[scene.triangles[t].x];
-    if (glm::dot(triangle_normal(scene, t), c - p0) <= 0.0f) return false;
+// The ray x + t·l̂ relative to c, and its layers' distances along it.
+struct LayeredRay {
+  std::span<const DistanceCubeMap> layers;
+  vec3 xr, l;
+  int samples = 0;
+
+  vec3 at(float t) const { return xr + t * l; }
+  // d_k at t (+inf where layer k is empty there); *rho = |l1|.
+  float distance(int k, float t, float* rho) {
+    ++samples;
+    const vec3 q = at(t);
+    *rho = glm::length(q);
+    return sample_distance(layers[size_t(k)], q);
   }
-  return o.triangle_count > 0;
+  // Δd_k = d_k − |l1| at t (+inf where layer k is empty there).
+  float delta(int k, float t) {
+    float rho = 0.0f;
+    const float d = distance(k, t, &rho);
+    return d - rho;
+  }
+  // n: the ray at t is behind layers 0 … n − 1 and in front of layer n, whose distance
+  // goes to *front (+inf when n = K).
+  int behind(float t, float* front) {
+    int n = 0;
+    *front = kDistanceInf;
+    for (; n < int(layers.size()); ++n) {
+      float rho = 0.0f;
+      const float d = distance(n, t, &rho);
+      if (!(d < rho)) {
+        *front = d;
+        break;
+      }
+    }
+    return n;
+  }
+};
+
+// Two distances of one layer on different surfaces (a silhouette between them).
+bool jump(float a, float b, float edge_jump) {
+  if (a == kDistanceInf || b == kDistanceInf) return a != b;
+  return std::abs(a - b) > edge_jump * std::min(a, b);
 }
 
 }  // namespace
 
-std::vector<EnvmapLayer> build_layers(const Scene& scene, const RayScene& rays, vec3 center,
-                                      std::span<const uint32_t> exclude, const LayerOptions& options) {
-  std::vector<std::vector<uint32_t>> groups;
-  std::vector<uint32_t> enclosure;
-  for (uint32_t o = 0; o < uint32_t(scene.objects.size()); ++o) {
-    if (std::find(exclude.begin(), exclude.end(), o) != exclude.end()) continue;
-    if (faces_center(scene, o, center))
-      enclosure.push_back(o);
-    else
-      groups.push_back({o});
-  }
-  if (!enclosure.empty()) groups.push_back(enclosure);
-
-  std::vector<EnvmapLayer> layers;
-  for (const auto& group : groups) {
-    EnvmapLayer layer;
-    layer.objects = group;
-    layer.enclosure = &group == &groups.back() && !enclosure.empty();
-    DistanceCubeMapOptions mo = options.map;
-    mo.objects = layer.objects;
-    mo.exclude = {};
-    layer.map = render_distance_cube_map(scene, rays, center, mo);
-    if (layer.map.covered_fraction == 0.0) continue;  // nothing of it visible from c
-    layer.average_distance = average_distance(layer.map, options.angle_step_rad);
-    layer.per_pixel = layer.map.covered_fraction >= options.per_pixel_min_coverage;
-    layers.push_back(std::move(layer));
-  }
-  // Near → far by d̄, the enclosure last; ties keep the grouping order (objects by id).
-  std::stable_sort(layers.begin(), layers.end(), [](const EnvmapLayer& a, const EnvmapLayer& b) {
-    if (a.enclosure != b.enclosure) return b.enclosure;
-    return a.average_distance < b.average_distance;
-  });
-  return layers;
-}
-
-EnvLookup layered_lookup(std::span<const EnvmapLayer> layers, const Environment& env, vec3 x, vec3 dir,
+EnvLookup layered_lookup(std::span<const DistanceCubeMap> layers, const Environment& env, vec3 x, vec3 dir,
                          const RectifyOptions& options) {
-  RectifyOptions per_layer = options;
-  per_layer.edge = EdgeRule::Black;  // a layer's edge case means "not in this layer"
-  int steps = 0;
-  for (const EnvmapLayer& layer : layers) {
-    EnvLookup r = layer.per_pixel ? rectified_lookup(layer.map, env, x, dir, per_layer)
-                                  : average_lookup(layer.map, env, x, dir, layer.average_distance);
-    steps += r.steps;
-    if (!r.miss) {
-      r.steps = steps;
-      return r;
-    }
-  }
   EnvLookup r;
-  r.steps = steps;
-  r.saw_inf = r.miss = true;
-  if (options.edge == EdgeRule::PlainFallback) {
-    r.color = environment_radiance(env, dir);
-    for (const EnvmapLayer& layer : layers) {
-      EnvLookup p = plain_lookup(layer.map, env, dir);
-      if (!p.miss) {
-        r.color = p.color;
-        r.object = p.object;
-        break;
+  const vec3 l = glm::normalize(dir);
+  if (layers.empty()) {
+    r.color = environment_radiance(env, l);
+    r.saw_inf = r.miss = true;
+    return r;
+  }
+  const DistanceCubeMap& base = layers[0];
+  const vec3 c = base.camera.center;
+  LayeredRay ray{layers, x - c, l};
+  // The march starts at t_lo, where the ray is first as far from c as the nearest surface
+  // of layer 0 (every deeper layer lies behind it): before that it is in front of everything.
+  const float t_hi = 2.0f * options.D;
+  const float near = 0.999f * base.min_distance;
+  const float xl = glm::dot(ray.xr, l), xx = glm::dot(ray.xr, ray.xr);
+  const float t_lo = xx < near * near ? -xl + std::sqrt(std::max(0.0f, xl * xl - xx + near * near)) : 0.0f;
+  if (!(t_lo < t_hi)) {  // an empty map, or nothing within reach
+    r.color = environment_radiance(env, l);
+    r.query = c + ray.at(t_hi);
+    r.saw_inf = r.miss = true;
+    return r;
+  }
+  const vec3 v0 = ray.at(t_lo);
+  const float len0 = std::max(glm::length(v0), 1e-6f * options.D);
+  const float len1 = glm::length(ray.at(t_hi));
+  const float arc = std::acos(std::clamp(glm::dot(v0 / len0, ray.at(t_hi) / len1), -1.0f, 1.0f));
+  const float texel = 2.0f / float(base.camera.resolution);  // angle of a texel at a face centre
+  const int steps = std::clamp(int(std::ceil(arc / (2.0f * texel))), 1, std::max(1, options.max_march_steps));
+  // Samples t(s), s = i/S: the direction from c moves linearly along the chord between
+  // the directions of the ray at t_lo and at its end t_hi = 2D, so samples are about equally
+  // far apart in the map, about two texels (a radial ray: one interval).
+  auto t_of = [&](int i) {
+    if (i >= steps) return t_hi;
+    const float s = float(i) / float(steps);
+    return t_lo + (t_hi - t_lo) * (s / len1) / ((1.0f - s) / len0 + s / len1);
+  };
+  const float min_width = 0.05f * options.d_e;
+  // Bisection on Δd_m over [*a, b] (in front of layer m at *a, behind it at b). A root with
+  // |Δd| < d_e whose filter taps lie on one surface — one object, or distances within
+  // edge_jump — is a hit (written to r); otherwise (no root, or a filtered ramp between two
+  // objects across a silhouette) the ray passed behind a silhouette of layer m and *a moves
+  // to the last point in front.
+  auto refine = [&](int m, float* a, float b) {
+    float lo = *a, hi = b;
+    while (hi - lo > min_width) {
+      const float mid = 0.5f * (lo + hi);
+      const float delta = ray.delta(m, mid);
+      if (std::abs(delta) < options.d_e) {
+        const CubeSample s = sample_cube(layers[size_t(m)], ray.at(mid));
+        ++ray.samples;
+        if (!s.empty && (s.one_object || s.tap_max - s.tap_min <= options.edge_jump * s.tap_min + options.d_e)) {
+          r.color = s.color;
+          r.object = s.object;
+          r.query = c + ray.at(mid);
+          r.converged = true;
+          r.layer = m;
+          return true;
+        }
+        break;  // a filtered ramp across a silhouette, not a surface
+      }
+      (delta > 0.0f ? lo : hi) = mid;
+    }
+    *a = lo;
+    return false;
+  };
+  int n_prev = 0;  // x lies in front of every layer (nothing of the environment inside the reflector)
+  float t_prev = t_lo;
+  float front_prev = kDistanceInf;
+  if (ray.behind(t_lo, &front_prev) != 0) front_prev = kDistanceInf;
+  for (int i = 1; i <= steps; ++i) {
+    const float t = t_of(i);
+    float front = kDistanceInf;
+    const int n = ray.behind(t, &front);
+    float a = t_prev;
+    for (int m = n_prev; m < n; ++m) {
+      // In front of layer m at a, behind it at t: a surface crossing or a silhouette.
+      if (refine(m, &a, t)) {
+        r.steps = ray.samples;
+        return r;
       }
     }
+    if (n == n_prev && n < int(layers.size()) && front_prev < front && jump(front_prev, front, options.edge_jump)) {
+      // In front of layer n at both ends, the near surface at t_prev's side, a farther one
+      // (or none) at t's: the ray may have gone through the near surface just before its
+      // silhouette. Find the silhouette, and look for Δd < 0 on its near side.
+      float lo = t_prev, hi = t;
+      for (int k = 0; k < 24 && hi - lo > min_width; ++k) {
+        const float mid = 0.5f * (lo + hi);
+        float rho = 0.0f;
+        const float d = ray.distance(n, mid, &rho);
+        if (d < rho) {  // behind the near surface already: a crossing in [t_prev, mid]
+          hi = mid;
+          float a2 = t_prev;
+          if (refine(n, &a2, hi)) {
+            r.steps = ray.samples;
+            return r;
+          }
+          break;
+        }
+        (jump(front_prev, d, options.edge_jump) ? hi : lo) = mid;
+      }
+    }
+    n_prev = n;
+    t_prev = t;
+    front_prev = front;
   }
-  return r;
+  if (n_prev == 0) {
+    // In front of every layer at t_hi: the ray leaves the environment.
+    r.color = environment_radiance(env, l);
+    r.query = c + ray.at(t_hi);
+    r.saw_inf = r.miss = true;
+    r.steps = ray.samples;
+    return r;
+  }
+  EnvLookup f = rectified_lookup(base, env, x, dir, options);
+  f.steps += ray.samples;
+  f.fallback = true;
+  return f;
 }
 
 }  // namespace proxima

@@ -75,6 +75,16 @@ vec3 projection_center(const Scene& scene, std::span<const uint32_t> objects) {
   return b.center();
 }
 
+float viewer_radius(const Scene& scene, std::span<const uint32_t> objects, vec3 center) {
+  float r = 0.0f;
+  for (uint32_t o : objects) {
+    const Object& obj = scene.objects[o];
+    for (uint32_t t = obj.first_triangle; t < obj.first_triangle + obj.triangle_count; ++t)
+      for (int k = 0; k < 3; ++k) r = std::max(r, glm::length(scene.positions[scene.triangles[t][k]] - center));
+  }
+  return r;
+}
+
 ReflectorPixels rasterize_reflector_pixels(const Scene& scene, const Camera& camera,
                                            std::span<const uint32_t> reflectors) {
   RasterOptions ro;
@@ -96,10 +106,10 @@ EnvmapFrame shade_reflector_pixels(const Scene& scene, const RayScene& rays, con
   const int w = camera.width, h = camera.height;
   EnvmapFrame frame{ImageF(w, h, 3, 0.0f), ImageU32(w, h, 1, kNoObject), {}};
   const DirectLight light(scene, rays, in.area_light_samples);
-  std::atomic<size_t> n_pixels{0}, n_lookups{0}, n_samples{0}, n_edges{0};
+  std::atomic<size_t> n_pixels{0}, n_lookups{0}, n_samples{0}, n_edges{0}, n_fallbacks{0};
   parallel_for_tiles(w, h, kTileSize, [&](const Tile& tile) {
     std::vector<vec2> lobe(size_t(in.glossy_rays));
-    size_t tp = 0, tl = 0, ts = 0, te = 0;
+    size_t tp = 0, tl = 0, ts = 0, te = 0, tf = 0;
     uint32_t first_object = kNoObject;
     auto trace = [&](vec3 x, vec3 dir) {
       EnvLookup r = lookup(in, scene.environment, x, dir);
@@ -107,6 +117,7 @@ EnvmapFrame shade_reflector_pixels(const Scene& scene, const RayScene& rays, con
       ++tl;
       ts += size_t(r.steps);
       te += r.miss;
+      tf += r.fallback;
       return r.color;
     };
     for (int y = tile.y0; y < tile.y1; ++y)
@@ -142,8 +153,9 @@ EnvmapFrame shade_reflector_pixels(const Scene& scene, const RayScene& rays, con
     n_lookups += tl;
     n_samples += ts;
     n_edges += te;
+    n_fallbacks += tf;
   });
-  frame.stats = {n_pixels.load(), n_lookups.load(), n_samples.load(), n_edges.load()};
+  frame.stats = {n_pixels.load(), n_lookups.load(), n_samples.load(), n_edges.load(), n_fallbacks.load()};
   return frame;
 }
 

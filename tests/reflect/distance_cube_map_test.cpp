@@ -1,10 +1,12 @@
 // Distance cube maps: Euclidean distances against ray/box intersections, d_inf where
-// nothing is hit, the reflector left out, seams between faces, determinism across threads.
+// nothing is hit, the reflector left out, seams between faces, determinism across threads;
+// layered maps: peeling order, back-face culling, reachable texels, the layer bound.
 #include "proxima/reflect/distance_cube_map.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
@@ -209,6 +211,141 @@ TEST(DistanceCubeMap, RejectsBadResolution) {
   Scene s = box_room({-1, -1, -1}, {1, 1, 1});
   RayScene rays(s);
   EXPECT_THROW(render_distance_cube_map(s, rays, vec3(0.0f), small(0)), InputError);
+}
+
+// A room, a closed box (side `size`) in front of the +Z wall, its front face 1.5 m from c.
+Scene room_with_box(uint32_t* box, float size = 1.0f) {
+  Scene s = box_room({-4, -4, -4}, {4, 4, 4});
+  Mesh b = make_box(vec3(size), 1);
+  transform_mesh(b, glm::translate(mat4(1.0f), vec3(0, 0, 1.5f + 0.5f * size)));
+  *box = add_object(s, b, "box", add_diffuse(s, vec3(0.9f, 0.9f, 0.1f)));
+  return s;
+}
+
+TEST(DistanceCubeLayers, LayerZeroIsTheSingleMap) {
+  uint32_t box = 0;
+  Scene s = room_with_box(&box);
+  RayScene rays(s);
+  DistanceCubeLayerOptions lo;
+  lo.viewer_radius = 0.5f;
+  const std::vector<DistanceCubeMap> layers = render_distance_cube_layers(s, rays, vec3(0.0f), small(48), lo);
+  const DistanceCubeMap single = render_distance_cube_map(s, rays, vec3(0.0f), small(48));
+  ASSERT_GE(layers.size(), 2u);
+  for (int f = 0; f < 6; ++f) {
+    EXPECT_TRUE(layers[0].faces[size_t(f)] == single.faces[size_t(f)]) << f;
+    EXPECT_TRUE(layers[0].objects[size_t(f)] == single.objects[size_t(f)]) << f;
+  }
+  EXPECT_EQ(layers[0].hidden_texels, 0u);
+}
+
+TEST(DistanceCubeLayers, PeelsTheNextFrontFacingSurfaceBehindEachTexel) {
+  uint32_t box = 0;
+  Scene s = room_with_box(&box);
+  RayScene rays(s);
+  DistanceCubeLayerOptions lo;
+  lo.viewer_radius = 0.4f;  // the box's sides (0.5 m from c) have the sphere behind them
+  lo.reachable_only = false;
+  const std::vector<DistanceCubeMap> layers = render_distance_cube_layers(s, rays, vec3(0.0f), small(64), lo);
+  // Behind the box's front face: its back faces point away from the viewer sphere and are
+  // culled, so layer 1 is the +Z wall, 4 m away, and there is nothing behind that.
+  ASSERT_EQ(layers.size(), 2u);
+  const vec3 d = glm::normalize(vec3(0.1f, -0.05f, 1.0f));
+  EXPECT_EQ(sample_cube(layers[0], d).object, box);
+  EXPECT_NEAR(sample_cube(layers[0], d).distance, 1.5f * glm::length(d / d.z), 1e-2f);
+  const CubeSample behind = sample_cube(layers[1], d);
+  EXPECT_EQ(behind.object, 5u);  // wall_pz
+  EXPECT_NEAR(behind.distance, 4.0f * glm::length(d / d.z), 1e-2f);
+  // Where the room's wall is the first surface nothing lies behind it.
+  EXPECT_TRUE(sample_cube(layers[1], vec3(1, 0.2f, -0.3f)).empty);
+  // Without the culling the box's back face comes first.
+  lo.cull_back_faces = false;
+  const std::vector<DistanceCubeMap> all = render_distance_cube_layers(s, rays, vec3(0.0f), small(64), lo);
+  ASSERT_EQ(all.size(), 3u);
+  EXPECT_EQ(sample_cube(all[1], d).object, box);
+  EXPECT_NEAR(sample_cube(all[1], d).distance, 2.5f * glm::length(d / d.z), 1e-2f);
+  EXPECT_EQ(sample_cube(all[2], d).object, 5u);
+}
+
+TEST(DistanceCubeLayers, ShadesOnlyTexelsAViewerCanReach) {
+  uint32_t box = 0;
+  Scene s = room_with_box(&box, 2.0f);
+  RayScene rays(s);
+  DistanceCubeLayerOptions lo;
+  lo.viewer_radius = 0.2f;
+  lo.reachable_only = false;
+  const size_t peeled = render_distance_cube_layers(s, rays, vec3(0.0f), small(256), lo)[1].shaded_texels;
+  lo.reachable_only = true;
+  const std::vector<DistanceCubeMap> layers = render_distance_cube_layers(s, rays, vec3(0.0f), small(256), lo);
+  ASSERT_EQ(layers.size(), 2u);
+  const DistanceCubeMap& l1 = layers[1];
+  EXPECT_EQ(l1.shaded_texels + l1.hidden_texels, peeled);
+  // From within 0.2 m of c the wall behind the box's middle is out of reach (the box's
+  // front face's edges, 1.8–2.1 m away, shift by at most asin(0.2/1.8) ≈ 6.4°, plus
+  // 2 × 4° of tile radius; its middle is 33.7° in).
+  EXPECT_GT(l1.hidden_texels, 0u);
+  EXPECT_TRUE(sample_cube(l1, vec3(0, 0, 1)).empty);
+  // Just inside the silhouette it is kept: the viewer sees past the edge there.
+  EXPECT_FALSE(sample_cube(l1, glm::normalize(vec3(0.95f, 0, 1.5f))).empty);
+  // A larger viewer sphere reaches farther in.
+  lo.viewer_radius = 1.0f;
+  EXPECT_GT(render_distance_cube_layers(s, rays, vec3(0.0f), small(256), lo)[1].shaded_texels, l1.shaded_texels);
+}
+
+TEST(DistanceCubeLayers, LayerCountIsBoundedNotOnePerObject) {
+  // 60 boxes in three rings around c: the per-object layering made 61 maps.
+  Scene s = box_room({-6, -6, -6}, {6, 6, 6});
+  for (int i = 0; i < 60; ++i) {
+    Mesh b = make_box(vec3(0.4f), 1);
+    const float a = float(i) * 0.5f, radius = 1.5f + float(i % 3);
+    transform_mesh(b, glm::translate(mat4(1.0f), vec3(radius * std::cos(a), float(i % 5) - 2.0f, radius * std::sin(a))));
+    add_object(s, b, "box" + std::to_string(i), add_diffuse(s, vec3(0.5f)));
+  }
+  RayScene rays(s);
+  const int res = 32;
+  for (int k : {1, 2, 3}) {
+    DistanceCubeLayerOptions lo;
+    lo.layers = k;
+    lo.viewer_radius = 1.0f;
+    const std::vector<DistanceCubeMap> layers = render_distance_cube_layers(s, rays, vec3(0.0f), small(res), lo);
+    EXPECT_EQ(layers.size(), size_t(k));  // every peel finds something here
+    for (const DistanceCubeMap& m : layers) EXPECT_LE(m.shaded_texels, size_t(6 * res * res));
+  }
+  DistanceCubeLayerOptions bad;
+  bad.layers = 0;
+  EXPECT_THROW(render_distance_cube_layers(s, rays, vec3(0.0f), small(res), bad), InputError);
+  bad.layers = kMaxDistanceCubeLayers + 1;
+  EXPECT_THROW(render_distance_cube_layers(s, rays, vec3(0.0f), small(res), bad), InputError);
+}
+
+TEST(DistanceCubeLayers, SameForAnyThreadCount) {
+  uint32_t box = 0;
+  Scene s = room_with_box(&box);
+  AreaLight a;
+  a.corner = {-0.5f, 3.9f, -0.5f};
+  a.edge_u = {1, 0, 0};
+  a.edge_v = {0, 0, 1};
+  s.area_lights.push_back(a);
+  RayScene rays(s);
+  DistanceCubeMapOptions o = small(40);
+  o.area_light_samples = 2;
+  DistanceCubeLayerOptions lo;
+  lo.viewer_radius = 0.6f;
+  std::vector<DistanceCubeMap> one, two;
+  {
+    ThreadLimit limit(1);
+    one = render_distance_cube_layers(s, rays, vec3(0.1f), o, lo);
+  }
+  {
+    ThreadLimit limit(2);
+    two = render_distance_cube_layers(s, rays, vec3(0.1f), o, lo);
+  }
+  ASSERT_EQ(one.size(), two.size());
+  ASSERT_GE(one.size(), 2u);
+  for (size_t k = 0; k < one.size(); ++k)
+    for (int f = 0; f < 6; ++f) {
+      EXPECT_TRUE(one[k].faces[size_t(f)] == two[k].faces[size_t(f)]) << k << " " << f;
+      EXPECT_TRUE(one[k].objects[size_t(f)] == two[k].objects[size_t(f)]) << k << " " << f;
+    }
 }
 
 }  // namespace

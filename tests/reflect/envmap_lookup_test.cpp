@@ -1,6 +1,6 @@
-// Env-map lookups with position rectification (§2.2–2.4): far environments, a planar
+// Env-map lookups with position rectification (§2.2–2.3): far environments, a planar
 // mirror facing a planar wall (analytic hit), the step bound N, the d_inf edge rule, the
-// average distance, and layers.
+// average distance; and the layered (depth-peeled) lookup against Embree's rays.
 #include "proxima/reflect/envmap_lookup.h"
 
 #include <gtest/gtest.h>
@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "proxima/core/rng.h"
+#include "proxima/trace/ray_scene.h"
 #include "proxima/scene/procedural.h"
 #include "reflect_test_scenes.h"
 
@@ -184,54 +185,139 @@ TEST(EnvmapLookup, AverageDistanceOfACenteredSphereIsItsRadius) {
   EXPECT_GT(std::abs(d - 1.5f), 0.01f);
 }
 
-TEST(EnvmapLookup, LayersResolveOcclusionNearToFar) {
-  // A room with a small box between c and the +Z wall: the box is a layer of its own,
-  // the six walls (all facing c) form the enclosure layer behind it.
-  Scene s = box_room({-4, -4, -4}, {4, 4, 4});
-  Mesh cube = make_box(vec3(0.6f), 1);
-  transform_mesh(cube, glm::translate(mat4(1.0f), vec3(0, 0, 2)));
-  const uint32_t box = add_object(s, cube, "box", add_diffuse(s, vec3(0.9f, 0.9f, 0.1f)));
-  RayScene rays(s);
-  LayerOptions lo;
-  lo.map = small(64);
-  std::vector<EnvmapLayer> layers = build_layers(s, rays, vec3(0.0f), {}, lo);
-  ASSERT_EQ(layers.size(), 2u);
-  EXPECT_EQ(layers[0].objects, std::vector<uint32_t>{box});
-  EXPECT_FALSE(layers[0].per_pixel);  // 0.6 m at 2 m: a small solid angle → d̄
-  EXPECT_EQ(layers[1].objects.size(), 6u);
-  EXPECT_TRUE(layers[1].per_pixel);
-  EXPECT_LT(layers[0].average_distance, layers[1].average_distance);
+// A room with a panel between c and the +Z wall and a small card right behind the panel:
+// from c the card is hidden (it is in no texel of the ordinary distance map), from points
+// 1.2 m to the side of c the rays pass beside the panel and meet it.
+struct HiddenBoxScene {
+  Scene scene;
+  uint32_t panel = 0, box = 0;
+  vec3 box_color{0.9f, 0.9f, 0.1f};
 
+  HiddenBoxScene() : scene(box_room({-4, -4, -4}, {4, 4, 4})) {
+    Mesh p = make_box(vec3(0.8f, 0.8f, 0.04f), 1);
+    transform_mesh(p, glm::translate(mat4(1.0f), vec3(0, 0, 1.5f)));
+    panel = add_object(scene, p, "panel", add_diffuse(scene, vec3(0.1f, 0.1f, 0.9f)));
+    // A card facing c: a box's sides would be seen edge-on from c, in no layer (gap).
+    box = add_quad(scene, {0.2f, -0.2f, 3.5f}, {-0.4f, 0, 0}, {0, 0.4f, 0}, add_diffuse(scene, box_color), "card");
+    scene.ambient = vec3(1.0f);
+    scene.point_lights.clear();  // texel radiance = albedo: colors compare exactly
+  }
+};
+
+TEST(EnvmapLookup, LayeredFindsASurfaceHiddenFromTheCentreAsEmbreeDoes) {
+  HiddenBoxScene h;
+  RayScene rays(h.scene);
+  DistanceCubeLayerOptions lo;
+  lo.layers = 3;
+  lo.viewer_radius = 1.3f;
+  const std::vector<DistanceCubeMap> layers = render_distance_cube_layers(h.scene, rays, vec3(0.0f), small(128), lo);
+  ASSERT_GE(layers.size(), 2u);
+  // The box is in no texel of layer 0 (the ordinary map): no single-map method can show it.
+  for (const ImageU32& face : layers[0].objects)
+    for (uint32_t o : face.data()) ASSERT_NE(o, h.box);
   RectifyOptions o;
-  const vec3 x(0.2f, 0.0f, 0.0f);
-  EXPECT_EQ(layered_lookup(layers, s.environment, x, {0, 0, 1}, o).object, box);
-  // Past the box: the enclosure's walls, found by bisection in the second layer.
-  EXPECT_EQ(layered_lookup(layers, s.environment, x, {0, 1.2f, 1}, o).object, 3u);  // ceiling
-  EXPECT_EQ(layered_lookup(layers, s.environment, x, {0, 0.7f, 1}, o).object, 5u);  // wall_pz
-  EXPECT_EQ(layered_lookup(layers, s.environment, x, {1, 0, 0}, o).object, 1u);     // wall_px
-  EXPECT_FALSE(layers[0].enclosure);
-  EXPECT_TRUE(layers[1].enclosure);
-  // Excluding the box leaves the enclosure only.
-  const uint32_t exclude[] = {box};
-  EXPECT_EQ(build_layers(s, rays, vec3(0.0f), exclude, lo).size(), 1u);
+  o.D = 14.0f;
+  int box_rays = 0, layered_right = 0, rectified_right = 0;
+  for (float side : {-1.2f, 1.2f})
+    for (float y : {-0.1f, 0.0f, 0.1f})
+      for (float bx : {-0.1f, 0.0f, 0.1f}) {
+        const vec3 x(side, y, 0.0f);
+        const vec3 dir = glm::normalize(vec3(bx, 0.05f, 3.5f) - x);
+        const Hit hit = rays.intersect(Ray{x, dir, 0.0f, kInf});
+        ASSERT_TRUE(hit.valid());
+        if (h.scene.triangle_object[hit.triangle] != h.box) continue;  // the ray meets the panel
+        ++box_rays;
+        const EnvLookup l = layered_lookup(layers, h.scene.environment, x, dir, o);
+        const EnvLookup r = rectified_lookup(layers[0], h.scene.environment, x, dir, o);
+        EXPECT_GE(l.layer, 1) << x.x << " " << x.y << " " << bx << " obj " << l.object << " fb " << l.fallback << " steps " << l.steps << " t " << hit.t << " q " << l.query.x << "," << l.query.y << "," << l.query.z;
+        layered_right += l.object == h.box;
+        rectified_right += r.object == h.box;
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(l.color[c], h.box_color[c], 1e-3f);
+        // The hit point: on the ray within d_e of Embree's.
+        EXPECT_LE(glm::length(l.query - (x + hit.t * dir)), 2.0f * o.d_e);
+      }
+  EXPECT_GE(box_rays, 6);
+  EXPECT_EQ(layered_right, box_rays);
+  EXPECT_EQ(rectified_right, 0);
 }
 
-TEST(EnvmapLookup, TheEnclosureIsTheLastLayerEvenWhenNearerOnAverage) {
-  // c half a meter above the floor: the room's d̄ is small, a box by the far wall is
-  // farther on average, yet it stands inside the room and must be looked up first.
-  Scene s = box_room({-4, -0.5f, -4}, {4, 4, 4});
-  Mesh cube = make_box(vec3(0.6f), 1);
-  transform_mesh(cube, glm::translate(mat4(1.0f), vec3(0, 0, 3.6f)));
-  const uint32_t box = add_object(s, cube, "box", add_diffuse(s, vec3(0.9f, 0.9f, 0.1f)));
+TEST(EnvmapLookup, LayeredAgreesWithEmbreeOnRandomRaysWhereRectifiedFails) {
+  // Random rays from points within 1.2 m of c: the object the layered lookup returns is
+  // Embree's (except within a texel of a silhouette), more often than the rectified one.
+  HiddenBoxScene h;
+  RayScene rays(h.scene);
+  DistanceCubeLayerOptions lo;
+  lo.viewer_radius = 1.3f;
+  const std::vector<DistanceCubeMap> layers = render_distance_cube_layers(h.scene, rays, vec3(0.0f), small(256), lo);
+  RectifyOptions o;
+  o.D = 14.0f;
+  Pcg32 rng(17);
+  int total = 0, layered_ok = 0, rectified_ok = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const vec3 x = 1.2f * random_dir(rng) * std::sqrt(rng.next_float());
+    vec3 dir = random_dir(rng);
+    if (dir.z < 0.5f) dir.z = -dir.z + 0.5f;  // mostly towards the panel and the box
+    dir = glm::normalize(dir);
+    const Hit hit = rays.intersect(Ray{x, dir, 0.0f, kInf});
+    if (!hit.valid()) continue;
+    ++total;
+    const uint32_t want = h.scene.triangle_object[hit.triangle];
+    layered_ok += layered_lookup(layers, h.scene.environment, x, dir, o).object == want;
+    rectified_ok += rectified_lookup(layers[0], h.scene.environment, x, dir, o).object == want;
+  }
+  ASSERT_GT(total, 3000);
+  EXPECT_GE(layered_ok, total * 99 / 100) << layered_ok << " of " << total;
+  EXPECT_GT(layered_ok, rectified_ok) << rectified_ok << " of " << total;
+}
+
+TEST(EnvmapLookup, LayeredWithOneLayerNeverLooksBehindIt) {
+  HiddenBoxScene h;
+  RayScene rays(h.scene);
+  DistanceCubeLayerOptions lo;
+  lo.layers = 1;
+  lo.viewer_radius = 1.3f;
+  const std::vector<DistanceCubeMap> layers = render_distance_cube_layers(h.scene, rays, vec3(0.0f), small(64), lo);
+  ASSERT_EQ(layers.size(), 1u);
+  const vec3 x(1.2f, 0.0f, 0.0f);
+  const vec3 dir = glm::normalize(vec3(0, 0.05f, 3.5f) - x);
+  const EnvLookup l = layered_lookup(layers, h.scene.environment, x, dir, RectifyOptions{});
+  EXPECT_NE(l.object, h.box);
+  EXPECT_EQ(l.layer, 0);
+}
+
+TEST(EnvmapLookup, LayeredEscapesToTheEnvironmentWhereNothingIsHit) {
+  // One wall: rays beside it see the environment (not black), rays at it see the wall.
+  Scene s;
+  const vec3 wall_color(0.7f, 0.6f, 0.5f);
+  add_quad(s, {-2, -2, -3}, {4, 0, 0}, {0, 4, 0}, add_diffuse(s, wall_color), "wall");
+  s.ambient = vec3(1.0f);
+  s.environment.color = {0.1f, 0.2f, 0.9f};
   RayScene rays(s);
-  LayerOptions lo;
-  lo.map = small(64);
-  std::vector<EnvmapLayer> layers = build_layers(s, rays, vec3(0.0f), {}, lo);
-  ASSERT_EQ(layers.size(), 2u);
-  EXPECT_GT(layers[0].average_distance, layers[1].average_distance);
-  EXPECT_EQ(layers[0].objects, std::vector<uint32_t>{box});
-  EXPECT_TRUE(layers[1].enclosure);
-  EXPECT_EQ(layered_lookup(layers, s.environment, vec3(0.1f, 0, 0), {0, 0, 1}, RectifyOptions{}).object, box);
+  DistanceCubeLayerOptions lo;
+  lo.viewer_radius = 0.3f;
+  const std::vector<DistanceCubeMap> layers = render_distance_cube_layers(s, rays, vec3(0.0f), small(128), lo);
+  RectifyOptions o;
+  Pcg32 rng(9);
+  int hits = 0, escapes = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const vec3 x = 0.3f * (vec3(rng.next_float(), rng.next_float(), 0.0f) - 0.5f);
+    const vec3 l = glm::normalize(vec3(2.0f * rng.next_float() - 1.0f, 2.0f * rng.next_float() - 1.0f, -1.0f));
+    const vec3 p = x + (-3.0f - x.z) / l.z * l;
+    const float inside = 2.0f - std::max(std::abs(p.x), std::abs(p.y));
+    if (std::abs(inside) < 0.05f) continue;  // within about a texel of the wall's edge
+    const EnvLookup r = layered_lookup(layers, s.environment, x, l, o);
+    if (inside > 0.0f) {
+      ++hits;
+      EXPECT_FALSE(r.miss) << i << " inside " << inside << " p " << p.x << "," << p.y << " fb " << r.fallback << " steps " << r.steps << " x " << x.x << "," << x.y << " l " << l.x << "," << l.y << "," << l.z;
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.color[c], wall_color[c], 1e-3f) << i;
+    } else {
+      ++escapes;
+      EXPECT_TRUE(r.miss) << i;
+      EXPECT_EQ(r.color, s.environment.color) << i;
+    }
+  }
+  EXPECT_GT(hits, 300);
+  EXPECT_GT(escapes, 300);
 }
 
 }  // namespace

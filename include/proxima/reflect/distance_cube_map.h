@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <vector>
 
 #include "proxima/core/cube_camera.h"
 #include "proxima/core/image.h"
@@ -34,6 +35,11 @@ struct DistanceCubeMap {
   // a quarter of the bytes keeps more of the map in cache.
   std::array<ImageF, 6> distances;
   double covered_fraction = 0.0;  // texels hit / all texels (a solid-angle proxy)
+  // Layered maps (render_distance_cube_layers), layers ≥ 1: texels the peel found but left
+  // empty because no ray from the viewer sphere can reach them (0 for a single map).
+  size_t hidden_texels = 0;
+  size_t shaded_texels = 0;  // texels shaded (covered and stored)
+  float min_distance = kDistanceInf;  // smallest stored distance (kDistanceInf when empty)
 };
 
 struct DistanceCubeMapOptions {
@@ -56,12 +62,53 @@ struct DistanceCubeMapOptions {
 DistanceCubeMap render_distance_cube_map(const Scene& scene, const RayScene& rays, vec3 center,
                                          const DistanceCubeMapOptions& options);
 
+// Layered distance map (Szirmay-Kalos, Aszódi, Lazányi, Premecz 2005, "Approximate
+// ray-tracing on the GPU with distance impostors"; Umenhoffer, Patow, Szirmay-Kalos 2007,
+// "Robust multiple specular reflections and refractions", GPU Gems 3 ch. 17): the cube map
+// depth-peeled from c (raster/depth_peeling.h). Layer 0 is the ordinary distance map;
+// layer k holds, per texel, the nearest surface behind layer k − 1's along the same
+// direction from c. A bounded number of layers, whatever the number of objects.
+struct DistanceCubeLayerOptions {
+  int layers = 3;  // K, in 1..kMaxDistanceCubeLayers: layer 0 plus K − 1 peels
+  // r: every ray looked up starts within r of c (the reflectors' bounding sphere about c).
+  float viewer_radius = 0.0f;
+  // Layers ≥ 1 skip triangles whose plane has the whole viewer sphere on its back side: a
+  // ray from the sphere meets them from behind, which on a closed mesh is never its first
+  // hit (the mesh's front faces come first). Spares the layers the backs of walls.
+  bool cull_back_faces = true;
+  // Layers ≥ 1 shade only texels a ray from the viewer sphere can reach: a ray from within r
+  // of c gets behind layer k − 1 only across one of its depth discontinuities (silhouettes,
+  // holes), and its points at distance ρ > r from c lie within asin(r/ρ) of its end
+  // direction as seen from c. Texels farther than that from every discontinuity of layer
+  // k − 1 are left empty (counted in hidden_texels); tiles of 16² texels, tested by angle.
+  bool reachable_only = true;
+  // Relative depth step between neighbouring texels that counts as a discontinuity.
+  float edge_jump = 0.02f;
+  // Peeling: a surface within this relative depth of the previous layer counts as the same
+  // surface (coplanar duplicates, decals) and is skipped (DepthPeelOptions::min_separation).
+  float min_separation = 1e-3f;
+};
+inline constexpr int kMaxDistanceCubeLayers = 16;
+
+// Layers 0 … K − 1 around `center` (each as render_distance_cube_map, with the same
+// objects/exclude, shading and texel seeds: layer 0 is bit-identical to the single map).
+// Fewer than K when a layer comes out empty. Deterministic for any thread count. Throws
+// InputError for a resolution outside 1..kMaxImageSide or a layer count outside
+// 1..kMaxDistanceCubeLayers.
+std::vector<DistanceCubeMap> render_distance_cube_layers(const Scene& scene, const RayScene& rays, vec3 center,
+                                                         const DistanceCubeMapOptions& options,
+                                                         const DistanceCubeLayerOptions& layers);
+
 // One filtered lookup along a direction from c.
 struct CubeSample {
   vec3 color{0.0f};               // bilinear over the non-empty taps (weights renormalized); 0 if empty
   float distance = kDistanceInf;  // the same filter on the distance; kDistanceInf if empty
   uint32_t object = 0xFFFFFFFFu;  // object of the heaviest non-empty tap (kNoObject if empty)
   bool empty = true;              // the non-empty taps carry less than half the weight
+  // Smallest and largest distance among the non-empty taps of positive weight: a large
+  // spread means the filter straddles a silhouette (kDistanceInf, 0 if empty).
+  float tap_min = kDistanceInf, tap_max = 0.0f;
+  bool one_object = false;  // those taps all show the same object
 };
 
 // Bilinear lookup of direction `dir` (need not be unit; 0 or NaN → empty) with seams: a tap beyond a

@@ -1,6 +1,7 @@
-// Environment-map lookups along a reflected ray (Wang et al. 2012, §2.2–2.4): plain
+// Environment-map lookups along a reflected ray (Wang et al. 2012, §2.2–2.3): plain
 // (direction only), per-pixel rectification by bisection on the distance map, average-
-// distance rectification, and layered lookups over one map per environment object.
+// distance rectification; and a ray march over a depth-peeled layered distance map
+// (Szirmay-Kalos et al.'s layered distance maps) in place of the paper's §2.4.
 // Points are world space; the map's projection center c plays the paper's origin.
 #pragma once
 
@@ -23,6 +24,9 @@ struct RectifyOptions {
   float D = 12.0f;    // search length (m): the hit must lie within [x, x + 2D·l̂) (paper: 12)
   float d_e = 0.01f;  // tolerance d_e (m) on |d − |l1||, and the bisection's resolution
   EdgeRule edge = EdgeRule::Black;
+  // Layered lookups only:
+  int max_march_steps = 64;  // ray-march samples per lookup at most (about 2 texels apart)
+  float edge_jump = 0.02f;   // relative spread of a filter's tap distances that marks a silhouette
 };
 
 // N = ⌈log2(2D/d_e)⌉ (eq. 1, rounded up so the last step is ≤ d_e), at least 1.
@@ -36,6 +40,8 @@ struct EnvLookup {
   bool saw_inf = false;           // some lookup returned d_inf
   bool miss = false;              // nothing found: the edge rule applied, or the lookup was d_inf
   uint32_t object = 0xFFFFFFFFu;  // object the color came from (kNoObject: environment/black)
+  int layer = 0;                  // layered: the layer the color came from
+  bool fallback = false;          // layered: no hit found, the rectified lookup on layer 0 used
 };
 
 // Plain environment mapping: the texel along `dir` from c; environment_radiance(dir) where
@@ -58,33 +64,21 @@ float average_distance(const DistanceCubeMap& map, float step_rad);
 // §2.3 eq. 4: the lookup along l_rec = x + d̄·l̂ (relative to c); environment where empty.
 EnvLookup average_lookup(const DistanceCubeMap& map, const Environment& env, vec3 x, vec3 dir, float d_bar);
 
-// §2.4: one map per environment object.
-struct EnvmapLayer {
-  DistanceCubeMap map;
-  std::vector<uint32_t> objects;          // the objects drawn into it
-  float average_distance = kDistanceInf;  // d̄ of the layer (eq. 3): its sort key
-  bool per_pixel = true;                  // rectified by bisection; false: by d̄ (small solid angle)
-  bool enclosure = false;                 // the objects facing c (sorted last)
-};
-
-struct LayerOptions {
-  DistanceCubeMapOptions map;            // resolution, light samples, seed (objects/exclude unused)
-  float angle_step_rad = 0.0349066f;     // s of eq. 2 (2°)
-  double per_pixel_min_coverage = 0.05;  // a layer covering less of the cube uses d̄
-};
-
-// Layers around `center` for every object not in `exclude`: the enclosure — objects whose
-// every triangle faces c (walls, floor, ceiling, lamps on them; they cannot occlude each
-// other as seen from c) — is one layer, every other object is a layer of its own. Sorted
-// near → far by d̄, the enclosure last: it surrounds c, so everything else lies in front of
-// it (its d̄ can be smaller than that of furniture standing at its walls).
-std::vector<EnvmapLayer> build_layers(const Scene& scene, const RayScene& rays, vec3 center,
-                                      std::span<const uint32_t> exclude, const LayerOptions& options);
-
-// §2.4: the first layer (near → far) whose rectified lookup (per_pixel: bisection;
-// otherwise d̄) is not a miss gives the color. When every layer misses: black, or with
-// PlainFallback the first layer's non-empty plain lookup (else the environment).
-EnvLookup layered_lookup(std::span<const EnvmapLayer> layers, const Environment& env, vec3 x, vec3 dir,
+// Layered lookup over `layers` (render_distance_cube_layers: layer 0 the ordinary map,
+// layer k the surfaces behind layer k − 1 as seen from c). The ray x + t·l̂ is marched
+// over t ∈ [t0, 2D] (t0: where |l1| first reaches the nearest distance of layer 0) in
+// steps about two texels apart as seen from c, at most max_march_steps; at each sample it
+// is behind layers 0 … n − 1 (d_k < |l1|) and in front of layer n. Where n grows between
+// samples the ray crossed layer n's surface or passed behind one of its silhouettes:
+// bisection on Δd_n = d_n − |l1| in that interval; |Δd_n| < d_e whose filter taps lie on
+// one surface (one object, or spread ≤ edge_jump) is a hit — the nearest along the ray,
+// its layer's color — else a silhouette, and the next layer is searched in the same
+// interval. Where layer n's distance jumps from near to far between samples, the near
+// side of the silhouette is checked for a crossing too. A ray that ends in front of every
+// layer escapes (environment radiance, miss); one that ends behind a layer without a hit
+// (its surface is deeper than the layers, unreachable, or between two samples) takes the
+// §2.2 rectified lookup on layer 0 (fallback = true). Deterministic; thread-safe.
+EnvLookup layered_lookup(std::span<const DistanceCubeMap> layers, const Environment& env, vec3 x, vec3 dir,
                          const RectifyOptions& options);
 
 }  // namespace proxima

@@ -21,7 +21,7 @@ enum class EnvmapMethod {
   Plain,      // direction lookup (classic environment mapping)
   Rectified,  // §2.2 per-pixel bisection on the distance map
   Average,    // §2.3 average distance d̄ of the whole map
-  Layered,    // §2.4 one map per environment object, first hit near → far
+  Layered,    // depth-peeled layered distance map, nearest hit along the ray (replaces §2.4)
 };
 
 // "envmap", "rectified", "average", "layered" (the CLI's --method names).
@@ -32,6 +32,10 @@ std::vector<uint32_t> reflective_objects(const Scene& scene);
 
 // Center of the objects' combined bounds: the projection center of their env map.
 vec3 projection_center(const Scene& scene, std::span<const uint32_t> objects);
+
+// Largest distance from `center` of a vertex of the objects: every reflection ray starts
+// within it (DistanceCubeLayerOptions::viewer_radius).
+float viewer_radius(const Scene& scene, std::span<const uint32_t> objects, vec3 center);
 
 // The reflector pixels of a frame: rasterized (raster/) triangle and barycentrics at the
 // pixel centers, kept where the visible object is one of `reflectors`.
@@ -44,12 +48,12 @@ ReflectorPixels rasterize_reflector_pixels(const Scene& scene, const Camera& cam
                                            std::span<const uint32_t> reflectors);
 
 // What a method reads: `map` for Plain / Rectified / Average (with its d̄ for Average),
-// `layers` (sorted near → far, build_layers) for Layered.
+// `layers` (render_distance_cube_layers, layer 0 first) for Layered.
 struct EnvmapInputs {
   EnvmapMethod method = EnvmapMethod::Rectified;
   const DistanceCubeMap* map = nullptr;
   float average_distance = kDistanceInf;
-  std::span<const EnvmapLayer> layers;
+  std::span<const DistanceCubeMap> layers;
   RectifyOptions rectify;
   int area_light_samples = 4;  // n×n per area light for the reflector's own direct light
   int glossy_rays = 16;        // lobe samples for gloss > 0 (one lookup each)
@@ -61,6 +65,7 @@ struct EnvmapStats {
   size_t lookups = 0;       // reflection lookups (pixels × lobe rays)
   size_t map_samples = 0;   // filtered cube-map samples taken by them
   size_t edge_lookups = 0;  // lookups that ended as a miss (edge rule / empty)
+  size_t fallback_lookups = 0;  // layered: lookups without a hit that took the rectified one on layer 0
 };
 
 struct EnvmapFrame {

@@ -1,0 +1,63 @@
+// `proxima reflect --method layered`: --layers bounds the maps built and is reported;
+// a bad --layers or --march-steps exits 2 naming the flag with nothing written.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "test_util.h"
+
+namespace proxima {
+namespace {
+
+struct RunResult {
+  int exit_code;
+  std::string output;  // stdout + stderr
+};
+
+RunResult run(const std::string& args) {
+  std::string cmd = std::string(PROXIMA_CLI_PATH) + " reflect " + args + " 2>&1 </dev/null";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return {-1, "popen failed"};
+  std::string output;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) output.append(buf.data(), n);
+  int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+const std::string kSmall = " --width 64 --height 48 --cube-size 32 --light-samples 1 --reps 1";
+
+TEST(EnvmapLayeredCli, LayersFlagBoundsTheMapsBuilt) {
+  for (int k : {1, 2}) {
+    TempDir dir;
+    RunResult r = run("--method layered --scene room-parallax --layers " + std::to_string(k) + kSmall + " --out " +
+                      dir.path.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(dir.path / "results.json"));
+    EXPECT_EQ(j["metrics"]["layers"].get<double>(), double(k));  // the sphere hides the room behind it
+    EXPECT_TRUE(j["metrics"].contains("layer0_shaded_texels"));
+    EXPECT_EQ(j["metrics"].contains("layer1_shaded_texels"), k == 2);
+    EXPECT_TRUE(j["metrics"].contains("layered_fallback_pct"));
+  }
+}
+
+TEST(EnvmapLayeredCli, BadLayerFlagsExitTwoNamingTheFlag) {
+  TempDir dir;
+  const std::string out = " --out " + (dir.path / "never").string();
+  for (auto [args, flag] : {std::pair{"--layers 0", "--layers"}, std::pair{"--layers 17", "--layers"},
+                            std::pair{"--march-steps 0", "--march-steps"}}) {
+    RunResult r = run(std::string("--method layered ") + args + kSmall + out);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(flag), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.path / "never")) << args;
+  }
+}
+
+}  // namespace
+}  // namespace proxima
