@@ -51,10 +51,8 @@ struct RegionGrid {
         lo = glm::min(lo, p);
         hi = glm::max(hi, p);
       }
-      const int x0 = std::clamp(int(std::floor(lo.x / cell_w)), 0, nx - 1);
-      const int x1 = std::clamp(int(std::floor(hi.x / cell_w)), 0, nx - 1);
-      const int y0 = std::clamp(int(std::floor(lo.y / cell_h)), 0, ny - 1);
-      const int y1 = std::clamp(int(std::floor(hi.y / cell_h)), 0, ny - 1);
+      const int x0 = bin(lo.x / cell_w, nx), x1 = bin(hi.x / cell_w, nx);
+      const int y0 = bin(lo.y / cell_h, ny), y1 = bin(hi.y / cell_h, ny);
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) bins[size_t(y * nx + x)].push_back(r);
     }
@@ -65,9 +63,17 @@ struct RegionGrid {
     }
   }
 
+  // Bin of a coordinate in cell units, clamped to [0, n − 1]; NaN (a malformed region,
+  // already failed by the sanity check) → 0.
+  static int bin(double v, int n) {
+    const double c = std::floor(v);
+    if (!(c >= 0.0)) return 0;
+    return c >= double(n - 1) ? n - 1 : int(c);
+  }
+
   template <typename F>
   void for_each(dvec2 p, F&& f) const {
-    const int x = std::clamp(int(p.x / cell_w), 0, nx - 1), y = std::clamp(int(p.y / cell_h), 0, ny - 1);
+    const int x = bin(p.x / cell_w, nx), y = bin(p.y / cell_h, ny);
     const size_t b = size_t(y * nx + x);
     for (uint32_t i = offset[b]; i < offset[b + 1]; ++i) f(index[i]);
   }
