@@ -35,6 +35,7 @@ uint64_t edge_key(uint32_t a, uint32_t b) {
 struct BuildFace {
   std::vector<uint32_t> loop;  // vertex ids, counter-clockwise seen from the front
   Plane plane;
+  uint32_t plane_id = kNone;   // canonical plane (planes_) the face lies on
   uint32_t cell[2] = {kNone, kNone};
   uint32_t polygon = kNone;
 };
@@ -56,34 +57,53 @@ class Builder {
   WingedPair run();
 
  private:
-  uint32_t add_vertex(const dvec3& p) {
+  uint32_t add_vertex(const dvec3& p, std::vector<uint32_t> on_planes) {
     verts_.push_back(p);
     side_.push_back(0);
     stamp_of_.push_back(stamp_);
+    vplanes_.push_back(std::move(on_planes));
     return uint32_t(verts_.size() - 1);
   }
 
-  // Side of vertex v of the current plane (classified once per plane, then cached).
+  bool on_plane(uint32_t v, uint32_t id) const {
+    return std::find(vplanes_[v].begin(), vplanes_[v].end(), id) != vplanes_[v].end();
+  }
+
+  // Side of vertex v of the current plane (classified once per plane, then cached): 0 when
+  // the vertex was made on that canonical plane (exact, no arithmetic), else by distance.
   int8_t side(uint32_t v) {
     if (stamp_of_[v] != stamp_) {
-      double d = plane_.distance(verts_[v]);
-      side_[v] = d > eps_ ? 1 : (d < -eps_ ? -1 : 0);
+      if (on_plane(v, plane_id_)) {
+        side_[v] = 0;
+      } else {
+        double d = plane_.distance(verts_[v]);
+        side_[v] = d > eps_ ? 1 : (d < -eps_ ? -1 : 0);
+      }
       stamp_of_[v] = stamp_;
     }
     return side_[v];
   }
 
-  void begin_plane(const Plane& h) {
+  void begin_plane(const Plane& h, uint32_t id) {
     plane_ = h;
+    plane_id_ = id;
     ++stamp_;
   }
+
+  // Canonical planes of the input: polygons whose vertices all lie within the snap tolerance
+  // (kSnapTolerance · scale) of an earlier polygon's plane (same or opposite normal) share
+  // its plane id — coplanar overlapping faces, seams and slightly raised faces become
+  // exactly coplanar for every decision.
+  void cluster_planes();
+  uint32_t carve_plane_id(const Plane& e, const dvec3& a, const dvec3& b, std::vector<std::pair<Plane, uint32_t>>& seen);
 
   Pattern pattern(uint32_t f);
   void split_edge(uint32_t a, uint32_t b);
   uint32_t split_face(uint32_t f);
-  uint32_t split_cell(uint32_t c, const Plane& h, uint32_t* back_cell);
+  uint32_t split_cell(uint32_t c, uint32_t plane_id, uint32_t* back_cell, bool* no_cut);
+  std::vector<uint32_t> faces_on_plane(uint32_t c, uint32_t plane_id);
   void carve(uint32_t s, const std::vector<Fragment>& coplanar);
-  uint32_t choose_splitter(const std::vector<Fragment>& frags);
+  std::vector<uint32_t> rank_splitters(const std::vector<Fragment>& frags);
   void make_box();
   WingedPair export_structure() const;
 
@@ -95,8 +115,12 @@ class Builder {
   std::vector<dvec3> verts_;
   std::vector<int8_t> side_;
   std::vector<uint32_t> stamp_of_;
+  std::vector<std::vector<uint32_t>> vplanes_;  // canonical planes each vertex was made on
   uint32_t stamp_ = 1;
   Plane plane_;
+  uint32_t plane_id_ = kNone;
+  std::vector<Plane> planes_;          // canonical planes: input clusters, box, carve lines
+  std::vector<uint32_t> poly_plane_;   // input polygon → canonical plane id
 
   std::vector<BuildFace> faces_;
   std::vector<std::vector<uint32_t>> cells_;  // faces of each cell
@@ -136,7 +160,11 @@ Pattern Builder::pattern(uint32_t f) {
 void Builder::split_edge(uint32_t a, uint32_t b) {
   const uint32_t lo = std::min(a, b), hi = std::max(a, b);
   const double dlo = plane_.distance(verts_[lo]), dhi = plane_.distance(verts_[hi]);
-  const uint32_t m = add_vertex(verts_[lo] + (verts_[hi] - verts_[lo]) * (dlo / (dlo - dhi)));
+  std::vector<uint32_t> on;  // the planes of the edge (shared by both ends) and the cut
+  for (uint32_t id : vplanes_[a])
+    if (on_plane(b, id)) on.push_back(id);
+  on.push_back(plane_id_);
+  const uint32_t m = add_vertex(verts_[lo] + (verts_[hi] - verts_[lo]) * (dlo / (dlo - dhi)), std::move(on));
   side_[m] = 0;
   auto node = edge_faces_.extract(edge_key(a, b));
   std::vector<uint32_t> around = node.empty() ? std::vector<uint32_t>{} : std::move(node.mapped());
@@ -203,8 +231,9 @@ uint32_t Builder::split_face(uint32_t f) {
 // Splits cell c by plane h. c keeps the front part; *back_cell receives the new back cell.
 // Returns the new separating face, or kNone when h does not split c consistently (c may
 // then have gained collinear vertices and coplanar face splits, which keep it valid).
-uint32_t Builder::split_cell(uint32_t c, const Plane& h, uint32_t* back_cell) {
-  begin_plane(h);
+uint32_t Builder::split_cell(uint32_t c, uint32_t plane_id, uint32_t* back_cell, bool* no_cut) {
+  const Plane& h = planes_[plane_id];
+  begin_plane(h, plane_id);
   const std::vector<uint32_t> original = cells_[c];
   bool plus = false, minus = false;
   for (uint32_t f : original)
@@ -212,7 +241,8 @@ uint32_t Builder::split_cell(uint32_t c, const Plane& h, uint32_t* back_cell) {
       plus |= side(v) > 0;
       minus |= side(v) < 0;
     }
-  if (!plus || !minus) return kNone;
+  *no_cut = !plus || !minus;
+  if (*no_cut) return kNone;
 
   auto in_cell = [&](uint32_t f) { return faces_[f].cell[0] == c || faces_[f].cell[1] == c; };
   std::vector<Pattern> patterns;
@@ -302,10 +332,14 @@ uint32_t Builder::split_cell(uint32_t c, const Plane& h, uint32_t* back_cell) {
   }
   cells_[c] = std::move(front_faces);
 
+  // The cross-section's vertices are on h from now on, for every later decision.
+  for (uint32_t v : loop)
+    if (!on_plane(v, plane_id)) vplanes_[v].push_back(plane_id);
   const uint32_t s = uint32_t(faces_.size());
   BuildFace face;
   face.loop = std::move(loop);
   face.plane = h;
+  face.plane_id = plane_id;
   face.cell[0] = back;
   face.cell[1] = c;
   for (size_t k = 0; k < face.loop.size(); ++k)
@@ -317,11 +351,24 @@ uint32_t Builder::split_cell(uint32_t c, const Plane& h, uint32_t* back_cell) {
   return s;
 }
 
+// The faces of cell c lying on the plane (every vertex on it).
+std::vector<uint32_t> Builder::faces_on_plane(uint32_t c, uint32_t plane_id) {
+  begin_plane(planes_[plane_id], plane_id);
+  std::vector<uint32_t> out;
+  for (uint32_t f : cells_[c]) {
+    bool on = true;
+    for (uint32_t v : faces_[f].loop) on &= side(v) == 0;
+    if (on) out.push_back(f);
+  }
+  return out;
+}
+
 // Subdivides the new face s by the edge lines of the fragments lying on its plane: the
 // pieces inside a fragment become opaque faces of its polygon (the first polygon wins
 // where coplanar polygons overlap).
 void Builder::carve(uint32_t s, const std::vector<Fragment>& coplanar) {
   std::vector<uint32_t> pieces = {s};
+  std::vector<std::pair<Plane, uint32_t>> lines;
   for (const Fragment& frag : coplanar) {
     std::vector<uint32_t> inside;
     for (uint32_t p : pieces)
@@ -334,7 +381,7 @@ void Builder::carve(uint32_t s, const std::vector<Fragment>& coplanar) {
       double len = glm::length(out);
       if (len <= eps_area_) continue;
       Plane e{out / len, -glm::dot(out / len, a)};
-      begin_plane(e);
+      begin_plane(e, carve_plane_id(e, a, b, lines));  // this fragment's orientation
       std::vector<uint32_t> kept;
       for (uint32_t p : inside) {
         switch (pattern(p)) {
@@ -355,26 +402,81 @@ void Builder::carve(uint32_t s, const std::vector<Fragment>& coplanar) {
   }
 }
 
-uint32_t Builder::choose_splitter(const std::vector<Fragment>& frags) {
+void Builder::cluster_planes() {
+  // Buckets by the unit normal quantized to 1e-3 (a cluster's normal is looked up in the
+  // 27 buckets around ±n: one comparison per nearby cluster).
+  std::unordered_map<uint64_t, std::vector<uint32_t>> buckets;
+  auto key = [](const dvec3& n, int dx, int dy, int dz) {
+    const int64_t x = std::llround(n.x * 1e3) + dx, y = std::llround(n.y * 1e3) + dy, z = std::llround(n.z * 1e3) + dz;
+    return (uint64_t(x) * 73856093u) ^ (uint64_t(y) * 19349663u) ^ (uint64_t(z) * 83492791u);
+  };
+  poly_plane_.assign(model_.polygons.size(), kNone);
+  const double snap = kSnapTolerance * model_.scale;
+  for (uint32_t p = 0; p < model_.polygons.size(); ++p) {
+    const InputPolygon& poly = model_.polygons[p];
+    uint32_t found = kNone;
+    for (double sign : {1.0, -1.0})
+      for (int dx = -1; dx <= 1 && found == kNone; ++dx)
+        for (int dy = -1; dy <= 1 && found == kNone; ++dy)
+          for (int dz = -1; dz <= 1 && found == kNone; ++dz) {
+            auto it = buckets.find(key(sign * poly.plane.normal, dx, dy, dz));
+            if (it == buckets.end()) continue;
+            for (uint32_t id : it->second) {
+              const Plane& h = planes_[id];
+              if (std::abs(glm::dot(h.normal, poly.plane.normal)) < 1.0 - 1e-6) continue;
+              bool on = true;
+              for (const dvec3& v : poly.vertices) on &= std::abs(h.distance(v)) <= snap;
+              if (on) {
+                found = id;
+                break;
+              }
+            }
+          }
+    if (found == kNone) {
+      found = uint32_t(planes_.size());
+      planes_.push_back(poly.plane);
+      buckets[key(poly.plane.normal, 0, 0, 0)].push_back(found);
+    }
+    poly_plane_[p] = found;
+  }
+}
+
+// The id of the carve line plane e through a → b: an earlier line of this carve within eps
+// of both ends (collinear fragment edges: T-junctions, abutting faces) or a new plane.
+uint32_t Builder::carve_plane_id(const Plane& e, const dvec3& a, const dvec3& b,
+                                 std::vector<std::pair<Plane, uint32_t>>& seen) {
+  for (const auto& [h, id] : seen)
+    if (std::abs(glm::dot(h.normal, e.normal)) > 1.0 - 1e-9 && std::abs(h.distance(a)) <= eps_ &&
+        std::abs(h.distance(b)) <= eps_)
+      return id;
+  planes_.push_back(e);
+  seen.push_back({e, uint32_t(planes_.size() - 1)});
+  return uint32_t(planes_.size() - 1);
+}
+
+// Candidate planes for a cell's fragments, best first: k evenly spaced fragments' planes
+// plus the `largest` of largest area — big occluders (floor slabs, long walls) whose planes
+// rarely split anything and keep distant parts of the model (other floors) from fragmenting
+// each other's cells — scored split_weight · (fragments split) + |front − back|.
+std::vector<uint32_t> Builder::rank_splitters(const std::vector<Fragment>& frags) {
   const size_t k = std::min<size_t>(size_t(std::max(1, options_.candidates)), frags.size());
-  // Candidates: k evenly spaced fragments plus the `largest` of largest area — big
-  // occluders (floor slabs, long walls) whose planes rarely split anything and keep
-  // distant parts of the model (other floors) from fragmenting each other's cells.
   std::vector<uint32_t> candidates;
-  for (size_t c = 0; c < k; ++c) candidates.push_back(frags[c * frags.size() / k].polygon);
+  for (size_t c = 0; c < k; ++c) candidates.push_back(poly_plane_[frags[c * frags.size() / k].polygon]);
   const size_t big = std::min<size_t>(size_t(std::max(0, options_.largest)), frags.size());
   if (big > 0) {
     std::vector<std::pair<double, uint32_t>> by_area;
     for (const Fragment& f : frags) by_area.push_back({-glm::length(newell_normal(f.v)), f.polygon});
     std::partial_sort(by_area.begin(), by_area.begin() + long(big), by_area.end());
-    for (size_t c = 0; c < big; ++c) candidates.push_back(by_area[c].second);
+    for (size_t c = 0; c < big; ++c) candidates.push_back(poly_plane_[by_area[c].second]);
   }
-  uint32_t best = frags.front().polygon;
-  double best_score = INFINITY;
-  for (const uint32_t poly : candidates) {
-    const Plane& h = model_.polygons[poly].plane;
+  std::vector<std::pair<double, uint32_t>> scored;
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    const uint32_t id = candidates[i];
+    if (std::find(candidates.begin(), candidates.begin() + long(i), id) != candidates.begin() + long(i)) continue;
+    const Plane& h = planes_[id];
     size_t front = 0, back = 0, split = 0;
     for (const Fragment& f : frags) {
+      if (poly_plane_[f.polygon] == id) continue;
       bool plus = false, minus = false;
       for (const dvec3& p : f.v) {
         double d = h.distance(p);
@@ -385,14 +487,12 @@ uint32_t Builder::choose_splitter(const std::vector<Fragment>& frags) {
       else if (plus) ++front;
       else if (minus) ++back;
     }
-    double score = options_.split_weight * double(split) +
-                   std::abs(double(front) - double(back));
-    if (score < best_score) {
-      best_score = score;
-      best = poly;
-    }
+    scored.push_back({options_.split_weight * double(split) + std::abs(double(front) - double(back)), id});
   }
-  return best;
+  std::stable_sort(scored.begin(), scored.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<uint32_t> out;
+  for (const auto& [score, id] : scored) out.push_back(id);
+  return out;
 }
 
 void Builder::make_box() {
@@ -402,8 +502,10 @@ void Builder::make_box() {
   const dvec3 margin(options_.box_margin * model_.scale + 1e-9);
   const dvec3 lo = b.empty() ? dvec3(-1.0) : dvec3(b.min) - margin;
   const dvec3 hi = b.empty() ? dvec3(1.0) : dvec3(b.max) + margin;
+  const uint32_t box = uint32_t(planes_.size());  // box face f has plane id box + f
   for (int i = 0; i < 8; ++i)
-    add_vertex({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
+    add_vertex({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z},
+               {box + ((i & 1) ? 1u : 0u), box + ((i & 2) ? 3u : 2u), box + ((i & 4) ? 5u : 4u)});
   // Corner bits (x, y, z); each face listed counter-clockwise seen from outside.
   const uint32_t quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
                                 {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
@@ -414,6 +516,8 @@ void Builder::make_box() {
     face.loop.assign(quads[f], quads[f] + 4);
     face.plane.normal = normals[f];
     face.plane.offset = -glm::dot(normals[f], verts_[quads[f][0]]);
+    face.plane_id = box + uint32_t(f);
+    planes_.push_back(face.plane);
     face.cell[0] = 0;  // inside the box is behind every outward face
     for (int k = 0; k < 4; ++k)
       edge_faces_[edge_key(quads[f][k], quads[f][(k + 1) % 4])].push_back(uint32_t(f));
@@ -443,6 +547,7 @@ void clip_fragment(const Fragment& f, const Plane& h, double eps, Fragment& fron
 
 WingedPair Builder::run() {
   Stopwatch watch;
+  cluster_planes();
   make_box();
   std::vector<Fragment> all;
   for (uint32_t p = 0; p < model_.polygons.size(); ++p) all.push_back({model_.polygons[p].vertices, p});
@@ -455,16 +560,52 @@ WingedPair Builder::run() {
     auto [c, frags] = std::move(stack.back());
     stack.pop_back();
     if (frags.empty()) continue;
-    const uint32_t poly = choose_splitter(frags);
-    const Plane& h = model_.polygons[poly].plane;
+    // The best-ranked plane that cuts the cell consistently; then any other plane of the
+    // cell's fragments. A fragment is never dropped while some plane can still be used.
+    std::vector<uint32_t> order = rank_splitters(frags);
+    uint32_t s = kNone, id = kNone, back_cell = kNone;
+    bool boundary = false;
+    for (size_t i = 0; s == kNone && !boundary; ++i) {
+      if (i == order.size()) {
+        for (const Fragment& f : frags)
+          if (std::find(order.begin(), order.end(), poly_plane_[f.polygon]) == order.end())
+            order.push_back(poly_plane_[f.polygon]);
+        if (i == order.size()) break;
+      }
+      bool no_cut = false;
+      s = split_cell(c, order[i], &back_cell, &no_cut);
+      if (s != kNone) id = order[i];
+      // The cell lies on one side of the plane: its fragments on the plane lie on the cell's
+      // boundary (within eps) and are carved into the faces there.
+      if (no_cut) {
+        id = order[i];
+        boundary = true;
+      }
+    }
     std::vector<Fragment> coplanar, front, back;
+    if (boundary) {
+      std::vector<Fragment> rest;
+      for (Fragment& f : frags) (poly_plane_[f.polygon] == id ? coplanar : rest).push_back(std::move(f));
+      const std::vector<uint32_t> on = faces_on_plane(c, id);
+      if (on.empty()) stats_.unplaced_fragments += coplanar.size();
+      for (uint32_t f : on) carve(f, coplanar);
+      stack.push_back({c, std::move(rest)});
+      continue;
+    }
+    if (s == kNone) {
+      // No plane of the cell's fragments cuts it consistently: they stay unplaced.
+      stats_.unplaced_fragments += frags.size();
+      continue;
+    }
+    const Plane& h = planes_[id];
     for (const Fragment& f : frags) {
       bool plus = false, minus = false;
-      for (const dvec3& p : f.v) {
-        double d = h.distance(p);
-        plus |= d > eps_;
-        minus |= d < -eps_;
-      }
+      if (poly_plane_[f.polygon] != id)
+        for (const dvec3& p : f.v) {
+          double d = h.distance(p);
+          plus |= d > eps_;
+          minus |= d < -eps_;
+        }
       if (!plus && !minus) coplanar.push_back(f);
       else if (!minus) front.push_back(f);
       else if (!plus) back.push_back(f);
@@ -475,21 +616,6 @@ WingedPair Builder::run() {
         if (big_enough(fp)) front.push_back(std::move(fp));
         if (big_enough(bp)) back.push_back(std::move(bp));
       }
-    }
-    uint32_t back_cell = kNone;
-    const uint32_t s = coplanar.empty() ? kNone : split_cell(c, h, &back_cell);
-    if (s == kNone) {
-      // The plane does not cut this cell consistently: its fragments stay unplaced, the
-      // others stay whole in the cell (progress: at least the splitter's own are gone).
-      stats_.unplaced_fragments += std::max<size_t>(1, coplanar.size());
-      std::vector<Fragment> rest;
-      for (Fragment& f : frags) {
-        bool on = false;
-        for (const Fragment& q : coplanar) on |= q.polygon == f.polygon;
-        if (!on && f.polygon != poly) rest.push_back(std::move(f));
-      }
-      stack.push_back({c, std::move(rest)});
-      continue;
     }
     ++stats_.splits;
     carve(s, coplanar);
