@@ -13,6 +13,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "proxima/core/error.h"
+#include "proxima/scene/level_scenes.h"
 #include "proxima/scene/procedural.h"
 #include "proxima/scene/sampling_scenes.h"
 #include "proxima/scene/visibility_models.h"
@@ -672,6 +673,14 @@ constexpr Entry kScenes[] = {
     {"floor", "visibility test: office floor, 60 offices, ~1,750 polygons", make_vis_floor},
     {"building", "visibility test: 5 office floors with a stairwell, ~9,700 polygons (proxima visibility --floors N)",
      [] { return make_vis_building(5); }},
+    {"level-small", "visibility test: brush-built game level, 3x3 rooms x 2 storeys, no detail brushes, ~2.3k triangles",
+     [] { return make_level(level_options("level-small")); }},
+    {"level-medium", "visibility test: brush-built game level, 3x3 rooms x 2 storeys, ~6k triangles",
+     [] { return make_level(level_options("level-medium")); }},
+    {"level-large", "visibility test: brush-built game level, 5x4 rooms x 2 storeys, ~17k triangles",
+     [] { return make_level(level_options("level-large")); }},
+    {"level-huge", "visibility test: brush-built game level, 7x6 rooms x 3 storeys, ~50k triangles",
+     [] { return make_level(level_options("level-huge")); }},
     {"nest", "bird nest of ~5,500 interwoven twigs in a bowl, ~67k triangles (depth-image sampling)", make_nest_scene},
     {"grass", "patch of ~4,600 double-sided grass blades, ~56k triangles (depth-image sampling)",
      [] { return make_grass_scene(); }},

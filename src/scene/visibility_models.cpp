@@ -13,6 +13,7 @@
 
 #include "proxima/core/error.h"
 #include "proxima/core/rng.h"
+#include "proxima/scene/level_scenes.h"
 #include "proxima/scene/procedural.h"
 
 namespace proxima {
@@ -435,7 +436,7 @@ Scene make_vis_building(int floors) {
 bool is_visibility_model(const std::string& name) {
   for (const char* m : {"rooms", "maze", "arena", "vcity", "floor", "building"})
     if (name == m) return true;
-  return name.rfind("building:", 0) == 0;
+  return name.rfind("building:", 0) == 0 || is_level_scene(name);
 }
 
 }  // namespace proxima

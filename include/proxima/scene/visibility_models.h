@@ -31,7 +31,8 @@ Scene make_vis_floor();
 Scene make_vis_building(int floors = 5);
 
 // True for the names of the models above (rooms, maze, arena, vcity, floor, building,
-// building:N): the scenes the exact-visibility pipeline (and GIBR) is made for.
+// building:N) and the brush-built levels (level-*, scene/level_scenes.h): the scenes the
+// exact-visibility pipeline (and GIBR) is made for.
 bool is_visibility_model(const std::string& scene_name);
 
 }  // namespace proxima
