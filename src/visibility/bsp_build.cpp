@@ -76,31 +76,33 @@ class Builder {
       if (on_plane(v, plane_id_)) {
         side_[v] = 0;
       } else {
-        double d = plane_.distance(verts_[v]);
-        side_[v] = d > eps_ ? 1 : (d < -eps_ ? -1 : 0);
+        const double d = plane_.distance(verts_[v]), tol = strict_ ? 0.0 : eps_;
+        side_[v] = d > tol ? 1 : (d < -tol ? -1 : 0);
       }
       stamp_of_[v] = stamp_;
     }
     return side_[v];
   }
 
-  void begin_plane(const Plane& h, uint32_t id) {
+  // strict: a vertex not made on the plane is on it only at distance exactly 0 (the
+  // fallback when the tolerance classifies a cell or face inconsistently).
+  void begin_plane(const Plane& h, uint32_t id, bool strict = false) {
     plane_ = h;
     plane_id_ = id;
+    strict_ = strict;
     ++stamp_;
   }
 
-  // Canonical planes of the input: polygons whose vertices all lie within the snap tolerance
-  // (kSnapTolerance · scale) of an earlier polygon's plane (same or opposite normal) share
-  // its plane id — coplanar overlapping faces, seams and slightly raised faces become
-  // exactly coplanar for every decision.
-  void cluster_planes();
-  uint32_t carve_plane_id(const Plane& e, const dvec3& a, const dvec3& b, std::vector<std::pair<Plane, uint32_t>>& seen);
+  // Canonical planes: every plane used (input polygons' and carve lines') is looked up
+  // among the earlier ones and shares the id of one passing within the snap tolerance
+  // (kSnapTolerance · scale) of its points — coplanar overlapping faces, seams, slightly
+  // raised faces, and a carve line on a wall's plane become one plane for every decision.
+  uint32_t plane_id(const Plane& h, const std::vector<dvec3>& pts);
 
   Pattern pattern(uint32_t f);
   void split_edge(uint32_t a, uint32_t b);
   uint32_t split_face(uint32_t f);
-  uint32_t split_cell(uint32_t c, uint32_t plane_id, uint32_t* back_cell, bool* no_cut);
+  uint32_t split_cell(uint32_t c, uint32_t plane_id, bool strict, uint32_t* back_cell, bool* no_cut);
   std::vector<uint32_t> faces_on_plane(uint32_t c, uint32_t plane_id);
   void carve(uint32_t s, const std::vector<Fragment>& coplanar);
   std::vector<uint32_t> rank_splitters(const std::vector<Fragment>& frags);
@@ -119,8 +121,10 @@ class Builder {
   uint32_t stamp_ = 1;
   Plane plane_;
   uint32_t plane_id_ = kNone;
+  bool strict_ = false;
   std::vector<Plane> planes_;          // canonical planes: input clusters, box, carve lines
   std::vector<uint32_t> poly_plane_;   // input polygon → canonical plane id
+  std::unordered_map<uint64_t, std::vector<uint32_t>> plane_buckets_;  // by quantized normal
 
   std::vector<BuildFace> faces_;
   std::vector<std::vector<uint32_t>> cells_;  // faces of each cell
@@ -138,6 +142,7 @@ Pattern Builder::pattern(uint32_t f) {
     plus |= s > 0;
     minus |= s < 0;
   }
+
   if (!plus && !minus) return Pattern::kInvalid;
   if (!minus) return Pattern::kFront;
   if (!plus) return Pattern::kBack;
@@ -231,9 +236,9 @@ uint32_t Builder::split_face(uint32_t f) {
 // Splits cell c by plane h. c keeps the front part; *back_cell receives the new back cell.
 // Returns the new separating face, or kNone when h does not split c consistently (c may
 // then have gained collinear vertices and coplanar face splits, which keep it valid).
-uint32_t Builder::split_cell(uint32_t c, uint32_t plane_id, uint32_t* back_cell, bool* no_cut) {
+uint32_t Builder::split_cell(uint32_t c, uint32_t plane_id, bool strict, uint32_t* back_cell, bool* no_cut) {
   const Plane& h = planes_[plane_id];
-  begin_plane(h, plane_id);
+  begin_plane(h, plane_id, strict);
   const std::vector<uint32_t> original = cells_[c];
   bool plus = false, minus = false;
   for (uint32_t f : original)
@@ -368,7 +373,6 @@ std::vector<uint32_t> Builder::faces_on_plane(uint32_t c, uint32_t plane_id) {
 // where coplanar polygons overlap).
 void Builder::carve(uint32_t s, const std::vector<Fragment>& coplanar) {
   std::vector<uint32_t> pieces = {s};
-  std::vector<std::pair<Plane, uint32_t>> lines;
   for (const Fragment& frag : coplanar) {
     std::vector<uint32_t> inside;
     for (uint32_t p : pieces)
@@ -381,10 +385,20 @@ void Builder::carve(uint32_t s, const std::vector<Fragment>& coplanar) {
       double len = glm::length(out);
       if (len <= eps_area_) continue;
       Plane e{out / len, -glm::dot(out / len, a)};
-      begin_plane(e, carve_plane_id(e, a, b, lines));  // this fragment's orientation
+      // The canonical plane (vertices made on it lie on it), oriented as this fragment's line.
+      const uint32_t id = plane_id(e, {a, b});
+      Plane q = planes_[id];
+      if (glm::dot(q.normal, e.normal) < 0.0) q = {-q.normal, -q.offset};
+      begin_plane(q, id);
       std::vector<uint32_t> kept;
       for (uint32_t p : inside) {
-        switch (pattern(p)) {
+        Pattern pat = pattern(p);
+        const bool strict = pat == Pattern::kInvalid;
+        if (strict) {  // resolve by exact sides for this piece, then back to the tolerance
+          begin_plane(Plane(plane_), plane_id_, true);
+          pat = pattern(p);
+        }
+        switch (pat) {
           case Pattern::kBack: kept.push_back(p); break;
           case Pattern::kFront: break;
           case Pattern::kCrossing: {
@@ -395,6 +409,7 @@ void Builder::carve(uint32_t s, const std::vector<Fragment>& coplanar) {
           }
           case Pattern::kInvalid: kept.push_back(p); ++stats_.rejected_planes; break;
         }
+        if (strict) begin_plane(Plane(plane_), plane_id_, false);
       }
       inside = std::move(kept);
     }
@@ -402,56 +417,36 @@ void Builder::carve(uint32_t s, const std::vector<Fragment>& coplanar) {
   }
 }
 
-void Builder::cluster_planes() {
-  // Buckets by the unit normal quantized to 1e-3 (a cluster's normal is looked up in the
-  // 27 buckets around ±n: one comparison per nearby cluster).
-  std::unordered_map<uint64_t, std::vector<uint32_t>> buckets;
+// The canonical plane with normal ±h.normal (within 1e-6) passing within the snap
+// tolerance of every point of `pts`; a new plane h when there is none.
+uint32_t Builder::plane_id(const Plane& h, const std::vector<dvec3>& pts) {
   auto key = [](const dvec3& n, int dx, int dy, int dz) {
     const int64_t x = std::llround(n.x * 1e3) + dx, y = std::llround(n.y * 1e3) + dy, z = std::llround(n.z * 1e3) + dz;
     return (uint64_t(x) * 73856093u) ^ (uint64_t(y) * 19349663u) ^ (uint64_t(z) * 83492791u);
   };
-  poly_plane_.assign(model_.polygons.size(), kNone);
   const double snap = kSnapTolerance * model_.scale;
-  for (uint32_t p = 0; p < model_.polygons.size(); ++p) {
-    const InputPolygon& poly = model_.polygons[p];
-    uint32_t found = kNone;
-    for (double sign : {1.0, -1.0})
-      for (int dx = -1; dx <= 1 && found == kNone; ++dx)
-        for (int dy = -1; dy <= 1 && found == kNone; ++dy)
-          for (int dz = -1; dz <= 1 && found == kNone; ++dz) {
-            auto it = buckets.find(key(sign * poly.plane.normal, dx, dy, dz));
-            if (it == buckets.end()) continue;
-            for (uint32_t id : it->second) {
-              const Plane& h = planes_[id];
-              if (std::abs(glm::dot(h.normal, poly.plane.normal)) < 1.0 - 1e-6) continue;
-              bool on = true;
-              for (const dvec3& v : poly.vertices) on &= std::abs(h.distance(v)) <= snap;
-              if (on) {
-                found = id;
-                break;
-              }
-            }
+  uint32_t found = kNone;
+  for (double sign : {1.0, -1.0})
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          auto it = plane_buckets_.find(key(sign * h.normal, dx, dy, dz));
+          if (it == plane_buckets_.end()) continue;
+          for (uint32_t id : it->second) {
+            if (found != kNone && id >= found) continue;  // the earliest match: deterministic
+            const Plane& q = planes_[id];
+            if (std::abs(glm::dot(q.normal, h.normal)) < 1.0 - 1e-6) continue;
+            bool on = true;
+            for (const dvec3& v : pts) on &= std::abs(q.distance(v)) <= snap;
+            if (on) found = id;
           }
-    if (found == kNone) {
-      found = uint32_t(planes_.size());
-      planes_.push_back(poly.plane);
-      buckets[key(poly.plane.normal, 0, 0, 0)].push_back(found);
-    }
-    poly_plane_[p] = found;
+        }
+  if (found == kNone) {
+    found = uint32_t(planes_.size());
+    planes_.push_back(h);
+    plane_buckets_[key(h.normal, 0, 0, 0)].push_back(found);
   }
-}
-
-// The id of the carve line plane e through a → b: an earlier line of this carve within eps
-// of both ends (collinear fragment edges: T-junctions, abutting faces) or a new plane.
-uint32_t Builder::carve_plane_id(const Plane& e, const dvec3& a, const dvec3& b,
-                                 std::vector<std::pair<Plane, uint32_t>>& seen) {
-  for (const auto& [h, id] : seen)
-    if (std::abs(glm::dot(h.normal, e.normal)) > 1.0 - 1e-9 && std::abs(h.distance(a)) <= eps_ &&
-        std::abs(h.distance(b)) <= eps_)
-      return id;
-  planes_.push_back(e);
-  seen.push_back({e, uint32_t(planes_.size() - 1)});
-  return uint32_t(planes_.size() - 1);
+  return found;
 }
 
 // Candidate planes for a cell's fragments, best first: k evenly spaced fragments' planes
@@ -517,7 +512,7 @@ void Builder::make_box() {
     face.plane.normal = normals[f];
     face.plane.offset = -glm::dot(normals[f], verts_[quads[f][0]]);
     face.plane_id = box + uint32_t(f);
-    planes_.push_back(face.plane);
+    planes_.push_back(face.plane);  // box planes are never matched: nothing lies on them
     face.cell[0] = 0;  // inside the box is behind every outward face
     for (int k = 0; k < 4; ++k)
       edge_faces_[edge_key(quads[f][k], quads[f][(k + 1) % 4])].push_back(uint32_t(f));
@@ -547,33 +542,68 @@ void clip_fragment(const Fragment& f, const Plane& h, double eps, Fragment& fron
 
 WingedPair Builder::run() {
   Stopwatch watch;
-  cluster_planes();
+  // Canonical planes of the input: a polygon whose vertices all lie within the snap
+  // tolerance of an earlier polygon's plane (same or opposite normal) shares its id.
+  for (const InputPolygon& p : model_.polygons) poly_plane_.push_back(plane_id(p.plane, p.vertices));
   make_box();
   std::vector<Fragment> all;
-  for (uint32_t p = 0; p < model_.polygons.size(); ++p) all.push_back({model_.polygons[p].vertices, p});
+  // Each polygon starts projected onto its canonical plane (a move within the snap
+  // tolerance), so every side decision about it agrees with the faces made on that plane.
+  for (uint32_t p = 0; p < model_.polygons.size(); ++p) {
+    const Plane& h = planes_[poly_plane_[p]];
+    Fragment f{model_.polygons[p].vertices, p};
+    for (dvec3& v : f.v) v -= h.normal * h.distance(v);
+    all.push_back(std::move(f));
+  }
   auto big_enough = [&](const Fragment& f) {
     return f.v.size() >= 3 && glm::length(newell_normal(f.v)) > 2.0 * eps_area_;
   };
-  std::vector<std::pair<uint32_t, std::vector<Fragment>>> stack;
-  stack.push_back({0, std::move(all)});
+  struct Item {
+    uint32_t cell;
+    std::vector<Fragment> frags;
+    int aux;  // auxiliary splits above this cell (see below)
+  };
+  std::vector<Item> stack;
+  stack.push_back({0, std::move(all), 0});
   while (!stack.empty()) {
-    auto [c, frags] = std::move(stack.back());
+    auto [c, frags, aux] = std::move(stack.back());
     stack.pop_back();
     if (frags.empty()) continue;
-    // The best-ranked plane that cuts the cell consistently; then any other plane of the
-    // cell's fragments. A fragment is never dropped while some plane can still be used.
+    // The best-ranked plane that cuts the cell consistently (by the tolerance, else by
+    // exact sides); then any other plane of the cell's fragments; then an auxiliary plane
+    // (through the cell's box center, across its longest side) that changes the cell
+    // around the near-degenerate spot, and the children try again (≤ kMaxAux deep).
+    // A fragment is never dropped while some plane can still be used.
+    constexpr int kMaxAux = 4;
     std::vector<uint32_t> order = rank_splitters(frags);
-    uint32_t s = kNone, id = kNone, back_cell = kNone;
+    uint32_t s = kNone, id = kNone, back_cell = kNone, aux_id = kNone;
     bool boundary = false;
     for (size_t i = 0; s == kNone && !boundary; ++i) {
       if (i == order.size()) {
         for (const Fragment& f : frags)
           if (std::find(order.begin(), order.end(), poly_plane_[f.polygon]) == order.end())
             order.push_back(poly_plane_[f.polygon]);
+        if (i == order.size() && aux_id == kNone && aux < kMaxAux) {
+          dvec3 lo(INFINITY), hi(-INFINITY);
+          for (uint32_t f : cells_[c])
+            for (uint32_t v : faces_[f].loop) {
+              lo = glm::min(lo, verts_[v]);
+              hi = glm::max(hi, verts_[v]);
+            }
+          const dvec3 ext = hi - lo, center = 0.5 * (lo + hi);
+          const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
+          Plane a;
+          a.normal = dvec3(0.0);
+          a.normal[axis] = 1.0;
+          a.offset = -center[axis];
+          aux_id = plane_id(a, {center});
+          order.push_back(aux_id);
+        }
         if (i == order.size()) break;
       }
       bool no_cut = false;
-      s = split_cell(c, order[i], &back_cell, &no_cut);
+      s = split_cell(c, order[i], false, &back_cell, &no_cut);
+      if (s == kNone && !no_cut) s = split_cell(c, order[i], true, &back_cell, &no_cut);
       if (s != kNone) id = order[i];
       // The cell lies on one side of the plane: its fragments on the plane lie on the cell's
       // boundary (within eps) and are carved into the faces there.
@@ -589,7 +619,7 @@ WingedPair Builder::run() {
       const std::vector<uint32_t> on = faces_on_plane(c, id);
       if (on.empty()) stats_.unplaced_fragments += coplanar.size();
       for (uint32_t f : on) carve(f, coplanar);
-      stack.push_back({c, std::move(rest)});
+      stack.push_back({c, std::move(rest), aux});
       continue;
     }
     if (s == kNone) {
@@ -619,8 +649,10 @@ WingedPair Builder::run() {
     }
     ++stats_.splits;
     carve(s, coplanar);
-    stack.push_back({back_cell, std::move(back)});
-    stack.push_back({c, std::move(front)});
+    const int next_aux = aux + (id == aux_id && aux_id != kNone ? 1 : 0);
+    stats_.aux_splits += id == aux_id && aux_id != kNone;
+    stack.push_back({back_cell, std::move(back), next_aux});
+    stack.push_back({c, std::move(front), next_aux});
   }
   WingedPair wp = export_structure();
   stats_.build_ms = watch.elapsed_ms();

@@ -100,7 +100,7 @@ void expect_exact(const Case& c, const std::string& what) {
 }
 
 std::vector<Camera> around(vec3 eye, vec3 target, float fov = 80.0f) {
-  return {look_at(eye, target, {0, 1, 0}, fov, kW, kH, 1e-3f, 1e4f)};
+  return {look_at(eye, target, {0, 1, 0}, fov, kW, kH, 1e-5f, 1e4f)};
 }
 
 // A closed 20 m room (inward walls) for the small cases to sit in.

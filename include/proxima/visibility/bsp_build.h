@@ -13,7 +13,7 @@ struct BspOptions {
   int candidates = 16;         // polygon planes scored per split (evenly spaced over the cell's)
   int largest = 8;             // plus this many of the cell's largest-area fragments
   double split_weight = 4.0;   // score = split_weight · fragments split + |front − back|
-  double epsilon = 1e-6;       // plane-side tolerance, relative to the model scale
+  double epsilon = 1e-8;       // plane-side tolerance, relative to the model scale
   double box_margin = 0.25;    // outer box = polygon bounds grown by this × scale on each side
 };
 
@@ -23,6 +23,7 @@ struct BspStats {
   size_t fragments_split = 0;     // polygon fragments cut by a split plane
   size_t rejected_planes = 0;     // splits skipped as inconsistent within the tolerance
   size_t unplaced_fragments = 0;  // fragments that could not be put on a face (degenerate)
+  size_t aux_splits = 0;          // splits by auxiliary planes (around near-degenerate spots)
   double build_ms = 0.0;
 };
 
