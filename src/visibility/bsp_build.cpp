@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
+#include <span>
 #include <utility>
 
 #include "proxima/core/timer.h"
@@ -76,7 +77,7 @@ class Builder {
       if (on_plane(v, plane_id_)) {
         side_[v] = 0;
       } else {
-        const double d = plane_.distance(verts_[v]), tol = strict_ ? 0.0 : eps_;
+        const double d = plane_.distance(verts_[v]), tol = tol_scale_ * eps_;
         side_[v] = d > tol ? 1 : (d < -tol ? -1 : 0);
       }
       stamp_of_[v] = stamp_;
@@ -84,12 +85,13 @@ class Builder {
     return side_[v];
   }
 
-  // strict: a vertex not made on the plane is on it only at distance exactly 0 (the
-  // fallback when the tolerance classifies a cell or face inconsistently).
-  void begin_plane(const Plane& h, uint32_t id, bool strict = false) {
+  // tol_scale multiplies the tolerance: 0 = exact sides (a vertex not made on the plane is
+  // on it only at distance exactly 0), the fallback when the tolerance classifies a cell
+  // or face inconsistently; larger = a coarser classification, the next fallback.
+  void begin_plane(const Plane& h, uint32_t id, double tol_scale = 1.0) {
     plane_ = h;
     plane_id_ = id;
-    strict_ = strict;
+    tol_scale_ = tol_scale;
     ++stamp_;
   }
 
@@ -102,7 +104,7 @@ class Builder {
   Pattern pattern(uint32_t f);
   void split_edge(uint32_t a, uint32_t b);
   uint32_t split_face(uint32_t f);
-  uint32_t split_cell(uint32_t c, uint32_t plane_id, bool strict, uint32_t* back_cell, bool* no_cut);
+  uint32_t split_cell(uint32_t c, uint32_t plane_id, double tol_scale, uint32_t* back_cell, bool* no_cut);
   std::vector<uint32_t> faces_on_plane(uint32_t c, uint32_t plane_id);
   void carve(uint32_t s, const std::vector<Fragment>& coplanar);
   std::vector<uint32_t> rank_splitters(const std::vector<Fragment>& frags);
@@ -121,10 +123,11 @@ class Builder {
   uint32_t stamp_ = 1;
   Plane plane_;
   uint32_t plane_id_ = kNone;
-  bool strict_ = false;
+  double tol_scale_ = 1.0;
   std::vector<Plane> planes_;          // canonical planes: input clusters, box, carve lines
   std::vector<uint32_t> poly_plane_;   // input polygon → canonical plane id
-  std::unordered_map<uint64_t, std::vector<uint32_t>> plane_buckets_;  // by quantized normal
+  std::unordered_map<uint64_t, std::vector<uint32_t>> plane_buckets_;  // by quantized normal, offset
+  double offset_cell_ = 1.0;
 
   std::vector<BuildFace> faces_;
   std::vector<std::vector<uint32_t>> cells_;  // faces of each cell
@@ -236,9 +239,9 @@ uint32_t Builder::split_face(uint32_t f) {
 // Splits cell c by plane h. c keeps the front part; *back_cell receives the new back cell.
 // Returns the new separating face, or kNone when h does not split c consistently (c may
 // then have gained collinear vertices and coplanar face splits, which keep it valid).
-uint32_t Builder::split_cell(uint32_t c, uint32_t plane_id, bool strict, uint32_t* back_cell, bool* no_cut) {
+uint32_t Builder::split_cell(uint32_t c, uint32_t plane_id, double tol_scale, uint32_t* back_cell, bool* no_cut) {
   const Plane& h = planes_[plane_id];
-  begin_plane(h, plane_id, strict);
+  begin_plane(h, plane_id, tol_scale);
   const std::vector<uint32_t> original = cells_[c];
   bool plus = false, minus = false;
   for (uint32_t f : original)
@@ -395,7 +398,7 @@ void Builder::carve(uint32_t s, const std::vector<Fragment>& coplanar) {
         Pattern pat = pattern(p);
         const bool strict = pat == Pattern::kInvalid;
         if (strict) {  // resolve by exact sides for this piece, then back to the tolerance
-          begin_plane(Plane(plane_), plane_id_, true);
+          begin_plane(Plane(plane_), plane_id_, 0.0);
           pat = pattern(p);
         }
         switch (pat) {
@@ -409,7 +412,7 @@ void Builder::carve(uint32_t s, const std::vector<Fragment>& coplanar) {
           }
           case Pattern::kInvalid: kept.push_back(p); ++stats_.rejected_planes; break;
         }
-        if (strict) begin_plane(Plane(plane_), plane_id_, false);
+        if (strict) begin_plane(Plane(plane_), plane_id_, 1.0);
       }
       inside = std::move(kept);
     }
@@ -418,33 +421,50 @@ void Builder::carve(uint32_t s, const std::vector<Fragment>& coplanar) {
 }
 
 // The canonical plane with normal ±h.normal (within 1e-6) passing within the snap
-// tolerance of every point of `pts`; a new plane h when there is none.
+// tolerance of every point of `pts`; a new plane h when there is none. Planes are hashed by
+// normal (cells of 1e-2 per component) and offset (cells of offset_cell_, which exceeds the
+// offset difference of two such planes: ≤ |Δn| · max |p| + 2 snap, |Δn| ≤ 1.42e-3); a match
+// lies in the normal cells around ±n (a neighbor only when n is within 1.5e-3 of its side)
+// and the 3 offset cells around ±offset.
 uint32_t Builder::plane_id(const Plane& h, const std::vector<dvec3>& pts) {
-  auto key = [](const dvec3& n, int dx, int dy, int dz) {
-    const int64_t x = std::llround(n.x * 1e3) + dx, y = std::llround(n.y * 1e3) + dy, z = std::llround(n.z * 1e3) + dz;
-    return (uint64_t(x) * 73856093u) ^ (uint64_t(y) * 19349663u) ^ (uint64_t(z) * 83492791u);
-  };
   const double snap = kSnapTolerance * model_.scale;
+  auto key = [](int64_t x, int64_t y, int64_t z, int64_t w) {
+    return (uint64_t(x) * 73856093u) ^ (uint64_t(y) * 19349663u) ^ (uint64_t(z) * 83492791u) ^ (uint64_t(w) * 2654435761u);
+  };
   uint32_t found = kNone;
-  for (double sign : {1.0, -1.0})
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz) {
-          auto it = plane_buckets_.find(key(sign * h.normal, dx, dy, dz));
-          if (it == plane_buckets_.end()) continue;
-          for (uint32_t id : it->second) {
-            if (found != kNone && id >= found) continue;  // the earliest match: deterministic
-            const Plane& q = planes_[id];
-            if (std::abs(glm::dot(q.normal, h.normal)) < 1.0 - 1e-6) continue;
-            bool on = true;
-            for (const dvec3& v : pts) on &= std::abs(q.distance(v)) <= snap;
-            if (on) found = id;
+  for (double sign : {1.0, -1.0}) {
+    const dvec3 n = sign * h.normal;
+    int64_t k[3];
+    int lo[3], hi[3];
+    for (int i = 0; i < 3; ++i) {
+      const double g = n[i] * 1e2;
+      k[i] = std::llround(g);
+      lo[i] = g - double(k[i]) < -0.5 + 0.15 ? -1 : 0;
+      hi[i] = g - double(k[i]) > 0.5 - 0.15 ? 1 : 0;
+    }
+    const int64_t kw = std::llround(sign * h.offset / offset_cell_);
+    for (int dx = lo[0]; dx <= hi[0]; ++dx)
+      for (int dy = lo[1]; dy <= hi[1]; ++dy)
+        for (int dz = lo[2]; dz <= hi[2]; ++dz)
+          for (int dw = -1; dw <= 1; ++dw) {
+            auto it = plane_buckets_.find(key(k[0] + dx, k[1] + dy, k[2] + dz, kw + dw));
+            if (it == plane_buckets_.end()) continue;
+            for (uint32_t id : it->second) {
+              if (found != kNone && id >= found) continue;  // the earliest match: deterministic
+              const Plane& q = planes_[id];
+              if (std::abs(glm::dot(q.normal, h.normal)) < 1.0 - 1e-6) continue;
+              bool on = true;
+              for (const dvec3& v : pts) on &= std::abs(q.distance(v)) <= snap;
+              if (on) found = id;
+            }
           }
-        }
+  }
   if (found == kNone) {
     found = uint32_t(planes_.size());
     planes_.push_back(h);
-    plane_buckets_[key(h.normal, 0, 0, 0)].push_back(found);
+    plane_buckets_[key(std::llround(h.normal.x * 1e2), std::llround(h.normal.y * 1e2), std::llround(h.normal.z * 1e2),
+                       std::llround(h.offset / offset_cell_))]
+        .push_back(found);
   }
   return found;
 }
@@ -544,6 +564,11 @@ WingedPair Builder::run() {
   Stopwatch watch;
   // Canonical planes of the input: a polygon whose vertices all lie within the snap
   // tolerance of an earlier polygon's plane (same or opposite normal) shares its id.
+  double reach = 0.0;  // max |p| over the input and the outer box (within its margin)
+  for (const InputPolygon& p : model_.polygons)
+    for (const dvec3& v : p.vertices) reach = std::max(reach, glm::length(v));
+  reach += (options_.box_margin + 1.0) * model_.scale;
+  offset_cell_ = 1.5e-3 * reach + 4.0 * kSnapTolerance * model_.scale;
   for (const InputPolygon& p : model_.polygons) poly_plane_.push_back(plane_id(p.plane, p.vertices));
   make_box();
   std::vector<Fragment> all;
@@ -574,7 +599,7 @@ WingedPair Builder::run() {
     // (through the cell's box center, across its longest side) that changes the cell
     // around the near-degenerate spot, and the children try again (≤ kMaxAux deep).
     // A fragment is never dropped while some plane can still be used.
-    constexpr int kMaxAux = 4;
+    constexpr int kMaxAux = 12;
     std::vector<uint32_t> order = rank_splitters(frags);
     uint32_t s = kNone, id = kNone, back_cell = kNone, aux_id = kNone;
     bool boundary = false;
@@ -602,8 +627,9 @@ WingedPair Builder::run() {
         if (i == order.size()) break;
       }
       bool no_cut = false;
-      s = split_cell(c, order[i], false, &back_cell, &no_cut);
-      if (s == kNone && !no_cut) s = split_cell(c, order[i], true, &back_cell, &no_cut);
+      // The tolerance, exact sides, then coarser tolerances (100×, 10⁴×).
+      for (double t : {1.0, 0.0, 1e2, 1e4})
+        if (s == kNone && !no_cut) s = split_cell(c, order[i], t, &back_cell, &no_cut);
       if (s != kNone) id = order[i];
       // The cell lies on one side of the plane: its fragments on the plane lie on the cell's
       // boundary (within eps) and are carved into the faces there.
@@ -616,8 +642,23 @@ WingedPair Builder::run() {
     if (boundary) {
       std::vector<Fragment> rest;
       for (Fragment& f : frags) (poly_plane_[f.polygon] == id ? coplanar : rest).push_back(std::move(f));
-      const std::vector<uint32_t> on = faces_on_plane(c, id);
-      if (on.empty()) stats_.unplaced_fragments += coplanar.size();
+      std::vector<uint32_t> on = faces_on_plane(c, id);
+      if (on.empty()) {
+        // Beyond the tolerance from the plane's faces (a near-degenerate cell): the faces of
+        // the cell parallel to the plane and nearest to it take the fragments, so they still
+        // block sightlines (a conservative placement, counted), never a hole.
+        double best = INFINITY;
+        const Plane& h = planes_[id];
+        for (uint32_t f : cells_[c]) {
+          if (std::abs(glm::dot(faces_[f].plane.normal, h.normal)) < 1.0 - 1e-6) continue;
+          double d = 0.0;
+          for (uint32_t v : faces_[f].loop) d = std::max(d, std::abs(h.distance(verts_[v])));
+          if (d < best - eps_) on.clear();
+          if (d <= best + eps_) on.push_back(f);
+          best = std::min(best, d);
+        }
+        (on.empty() ? stats_.unplaced_fragments : stats_.displaced_fragments) += coplanar.size();
+      }
       for (uint32_t f : on) carve(f, coplanar);
       stack.push_back({c, std::move(rest), aux});
       continue;
@@ -666,7 +707,6 @@ WingedPair Builder::export_structure() const {
   wp.polygon_count = uint32_t(model_.polygons.size());
   std::vector<uint32_t> vmap(verts_.size(), kNone);
   std::unordered_map<uint64_t, uint32_t> emap;
-  std::vector<std::vector<uint32_t>> edge_pairs;
   for (uint32_t f = 0; f < faces_.size(); ++f) {
     const auto& loop = faces_[f].loop;
     const uint32_t base = uint32_t(wp.pairs.size()), n = uint32_t(loop.size());
@@ -692,7 +732,6 @@ WingedPair Builder::export_structure() const {
         e.vertex[1] = b;
         e.pair = base + i;
         wp.edges.push_back(e);
-        edge_pairs.emplace_back();
         if (wp.vertices[a].edge == kNone) wp.vertices[a].edge = it->second;
         if (wp.vertices[b].edge == kNone) wp.vertices[b].edge = it->second;
       }
@@ -702,19 +741,27 @@ WingedPair Builder::export_structure() const {
       p.direction = wp.edges[it->second].vertex[0] == a ? 1 : 0;
       p.clock[0] = base + (i + 1) % n;
       p.clock[1] = base + (i + n - 1) % n;
-      edge_pairs[it->second].push_back(uint32_t(wp.pairs.size()));
       wp.pairs.push_back(p);
     }
   }
-  // Spin: faces around each edge sorted by angle about vertex[1] − vertex[0].
+  // The pairs of each edge (counting sort: one flat array), then spin: faces around each
+  // edge sorted by angle about vertex[1] − vertex[0].
+  std::vector<uint32_t> edge_first(wp.edges.size() + 1, 0), edge_pair(wp.pairs.size());
+  for (const Pair& p : wp.pairs) ++edge_first[p.edge + 1];
+  for (size_t e = 0; e < wp.edges.size(); ++e) edge_first[e + 1] += edge_first[e];
+  {
+    std::vector<uint32_t> fill(edge_first.begin(), edge_first.end() - 1);
+    for (uint32_t p = 0; p < wp.pairs.size(); ++p) edge_pair[fill[wp.pairs[p].edge]++] = p;
+  }
+  std::vector<std::pair<double, uint32_t>> order;
   for (uint32_t e = 0; e < wp.edges.size(); ++e) {
-    auto& list = edge_pairs[e];
+    const std::span<const uint32_t> list(edge_pair.data() + edge_first[e], edge_first[e + 1] - edge_first[e]);
     const dvec3 p0 = wp.vertices[wp.edges[e].vertex[0]].position;
     const dvec3 u = glm::normalize(wp.vertices[wp.edges[e].vertex[1]].position - p0);
     const dvec3 x = glm::normalize(std::abs(u.x) < 0.9 ? glm::cross(u, dvec3(1, 0, 0))
                                                        : glm::cross(u, dvec3(0, 1, 0)));
     const dvec3 y = glm::cross(u, x);
-    std::vector<std::pair<double, uint32_t>> order;
+    order.clear();
     for (uint32_t p : list) {
       const Pair& pr = wp.pairs[p];
       // Into the face: left of the counter-clockwise walk, seen from the front.

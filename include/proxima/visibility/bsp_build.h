@@ -24,6 +24,8 @@ struct BspStats {
   size_t rejected_planes = 0;     // splits skipped as inconsistent within the tolerance
   size_t unplaced_fragments = 0;  // fragments that could not be put on a face (degenerate)
   size_t aux_splits = 0;          // splits by auxiliary planes (around near-degenerate spots)
+  size_t displaced_fragments = 0; // fragments carved into the nearest parallel face of their
+                                  // cell (their own plane missed the cell by > tolerance)
   double build_ms = 0.0;
 };
 
