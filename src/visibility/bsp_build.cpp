@@ -11,17 +11,20 @@
 // scoring (paper ref. [29]): among evenly spaced candidate polygons of a cell, the plane
 // minimizing split_weight · (fragments split) + |front − back|.
 //
-// Robustness: one tolerance eps = options.epsilon · model scale for every side decision;
-// each vertex is classified once per plane (stamped cache), so faces sharing a vertex never
-// disagree; a split whose classification is inconsistent within eps (a face touching H at
-// an isolated vertex while crossing it, an edge on H between faces on one side, a broken
-// cross-section loop) is rejected and counted instead of producing a non-manifold result.
+// Robustness (docs/visibility.md, "Robustness rules"): planes are canonical (input planes
+// and carve lines within the snap tolerance share one id, input fragments are projected
+// onto theirs); a vertex is on every plane it was made on exactly (membership, no
+// arithmetic), on any other within eps = options.epsilon · scale; each vertex is classified
+// once per plane (stamped cache), so faces sharing a vertex never disagree. A split whose
+// classification is not a convex cut is retried with exact sides, then coarser tolerances,
+// then other planes and auxiliary planes; fragments are never dropped while a plane can
+// place them, and what is left is counted.
 #include "proxima/visibility/bsp_build.h"
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 #include <span>
+#include <unordered_map>
 #include <utility>
 
 #include "proxima/core/timer.h"
