@@ -67,7 +67,7 @@ ModelPolygons extract_polygons(const Scene& scene) {
   ModelPolygons out;
   Bounds3 b = scene_bounds(scene);
   out.scale = std::max(1e-9, double(b.diagonal()));
-  const double eps = 1e-6 * out.scale;
+  const double snap = kSnapTolerance * out.scale;
   const double eps_area = 1e-12 * out.scale * out.scale;
   out.triangle_polygon.assign(scene.triangles.size(), kNone);
 
@@ -113,9 +113,10 @@ ModelPolygons extract_polygons(const Scene& scene) {
           uint32_t u = it->second;
           uint32_t x = third(u, a, c);
           if (x == kNone || std::find(loop.begin(), loop.end(), x) != loop.end()) continue;
-          if (std::abs(glm::dot(n, pos[x] - pts[0])) > eps) continue;
+          // Within the snap tolerance of the plane (welding moves vertices that far).
+          if (std::abs(glm::dot(n, pos[x] - pts[0])) > snap) continue;
           dvec3 nu = newell_normal({pos[c], pos[a], pos[x]});  // the neighbor's winding
-          if (glm::length(nu) <= eps_area || glm::dot(glm::normalize(nu), n) < 1.0 - 1e-9) continue;
+          if (glm::length(nu) <= eps_area || glm::dot(glm::normalize(nu), n) < 0.0) continue;
           std::vector<uint32_t> cand = loop;
           cand.insert(cand.begin() + long(i) + 1, x);
           std::vector<dvec3> cpts;
