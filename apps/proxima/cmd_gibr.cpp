@@ -130,6 +130,9 @@ Command register_gibr(CLI::App& root) {
             f.model.item_buffer = true;
             f.model.seed = f.common.seed;
             const GibrModel g = build_gibr_model(model_scene, f.model);
+            for (const std::string& failure : g.stats.selfcheck_failures)
+              std::fprintf(stderr, "warning: %s: visibility map of %s (failed its self-check)\n", model_scene.name.c_str(),
+                           failure.c_str());
             const CameraPath& path = model_scene.camera_paths.front();
             const Scene& scene = g.scene;
             const ModelPolygons& model = g.model;
@@ -312,6 +315,8 @@ Command register_gibr(CLI::App& root) {
             m["bsp_ms"] = g.stats.bsp.build_ms;
             m["vismap_ms_avg"] = g.stats.vismap_ms / double(cams.size());
             m["silhouette_edges_avg"] = g.stats.silhouette_edges_avg;
+            m["maps_failed_selfcheck"] = double(g.stats.maps_failed_selfcheck);
+            m["selfcheck_ms_avg"] = g.stats.selfcheck_ms / double(cams.size());
             Table summary{"novel views vs ground truth (" + model_scene.name + ", " + std::to_string(views.size()) +
                               " views, " + std::to_string(cams.size()) + " photos)",
                           {"mapping", "PSNR dB", "MAE", "PSNR ≤2px silhouettes", "MAE ≤2px silhouettes", "PSNR seen",

@@ -9,6 +9,7 @@
 #include "proxima/core/rng.h"
 #include "proxima/core/timer.h"
 #include "proxima/gibr/photo_set.h"
+#include "proxima/visibility/map_check.h"
 
 namespace proxima::gibr {
 
@@ -97,6 +98,7 @@ GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) 
   const size_t n = g.cameras.size();
   std::vector<ImageU32> labels(n);
   std::vector<double> silhouettes(n);
+  std::vector<visibility::MapCheck> checks(n);
   // Kept until phase 3 for the exact texel-center test in pixels not mapped as a whole
   // (instead of a sub-pixel record: exact, and a third of the labels' memory).
   std::vector<VisibilityMap> vis_maps(o.whole_pixels ? 0 : n);
@@ -104,6 +106,7 @@ GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) 
     for (size_t i = b; i < e; ++i) {
       VisibilityMap map = trace_visibility_map(g.winged_pair, g.cameras[i]);
       silhouettes[i] = double(map.stats.silhouette_edges);
+      checks[i] = visibility::check_visibility_map(map, g.model, *g.rays, g.cameras[i]);
       labels[i] = vismap_pixel_polygons(map, o.exclude_boundaries, false);
       if (o.unmix && !o.whole_pixels)
         labels[i] = unmix_silhouette_pixels(map, labels[i], g.photos[i], o.supersample, o.exclude_boundaries);
@@ -114,6 +117,12 @@ GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) 
   double sum = 0.0;
   for (double s : silhouettes) sum += s;
   g.stats.silhouette_edges_avg = sum / double(n);
+  for (size_t i = 0; i < n; ++i) {
+    g.stats.selfcheck_ms += checks[i].ms;
+    if (checks[i].pass) continue;
+    ++g.stats.maps_failed_selfcheck;
+    g.stats.selfcheck_failures.push_back("photograph " + std::to_string(i) + ": " + checks[i].reason);
+  }
   std::vector<ImageU32> item_labels;
   if (o.item_buffer) {
     w.restart();

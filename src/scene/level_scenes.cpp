@@ -334,7 +334,8 @@ void quadrant(LevelBuilder& B, const Materials& M, int f, Room r, int sx, int sz
       const float p0 = std::min(outer, outer - fx * 1.0f), p1 = std::max(outer, outer - fx * 1.0f);
       B.emit(B.box({p0, y0, q.z - hz}, {p1, y0 + 0.6f, q.z + hz}), M.crate, "platform", kNegY);
       const float w0 = std::min(outer - fx * 1.0f, outer - fx * 2.2f), w1 = std::max(outer - fx * 1.0f, outer - fx * 2.2f);
-      B.emit(B.wedge({w0, y0, q.z - 0.6f}, {w1, y0 + 0.6f, q.z + 0.6f}, sx > 0 ? 0.0f : kPi), M.ramp, "wedge", 1);
+      B.emit(B.wedge({w0, y0, q.z - 0.6f}, {w1, y0 + 0.6f, q.z + 0.6f}, sx > 0 ? 0.0f : kPi), M.ramp, "wedge",
+             1);  // bit 0: a wedge's bottom face
       const float e = outer - fx * 1.0f;
       B.emit(B.box({std::min(e, e + fx * 0.03f), y0 + 0.6f, q.z - hz}, {std::max(e, e + fx * 0.03f), y0 + 0.615f, q.z + hz}),
              M.trim, "edge_trim", kNegY);

@@ -3,7 +3,8 @@
 // unwelded seams (vertices 1e-5..1e-4 m apart: slight gaps and slight overlaps), an eye next
 // to a sliver, open meshes, interpenetrating boxes, centimetre details in a 100 m level and a
 // small brush level with all of them at once. Each viewpoint must hold the per-view targets
-// against Embree: agreement ≥ 99.9 %, interior agreement ≥ 99.99 %, no occluded label, no
+// against Embree: agreement ≥ 99.9 %, interior agreement ≥ 99.99 % (a different polygon
+// through the ray's hit point, within the snap tolerance, is a tie and agrees), no occluded label, no
 // unplaced fragment, and every beam bounded: in a closed level no beam leaves the outer box,
 // and the beams traced stay proportional to the regions they end in.
 #include <gtest/gtest.h>
@@ -85,8 +86,8 @@ void expect_exact(const Case& c, const std::string& what) {
                  std::to_string(cam.position.z));
     const VisibilityMap map = trace_visibility_map(wp, cam);
     const OracleCounts o = compare_with_ray_casts(map, model, c.scene, rays, cam);
-    EXPECT_GE(o.agreement_pct(), 99.9);
-    EXPECT_GE(o.interior_pct(), 99.99);
+    EXPECT_GE(o.agreement_with_ties_pct(), 99.9);
+    EXPECT_GE(o.interior_with_ties_pct(), 99.99);
     EXPECT_EQ(o.occluded_label, 0u);
     // Beams stay bounded: none escapes a closed level, and the count is proportional to
     // the final regions (each region's chain of transparent cells is short).

@@ -15,7 +15,8 @@ struct CameraAgreement {
   IdAgreement agreement;
 };
 
-// One entry per built-in scene camera, rendered at size × size, in registry order.
+// One entry per built-in scene camera, rendered at size × size, in registry order; the
+// level-* scenes are left out (coplanar overlapping faces by design: ids there are ties).
 std::vector<CameraAgreement> raster_agreement_on_builtins(int size);
 
 }  // namespace proxima

@@ -51,9 +51,13 @@ struct GibrModelOptions {
 struct GibrModelStats {
   double photos_ms = 0.0;       // reference renders of the photographs
   visibility::BspStats bsp;     // phase 1 (build_ms)
-  double vismap_ms = 0.0;       // phase 2, all photographs
+  double vismap_ms = 0.0;       // phase 2, all photographs (includes selfcheck_ms)
   double itembuffer_ms = 0.0;   // phase 2', all photographs (item_buffer only)
   double silhouette_edges_avg = 0.0;  // per visibility map
+  // Self-check of every photograph's visibility map (visibility/map_check.h).
+  size_t maps_failed_selfcheck = 0;
+  std::vector<std::string> selfcheck_failures;  // one line per failed map: photograph index and reason
+  double selfcheck_ms = 0.0;                     // all photographs
   double total_ms = 0.0;
 };
 

@@ -53,10 +53,10 @@ struct LevelOptions {
 Scene make_level(const LevelOptions& options);
 
 // The named sizes (triangle counts in docs/visibility.md):
-// level-small  3 × 3 rooms, 2 storeys, detail 0  (~2.3k triangles)
-// level-medium 3 × 3 rooms, 2 storeys, detail 1  (~6k)
-// level-large  5 × 4 rooms, 2 storeys, detail 1  (~17k)
-// level-huge   7 × 6 rooms, 3 storeys, detail 1  (~50k)
+// level-small  3 × 3 rooms, 2 storeys, detail 0  (2,684 triangles, 1,314 polygons)
+// level-medium 4 × 3 rooms, 2 storeys, detail 1  (6,104 triangles, 2,992 polygons)
+// level-large  6 × 4 rooms, 3 storeys, detail 1  (18,994 triangles, 9,348 polygons)
+// level-huge   8 × 8 rooms, 3 storeys, detail 1  (50,884 triangles, 25,089 polygons)
 bool is_level_scene(const std::string& name);
 LevelOptions level_options(const std::string& name);  // InputError for an unknown name
 

@@ -18,17 +18,30 @@ struct OracleCounts {
   size_t interior = 0;           // samples farther than 1 px from any map edge between polygons
   size_t interior_agree = 0;
   size_t occluded_label = 0;     // interior samples whose map polygon lies behind the ray's hit
-  size_t depth_ties = 0;         // samples counted as agreeing because the map's polygon passes
-                                 // through the ray's hit point (within kSnapTolerance · scale)
+  size_t ties = 0;               // disagreeing samples where the map's polygon passes through the
+                                 // ray's hit point (coplanar overlapping polygons: either is right)
+  size_t interior_ties = 0;      // of those, interior samples
 
   OracleCounts& operator+=(const OracleCounts& o);
   double agreement_pct() const { return samples ? 100.0 * double(agree) / double(samples) : 100.0; }
   double interior_pct() const { return interior ? 100.0 * double(interior_agree) / double(interior) : 100.0; }
+  // The same counting coplanar ties as agreeing.
+  double agreement_with_ties_pct() const {
+    return samples ? 100.0 * double(agree + ties) / double(samples) : 100.0;
+  }
+  double interior_with_ties_pct() const {
+    return interior ? 100.0 * double(interior_agree + interior_ties) / double(interior) : 100.0;
+  }
 };
 
-// A sample agrees when the map names the polygon Embree hit, or another polygon passing
-// through the hit point within the snap tolerance (kSnapTolerance × scale: coplanar
-// overlapping faces, seams, faces crossing there — equal depth, either answer is right).
+// True when `polygon` passes through the point at distance t_hit along the ray (origin,
+// unit dir): the ray meets its plane there within float ray-tracing precision plus the snap
+// tolerance (2e-6 · t_hit + 1e-7 · model.scale + kSnapTolerance · model.scale), inside its
+// outline (within 1e-6 · model.scale + the snap tolerance): the BSP welds vertices and
+// snaps planes within kSnapTolerance, so polygons that close tie in depth.
+bool polygon_through_hit(const ModelPolygons& model, uint32_t polygon, const dvec3& origin, const dvec3& dir,
+                         double t_hit);
+
 // `map` must be traced for `camera` through the winged pair of `model` (polygons of `scene`);
 // `rays` is built from `scene`. The camera's near plane should be closer than any surface.
 OracleCounts compare_with_ray_casts(const VisibilityMap& map, const ModelPolygons& model,
