@@ -11,15 +11,19 @@
 // scoring (paper ref. [29]): among evenly spaced candidate polygons of a cell, the plane
 // minimizing split_weight · (fragments split) + |front − back|.
 //
-// Robustness: one tolerance eps = options.epsilon · model scale for every side decision;
-// each vertex is classified once per plane (stamped cache), so faces sharing a vertex never
-// disagree; a split whose classification is inconsistent within eps (a face touching H at
-// an isolated vertex while crossing it, an edge on H between faces on one side, a broken
-// cross-section loop) is rejected and counted instead of producing a non-manifold result.
+// Robustness (docs/visibility.md, "Robustness rules"): planes are canonical (input planes
+// and carve lines within the snap tolerance share one id, input fragments are projected
+// onto theirs); a vertex is on every plane it was made on exactly (membership, no
+// arithmetic), on any other within eps = options.epsilon · scale; each vertex is classified
+// once per plane (stamped cache), so faces sharing a vertex never disagree. A split whose
+// classification is not a convex cut is retried with exact sides, then coarser tolerances,
+// then other planes and auxiliary planes; fragments are never dropped while a plane can
+// place them, and what is left is counted.
 #include "proxima/visibility/bsp_build.h"
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <unordered_map>
 #include <utility>
 
@@ -35,6 +39,7 @@ uint64_t edge_key(uint32_t a, uint32_t b) {
 struct BuildFace {
   std::vector<uint32_t> loop;  // vertex ids, counter-clockwise seen from the front
   Plane plane;
+  uint32_t plane_id = kNone;   // canonical plane (planes_) the face lies on
   uint32_t cell[2] = {kNone, kNone};
   uint32_t polygon = kNone;
 };
@@ -56,34 +61,56 @@ class Builder {
   WingedPair run();
 
  private:
-  uint32_t add_vertex(const dvec3& p) {
+  uint32_t add_vertex(const dvec3& p, std::vector<uint32_t> on_planes) {
     verts_.push_back(p);
     side_.push_back(0);
     stamp_of_.push_back(stamp_);
+    vplanes_.push_back(std::move(on_planes));
     return uint32_t(verts_.size() - 1);
   }
 
-  // Side of vertex v of the current plane (classified once per plane, then cached).
+  bool on_plane(uint32_t v, uint32_t id) const {
+    return std::find(vplanes_[v].begin(), vplanes_[v].end(), id) != vplanes_[v].end();
+  }
+
+  // Side of vertex v of the current plane (classified once per plane, then cached): 0 when
+  // the vertex was made on that canonical plane (exact, no arithmetic), else by distance.
   int8_t side(uint32_t v) {
     if (stamp_of_[v] != stamp_) {
-      double d = plane_.distance(verts_[v]);
-      side_[v] = d > eps_ ? 1 : (d < -eps_ ? -1 : 0);
+      if (on_plane(v, plane_id_)) {
+        side_[v] = 0;
+      } else {
+        const double d = plane_.distance(verts_[v]), tol = tol_scale_ * eps_;
+        side_[v] = d > tol ? 1 : (d < -tol ? -1 : 0);
+      }
       stamp_of_[v] = stamp_;
     }
     return side_[v];
   }
 
-  void begin_plane(const Plane& h) {
+  // tol_scale multiplies the tolerance: 0 = exact sides (a vertex not made on the plane is
+  // on it only at distance exactly 0), the fallback when the tolerance classifies a cell
+  // or face inconsistently; larger = a coarser classification, the next fallback.
+  void begin_plane(const Plane& h, uint32_t id, double tol_scale = 1.0) {
     plane_ = h;
+    plane_id_ = id;
+    tol_scale_ = tol_scale;
     ++stamp_;
   }
+
+  // Canonical planes: every plane used (input polygons' and carve lines') is looked up
+  // among the earlier ones and shares the id of one passing within the snap tolerance
+  // (kSnapTolerance · scale) of its points — coplanar overlapping faces, seams, slightly
+  // raised faces, and a carve line on a wall's plane become one plane for every decision.
+  uint32_t plane_id(const Plane& h, const std::vector<dvec3>& pts);
 
   Pattern pattern(uint32_t f);
   void split_edge(uint32_t a, uint32_t b);
   uint32_t split_face(uint32_t f);
-  uint32_t split_cell(uint32_t c, const Plane& h, uint32_t* back_cell);
+  uint32_t split_cell(uint32_t c, uint32_t plane_id, double tol_scale, uint32_t* back_cell, bool* no_cut);
+  std::vector<uint32_t> faces_on_plane(uint32_t c, uint32_t plane_id);
   void carve(uint32_t s, const std::vector<Fragment>& coplanar);
-  uint32_t choose_splitter(const std::vector<Fragment>& frags);
+  std::vector<uint32_t> rank_splitters(const std::vector<Fragment>& frags);
   void make_box();
   WingedPair export_structure() const;
 
@@ -95,8 +122,15 @@ class Builder {
   std::vector<dvec3> verts_;
   std::vector<int8_t> side_;
   std::vector<uint32_t> stamp_of_;
+  std::vector<std::vector<uint32_t>> vplanes_;  // canonical planes each vertex was made on
   uint32_t stamp_ = 1;
   Plane plane_;
+  uint32_t plane_id_ = kNone;
+  double tol_scale_ = 1.0;
+  std::vector<Plane> planes_;          // canonical planes: input clusters, box, carve lines
+  std::vector<uint32_t> poly_plane_;   // input polygon → canonical plane id
+  std::unordered_map<uint64_t, std::vector<uint32_t>> plane_buckets_;  // by quantized normal, offset
+  double offset_cell_ = 1.0;
 
   std::vector<BuildFace> faces_;
   std::vector<std::vector<uint32_t>> cells_;  // faces of each cell
@@ -114,6 +148,7 @@ Pattern Builder::pattern(uint32_t f) {
     plus |= s > 0;
     minus |= s < 0;
   }
+
   if (!plus && !minus) return Pattern::kInvalid;
   if (!minus) return Pattern::kFront;
   if (!plus) return Pattern::kBack;
@@ -136,7 +171,11 @@ Pattern Builder::pattern(uint32_t f) {
 void Builder::split_edge(uint32_t a, uint32_t b) {
   const uint32_t lo = std::min(a, b), hi = std::max(a, b);
   const double dlo = plane_.distance(verts_[lo]), dhi = plane_.distance(verts_[hi]);
-  const uint32_t m = add_vertex(verts_[lo] + (verts_[hi] - verts_[lo]) * (dlo / (dlo - dhi)));
+  std::vector<uint32_t> on;  // the planes of the edge (shared by both ends) and the cut
+  for (uint32_t id : vplanes_[a])
+    if (on_plane(b, id)) on.push_back(id);
+  on.push_back(plane_id_);
+  const uint32_t m = add_vertex(verts_[lo] + (verts_[hi] - verts_[lo]) * (dlo / (dlo - dhi)), std::move(on));
   side_[m] = 0;
   auto node = edge_faces_.extract(edge_key(a, b));
   std::vector<uint32_t> around = node.empty() ? std::vector<uint32_t>{} : std::move(node.mapped());
@@ -203,8 +242,9 @@ uint32_t Builder::split_face(uint32_t f) {
 // Splits cell c by plane h. c keeps the front part; *back_cell receives the new back cell.
 // Returns the new separating face, or kNone when h does not split c consistently (c may
 // then have gained collinear vertices and coplanar face splits, which keep it valid).
-uint32_t Builder::split_cell(uint32_t c, const Plane& h, uint32_t* back_cell) {
-  begin_plane(h);
+uint32_t Builder::split_cell(uint32_t c, uint32_t plane_id, double tol_scale, uint32_t* back_cell, bool* no_cut) {
+  const Plane& h = planes_[plane_id];
+  begin_plane(h, plane_id, tol_scale);
   const std::vector<uint32_t> original = cells_[c];
   bool plus = false, minus = false;
   for (uint32_t f : original)
@@ -212,7 +252,8 @@ uint32_t Builder::split_cell(uint32_t c, const Plane& h, uint32_t* back_cell) {
       plus |= side(v) > 0;
       minus |= side(v) < 0;
     }
-  if (!plus || !minus) return kNone;
+  *no_cut = !plus || !minus;
+  if (*no_cut) return kNone;
 
   auto in_cell = [&](uint32_t f) { return faces_[f].cell[0] == c || faces_[f].cell[1] == c; };
   std::vector<Pattern> patterns;
@@ -302,10 +343,14 @@ uint32_t Builder::split_cell(uint32_t c, const Plane& h, uint32_t* back_cell) {
   }
   cells_[c] = std::move(front_faces);
 
+  // The cross-section's vertices are on h from now on, for every later decision.
+  for (uint32_t v : loop)
+    if (!on_plane(v, plane_id)) vplanes_[v].push_back(plane_id);
   const uint32_t s = uint32_t(faces_.size());
   BuildFace face;
   face.loop = std::move(loop);
   face.plane = h;
+  face.plane_id = plane_id;
   face.cell[0] = back;
   face.cell[1] = c;
   for (size_t k = 0; k < face.loop.size(); ++k)
@@ -315,6 +360,18 @@ uint32_t Builder::split_cell(uint32_t c, const Plane& h, uint32_t* back_cell) {
   cells_[back].push_back(s);
   *back_cell = back;
   return s;
+}
+
+// The faces of cell c lying on the plane (every vertex on it).
+std::vector<uint32_t> Builder::faces_on_plane(uint32_t c, uint32_t plane_id) {
+  begin_plane(planes_[plane_id], plane_id);
+  std::vector<uint32_t> out;
+  for (uint32_t f : cells_[c]) {
+    bool on = true;
+    for (uint32_t v : faces_[f].loop) on &= side(v) == 0;
+    if (on) out.push_back(f);
+  }
+  return out;
 }
 
 // Subdivides the new face s by the edge lines of the fragments lying on its plane: the
@@ -334,10 +391,20 @@ void Builder::carve(uint32_t s, const std::vector<Fragment>& coplanar) {
       double len = glm::length(out);
       if (len <= eps_area_) continue;
       Plane e{out / len, -glm::dot(out / len, a)};
-      begin_plane(e);
+      // The canonical plane (vertices made on it lie on it), oriented as this fragment's line.
+      const uint32_t id = plane_id(e, {a, b});
+      Plane q = planes_[id];
+      if (glm::dot(q.normal, e.normal) < 0.0) q = {-q.normal, -q.offset};
+      begin_plane(q, id);
       std::vector<uint32_t> kept;
       for (uint32_t p : inside) {
-        switch (pattern(p)) {
+        Pattern pat = pattern(p);
+        const bool strict = pat == Pattern::kInvalid;
+        if (strict) {  // resolve by exact sides for this piece, then back to the tolerance
+          begin_plane(Plane(plane_), plane_id_, 0.0);
+          pat = pattern(p);
+        }
+        switch (pat) {
           case Pattern::kBack: kept.push_back(p); break;
           case Pattern::kFront: break;
           case Pattern::kCrossing: {
@@ -348,6 +415,7 @@ void Builder::carve(uint32_t s, const std::vector<Fragment>& coplanar) {
           }
           case Pattern::kInvalid: kept.push_back(p); ++stats_.rejected_planes; break;
         }
+        if (strict) begin_plane(Plane(plane_), plane_id_, 1.0);
       }
       inside = std::move(kept);
     }
@@ -355,26 +423,78 @@ void Builder::carve(uint32_t s, const std::vector<Fragment>& coplanar) {
   }
 }
 
-uint32_t Builder::choose_splitter(const std::vector<Fragment>& frags) {
+// The canonical plane with normal ±h.normal (within 1e-6) passing within the snap
+// tolerance of every point of `pts`; a new plane h when there is none. Planes are hashed by
+// normal (cells of 1e-2 per component) and offset (cells of offset_cell_, which exceeds the
+// offset difference of two such planes: ≤ |Δn| · max |p| + 2 snap, |Δn| ≤ 1.42e-3); a match
+// lies in the normal cells around ±n (a neighbor only when n is within 1.5e-3 of its side)
+// and the 3 offset cells around ±offset.
+uint32_t Builder::plane_id(const Plane& h, const std::vector<dvec3>& pts) {
+  const double snap = kSnapTolerance * model_.scale;
+  auto key = [](int64_t x, int64_t y, int64_t z, int64_t w) {
+    return (uint64_t(x) * 73856093u) ^ (uint64_t(y) * 19349663u) ^ (uint64_t(z) * 83492791u) ^ (uint64_t(w) * 2654435761u);
+  };
+  uint32_t found = kNone;
+  for (double sign : {1.0, -1.0}) {
+    const dvec3 n = sign * h.normal;
+    int64_t k[3];
+    int lo[3], hi[3];
+    for (int i = 0; i < 3; ++i) {
+      const double g = n[i] * 1e2;
+      k[i] = std::llround(g);
+      lo[i] = g - double(k[i]) < -0.5 + 0.15 ? -1 : 0;
+      hi[i] = g - double(k[i]) > 0.5 - 0.15 ? 1 : 0;
+    }
+    const int64_t kw = std::llround(sign * h.offset / offset_cell_);
+    for (int dx = lo[0]; dx <= hi[0]; ++dx)
+      for (int dy = lo[1]; dy <= hi[1]; ++dy)
+        for (int dz = lo[2]; dz <= hi[2]; ++dz)
+          for (int dw = -1; dw <= 1; ++dw) {
+            auto it = plane_buckets_.find(key(k[0] + dx, k[1] + dy, k[2] + dz, kw + dw));
+            if (it == plane_buckets_.end()) continue;
+            for (uint32_t id : it->second) {
+              if (found != kNone && id >= found) continue;  // the earliest match: deterministic
+              const Plane& q = planes_[id];
+              if (std::abs(glm::dot(q.normal, h.normal)) < 1.0 - 1e-6) continue;
+              bool on = true;
+              for (const dvec3& v : pts) on &= std::abs(q.distance(v)) <= snap;
+              if (on) found = id;
+            }
+          }
+  }
+  if (found == kNone) {
+    found = uint32_t(planes_.size());
+    planes_.push_back(h);
+    plane_buckets_[key(std::llround(h.normal.x * 1e2), std::llround(h.normal.y * 1e2), std::llround(h.normal.z * 1e2),
+                       std::llround(h.offset / offset_cell_))]
+        .push_back(found);
+  }
+  return found;
+}
+
+// Candidate planes for a cell's fragments, best first: k evenly spaced fragments' planes
+// plus the `largest` of largest area — big occluders (floor slabs, long walls) whose planes
+// rarely split anything and keep distant parts of the model (other floors) from fragmenting
+// each other's cells — scored split_weight · (fragments split) + |front − back|.
+std::vector<uint32_t> Builder::rank_splitters(const std::vector<Fragment>& frags) {
   const size_t k = std::min<size_t>(size_t(std::max(1, options_.candidates)), frags.size());
-  // Candidates: k evenly spaced fragments plus the `largest` of largest area — big
-  // occluders (floor slabs, long walls) whose planes rarely split anything and keep
-  // distant parts of the model (other floors) from fragmenting each other's cells.
   std::vector<uint32_t> candidates;
-  for (size_t c = 0; c < k; ++c) candidates.push_back(frags[c * frags.size() / k].polygon);
+  for (size_t c = 0; c < k; ++c) candidates.push_back(poly_plane_[frags[c * frags.size() / k].polygon]);
   const size_t big = std::min<size_t>(size_t(std::max(0, options_.largest)), frags.size());
   if (big > 0) {
     std::vector<std::pair<double, uint32_t>> by_area;
     for (const Fragment& f : frags) by_area.push_back({-glm::length(newell_normal(f.v)), f.polygon});
     std::partial_sort(by_area.begin(), by_area.begin() + long(big), by_area.end());
-    for (size_t c = 0; c < big; ++c) candidates.push_back(by_area[c].second);
+    for (size_t c = 0; c < big; ++c) candidates.push_back(poly_plane_[by_area[c].second]);
   }
-  uint32_t best = frags.front().polygon;
-  double best_score = INFINITY;
-  for (const uint32_t poly : candidates) {
-    const Plane& h = model_.polygons[poly].plane;
+  std::vector<std::pair<double, uint32_t>> scored;
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    const uint32_t id = candidates[i];
+    if (std::find(candidates.begin(), candidates.begin() + long(i), id) != candidates.begin() + long(i)) continue;
+    const Plane& h = planes_[id];
     size_t front = 0, back = 0, split = 0;
     for (const Fragment& f : frags) {
+      if (poly_plane_[f.polygon] == id) continue;
       bool plus = false, minus = false;
       for (const dvec3& p : f.v) {
         double d = h.distance(p);
@@ -385,14 +505,12 @@ uint32_t Builder::choose_splitter(const std::vector<Fragment>& frags) {
       else if (plus) ++front;
       else if (minus) ++back;
     }
-    double score = options_.split_weight * double(split) +
-                   std::abs(double(front) - double(back));
-    if (score < best_score) {
-      best_score = score;
-      best = poly;
-    }
+    scored.push_back({options_.split_weight * double(split) + std::abs(double(front) - double(back)), id});
   }
-  return best;
+  std::stable_sort(scored.begin(), scored.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<uint32_t> out;
+  for (const auto& [score, id] : scored) out.push_back(id);
+  return out;
 }
 
 void Builder::make_box() {
@@ -402,8 +520,10 @@ void Builder::make_box() {
   const dvec3 margin(options_.box_margin * model_.scale + 1e-9);
   const dvec3 lo = b.empty() ? dvec3(-1.0) : dvec3(b.min) - margin;
   const dvec3 hi = b.empty() ? dvec3(1.0) : dvec3(b.max) + margin;
+  const uint32_t box = uint32_t(planes_.size());  // box face f has plane id box + f
   for (int i = 0; i < 8; ++i)
-    add_vertex({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
+    add_vertex({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z},
+               {box + ((i & 1) ? 1u : 0u), box + ((i & 2) ? 3u : 2u), box + ((i & 4) ? 5u : 4u)});
   // Corner bits (x, y, z); each face listed counter-clockwise seen from outside.
   const uint32_t quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
                                 {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
@@ -414,6 +534,8 @@ void Builder::make_box() {
     face.loop.assign(quads[f], quads[f] + 4);
     face.plane.normal = normals[f];
     face.plane.offset = -glm::dot(normals[f], verts_[quads[f][0]]);
+    face.plane_id = box + uint32_t(f);
+    planes_.push_back(face.plane);  // box planes are never matched: nothing lies on them
     face.cell[0] = 0;  // inside the box is behind every outward face
     for (int k = 0; k < 4; ++k)
       edge_faces_[edge_key(quads[f][k], quads[f][(k + 1) % 4])].push_back(uint32_t(f));
@@ -443,28 +565,121 @@ void clip_fragment(const Fragment& f, const Plane& h, double eps, Fragment& fron
 
 WingedPair Builder::run() {
   Stopwatch watch;
+  // Canonical planes of the input: a polygon whose vertices all lie within the snap
+  // tolerance of an earlier polygon's plane (same or opposite normal) shares its id.
+  double reach = 0.0;  // max |p| over the input and the outer box (within its margin)
+  for (const InputPolygon& p : model_.polygons)
+    for (const dvec3& v : p.vertices) reach = std::max(reach, glm::length(v));
+  reach += (options_.box_margin + 1.0) * model_.scale;
+  offset_cell_ = 1.5e-3 * reach + 4.0 * kSnapTolerance * model_.scale;
+  for (const InputPolygon& p : model_.polygons) poly_plane_.push_back(plane_id(p.plane, p.vertices));
   make_box();
   std::vector<Fragment> all;
-  for (uint32_t p = 0; p < model_.polygons.size(); ++p) all.push_back({model_.polygons[p].vertices, p});
+  // Each polygon starts projected onto its canonical plane (a move within the snap
+  // tolerance), so every side decision about it agrees with the faces made on that plane.
+  for (uint32_t p = 0; p < model_.polygons.size(); ++p) {
+    const Plane& h = planes_[poly_plane_[p]];
+    Fragment f{model_.polygons[p].vertices, p};
+    for (dvec3& v : f.v) v -= h.normal * h.distance(v);
+    all.push_back(std::move(f));
+  }
   auto big_enough = [&](const Fragment& f) {
     return f.v.size() >= 3 && glm::length(newell_normal(f.v)) > 2.0 * eps_area_;
   };
-  std::vector<std::pair<uint32_t, std::vector<Fragment>>> stack;
-  stack.push_back({0, std::move(all)});
+  struct Item {
+    uint32_t cell;
+    std::vector<Fragment> frags;
+    int aux;  // auxiliary splits above this cell (see below)
+  };
+  std::vector<Item> stack;
+  stack.push_back({0, std::move(all), 0});
   while (!stack.empty()) {
-    auto [c, frags] = std::move(stack.back());
+    auto [c, frags, aux] = std::move(stack.back());
     stack.pop_back();
     if (frags.empty()) continue;
-    const uint32_t poly = choose_splitter(frags);
-    const Plane& h = model_.polygons[poly].plane;
+    // The best-ranked plane that cuts the cell consistently (by the tolerance, else by
+    // exact sides); then any other plane of the cell's fragments; then an auxiliary plane
+    // (through the cell's box center, across its longest side) that changes the cell
+    // around the near-degenerate spot, and the children try again (≤ kMaxAux deep).
+    // A fragment is never dropped while some plane can still be used.
+    constexpr int kMaxAux = 12;
+    std::vector<uint32_t> order = rank_splitters(frags);
+    uint32_t s = kNone, id = kNone, back_cell = kNone, aux_id = kNone;
+    bool boundary = false;
+    for (size_t i = 0; s == kNone && !boundary; ++i) {
+      if (i == order.size()) {
+        for (const Fragment& f : frags)
+          if (std::find(order.begin(), order.end(), poly_plane_[f.polygon]) == order.end())
+            order.push_back(poly_plane_[f.polygon]);
+        if (i == order.size() && aux_id == kNone && aux < kMaxAux) {
+          dvec3 lo(INFINITY), hi(-INFINITY);
+          for (uint32_t f : cells_[c])
+            for (uint32_t v : faces_[f].loop) {
+              lo = glm::min(lo, verts_[v]);
+              hi = glm::max(hi, verts_[v]);
+            }
+          const dvec3 ext = hi - lo, center = 0.5 * (lo + hi);
+          const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
+          Plane a;
+          a.normal = dvec3(0.0);
+          a.normal[axis] = 1.0;
+          a.offset = -center[axis];
+          aux_id = plane_id(a, {center});
+          order.push_back(aux_id);
+        }
+        if (i == order.size()) break;
+      }
+      bool no_cut = false;
+      // The tolerance, exact sides, then coarser tolerances (100×, 10⁴×).
+      for (double t : {1.0, 0.0, 1e2, 1e4})
+        if (s == kNone && !no_cut) s = split_cell(c, order[i], t, &back_cell, &no_cut);
+      if (s != kNone) id = order[i];
+      // The cell lies on one side of the plane: its fragments on the plane lie on the cell's
+      // boundary (within eps) and are carved into the faces there.
+      if (no_cut) {
+        id = order[i];
+        boundary = true;
+      }
+    }
     std::vector<Fragment> coplanar, front, back;
+    if (boundary) {
+      std::vector<Fragment> rest;
+      for (Fragment& f : frags) (poly_plane_[f.polygon] == id ? coplanar : rest).push_back(std::move(f));
+      std::vector<uint32_t> on = faces_on_plane(c, id);
+      if (on.empty()) {
+        // Beyond the tolerance from the plane's faces (a near-degenerate cell): the faces of
+        // the cell parallel to the plane and nearest to it take the fragments, so they still
+        // block sightlines (a conservative placement, counted), never a hole.
+        double best = INFINITY;
+        const Plane& h = planes_[id];
+        for (uint32_t f : cells_[c]) {
+          if (std::abs(glm::dot(faces_[f].plane.normal, h.normal)) < 1.0 - 1e-6) continue;
+          double d = 0.0;
+          for (uint32_t v : faces_[f].loop) d = std::max(d, std::abs(h.distance(verts_[v])));
+          if (d < best - eps_) on.clear();
+          if (d <= best + eps_) on.push_back(f);
+          best = std::min(best, d);
+        }
+        (on.empty() ? stats_.unplaced_fragments : stats_.displaced_fragments) += coplanar.size();
+      }
+      for (uint32_t f : on) carve(f, coplanar);
+      stack.push_back({c, std::move(rest), aux});
+      continue;
+    }
+    if (s == kNone) {
+      // No plane of the cell's fragments cuts it consistently: they stay unplaced.
+      stats_.unplaced_fragments += frags.size();
+      continue;
+    }
+    const Plane& h = planes_[id];
     for (const Fragment& f : frags) {
       bool plus = false, minus = false;
-      for (const dvec3& p : f.v) {
-        double d = h.distance(p);
-        plus |= d > eps_;
-        minus |= d < -eps_;
-      }
+      if (poly_plane_[f.polygon] != id)
+        for (const dvec3& p : f.v) {
+          double d = h.distance(p);
+          plus |= d > eps_;
+          minus |= d < -eps_;
+        }
       if (!plus && !minus) coplanar.push_back(f);
       else if (!minus) front.push_back(f);
       else if (!plus) back.push_back(f);
@@ -476,25 +691,12 @@ WingedPair Builder::run() {
         if (big_enough(bp)) back.push_back(std::move(bp));
       }
     }
-    uint32_t back_cell = kNone;
-    const uint32_t s = coplanar.empty() ? kNone : split_cell(c, h, &back_cell);
-    if (s == kNone) {
-      // The plane does not cut this cell consistently: its fragments stay unplaced, the
-      // others stay whole in the cell (progress: at least the splitter's own are gone).
-      stats_.unplaced_fragments += std::max<size_t>(1, coplanar.size());
-      std::vector<Fragment> rest;
-      for (Fragment& f : frags) {
-        bool on = false;
-        for (const Fragment& q : coplanar) on |= q.polygon == f.polygon;
-        if (!on && f.polygon != poly) rest.push_back(std::move(f));
-      }
-      stack.push_back({c, std::move(rest)});
-      continue;
-    }
     ++stats_.splits;
     carve(s, coplanar);
-    stack.push_back({back_cell, std::move(back)});
-    stack.push_back({c, std::move(front)});
+    const int next_aux = aux + (id == aux_id && aux_id != kNone ? 1 : 0);
+    stats_.aux_splits += id == aux_id && aux_id != kNone;
+    stack.push_back({back_cell, std::move(back), next_aux});
+    stack.push_back({c, std::move(front), next_aux});
   }
   WingedPair wp = export_structure();
   stats_.build_ms = watch.elapsed_ms();
@@ -508,7 +710,6 @@ WingedPair Builder::export_structure() const {
   wp.polygon_count = uint32_t(model_.polygons.size());
   std::vector<uint32_t> vmap(verts_.size(), kNone);
   std::unordered_map<uint64_t, uint32_t> emap;
-  std::vector<std::vector<uint32_t>> edge_pairs;
   for (uint32_t f = 0; f < faces_.size(); ++f) {
     const auto& loop = faces_[f].loop;
     const uint32_t base = uint32_t(wp.pairs.size()), n = uint32_t(loop.size());
@@ -534,7 +735,6 @@ WingedPair Builder::export_structure() const {
         e.vertex[1] = b;
         e.pair = base + i;
         wp.edges.push_back(e);
-        edge_pairs.emplace_back();
         if (wp.vertices[a].edge == kNone) wp.vertices[a].edge = it->second;
         if (wp.vertices[b].edge == kNone) wp.vertices[b].edge = it->second;
       }
@@ -544,19 +744,27 @@ WingedPair Builder::export_structure() const {
       p.direction = wp.edges[it->second].vertex[0] == a ? 1 : 0;
       p.clock[0] = base + (i + 1) % n;
       p.clock[1] = base + (i + n - 1) % n;
-      edge_pairs[it->second].push_back(uint32_t(wp.pairs.size()));
       wp.pairs.push_back(p);
     }
   }
-  // Spin: faces around each edge sorted by angle about vertex[1] − vertex[0].
+  // The pairs of each edge (counting sort: one flat array), then spin: faces around each
+  // edge sorted by angle about vertex[1] − vertex[0].
+  std::vector<uint32_t> edge_first(wp.edges.size() + 1, 0), edge_pair(wp.pairs.size());
+  for (const Pair& p : wp.pairs) ++edge_first[p.edge + 1];
+  for (size_t e = 0; e < wp.edges.size(); ++e) edge_first[e + 1] += edge_first[e];
+  {
+    std::vector<uint32_t> fill(edge_first.begin(), edge_first.end() - 1);
+    for (uint32_t p = 0; p < wp.pairs.size(); ++p) edge_pair[fill[wp.pairs[p].edge]++] = p;
+  }
+  std::vector<std::pair<double, uint32_t>> order;
   for (uint32_t e = 0; e < wp.edges.size(); ++e) {
-    auto& list = edge_pairs[e];
+    const std::span<const uint32_t> list(edge_pair.data() + edge_first[e], edge_first[e + 1] - edge_first[e]);
     const dvec3 p0 = wp.vertices[wp.edges[e].vertex[0]].position;
     const dvec3 u = glm::normalize(wp.vertices[wp.edges[e].vertex[1]].position - p0);
     const dvec3 x = glm::normalize(std::abs(u.x) < 0.9 ? glm::cross(u, dvec3(1, 0, 0))
                                                        : glm::cross(u, dvec3(0, 1, 0)));
     const dvec3 y = glm::cross(u, x);
-    std::vector<std::pair<double, uint32_t>> order;
+    order.clear();
     for (uint32_t p : list) {
       const Pair& pr = wp.pairs[p];
       // Into the face: left of the counter-clockwise walk, seen from the front.

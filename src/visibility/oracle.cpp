@@ -24,13 +24,15 @@ bool polygon_through_hit(const ModelPolygons& model, uint32_t polygon, const dve
   const double denom = glm::dot(poly.plane.normal, dir);
   if (std::abs(denom) < 1e-12) return false;
   const double t = -poly.plane.distance(origin) / denom;
-  if (!(std::abs(t - t_hit) <= 2e-6 * t_hit + 1e-7 * model.scale)) return false;
+  // Float ray-tracing precision plus the snap tolerance (the BSP welds and snaps within it).
+  const double snap = kSnapTolerance * model.scale;
+  if (!(std::abs(t - t_hit) <= 2e-6 * t_hit + 1e-7 * model.scale + snap)) return false;
   const dvec3 p = origin + t * dir;
   const size_t n = poly.vertices.size();
   for (size_t i = 0; i < n; ++i) {
     const dvec3 a = poly.vertices[i], e = poly.vertices[(i + 1) % n] - a;
     const double len = glm::length(e);
-    if (len > 0.0 && glm::dot(glm::cross(e, p - a), poly.plane.normal) / len < -1e-6 * model.scale) return false;
+    if (len > 0.0 && glm::dot(glm::cross(e, p - a), poly.plane.normal) / len < -1e-6 * model.scale - snap) return false;
   }
   return true;
 }

@@ -4,29 +4,41 @@
 #include "proxima/visibility/polygons.h"
 
 #include <algorithm>
-#include <cstring>
+#include <cmath>
 #include <unordered_map>
 
 namespace proxima::visibility {
 namespace {
 
-// Exact position key (bit pattern), so only bit-identical vertices are welded.
-struct PosKey {
-  uint32_t x, y, z;
-  bool operator==(const PosKey&) const = default;
-};
-struct PosHash {
-  size_t operator()(const PosKey& k) const {
-    return (size_t(k.x) * 73856093u) ^ (size_t(k.y) * 19349663u) ^ (size_t(k.z) * 83492791u);
+// Welds positions closer than `tol` (greedily, in index order: a position joins the first
+// earlier representative within `tol`, found in a hash grid of `tol`-sized cells).
+std::vector<uint32_t> weld_positions(const std::vector<vec3>& in, double tol, std::vector<dvec3>& pos) {
+  std::unordered_map<uint64_t, std::vector<uint32_t>> grid;
+  auto cell = [&](double x) { return int64_t(std::floor(x / tol)); };
+  auto key = [](int64_t x, int64_t y, int64_t z) {
+    return (uint64_t(x) * 73856093u) ^ (uint64_t(y) * 19349663u) ^ (uint64_t(z) * 83492791u);
+  };
+  std::vector<uint32_t> vid(in.size());
+  for (size_t i = 0; i < in.size(); ++i) {
+    const dvec3 p(in[i]);
+    const int64_t cx = cell(p.x), cy = cell(p.y), cz = cell(p.z);
+    uint32_t found = kNone;
+    for (int64_t dx = -1; dx <= 1; ++dx)
+      for (int64_t dy = -1; dy <= 1; ++dy)
+        for (int64_t dz = -1; dz <= 1; ++dz) {
+          auto it = grid.find(key(cx + dx, cy + dy, cz + dz));
+          if (it == grid.end()) continue;
+          for (uint32_t r : it->second)
+            if (glm::length(pos[r] - p) <= tol && (found == kNone || r < found)) found = r;
+        }
+    if (found == kNone) {
+      found = uint32_t(pos.size());
+      pos.push_back(p);
+      grid[key(cx, cy, cz)].push_back(found);
+    }
+    vid[i] = found;
   }
-};
-
-PosKey key_of(vec3 p) {
-  PosKey k;
-  std::memcpy(&k.x, &p.x, 4);
-  std::memcpy(&k.y, &p.y, 4);
-  std::memcpy(&k.z, &p.z, 4);
-  return k;
+  return vid;
 }
 
 uint64_t edge_key(uint32_t a, uint32_t b) { return (uint64_t(a) << 32) | b; }
@@ -55,19 +67,13 @@ ModelPolygons extract_polygons(const Scene& scene) {
   ModelPolygons out;
   Bounds3 b = scene_bounds(scene);
   out.scale = std::max(1e-9, double(b.diagonal()));
-  const double eps = 1e-6 * out.scale;
+  const double snap = kSnapTolerance * out.scale;
   const double eps_area = 1e-12 * out.scale * out.scale;
   out.triangle_polygon.assign(scene.triangles.size(), kNone);
 
-  // Welded vertex ids per position.
-  std::unordered_map<PosKey, uint32_t, PosHash> weld;
-  std::vector<uint32_t> vid(scene.positions.size());
+  // Welded vertex ids: positions within the weld tolerance are one vertex (unwelded seams).
   std::vector<dvec3> pos;
-  for (size_t i = 0; i < scene.positions.size(); ++i) {
-    auto [it, fresh] = weld.try_emplace(key_of(scene.positions[i]), uint32_t(pos.size()));
-    if (fresh) pos.push_back(dvec3(scene.positions[i]));
-    vid[i] = it->second;
-  }
+  const std::vector<uint32_t> vid = weld_positions(scene.positions, kSnapTolerance * out.scale, pos);
 
   for (uint32_t obj = 0; obj < scene.objects.size(); ++obj) {
     const Object& o = scene.objects[obj];
@@ -107,9 +113,10 @@ ModelPolygons extract_polygons(const Scene& scene) {
           uint32_t u = it->second;
           uint32_t x = third(u, a, c);
           if (x == kNone || std::find(loop.begin(), loop.end(), x) != loop.end()) continue;
-          if (std::abs(glm::dot(n, pos[x] - pts[0])) > eps) continue;
+          // Within the snap tolerance of the plane (welding moves vertices that far).
+          if (std::abs(glm::dot(n, pos[x] - pts[0])) > snap) continue;
           dvec3 nu = newell_normal({pos[c], pos[a], pos[x]});  // the neighbor's winding
-          if (glm::length(nu) <= eps_area || glm::dot(glm::normalize(nu), n) < 1.0 - 1e-9) continue;
+          if (glm::length(nu) <= eps_area || glm::dot(glm::normalize(nu), n) < 0.0) continue;
           std::vector<uint32_t> cand = loop;
           cand.insert(cand.begin() + long(i) + 1, x);
           std::vector<dvec3> cpts;

@@ -37,20 +37,15 @@ void check_level(const char* name, int frame_step) {
   }
 }
 
-// Fails with the BSP / beam tracer this test was written against: level-small's walk has
-// maps with sub-pixel cracks (frames 57–62: the regions cover 99.994–99.998 % of the
-// image; a 0.2 px wide, 96 px long crack under the ceiling) that the self-check's area
-// test catches and the pixel-center oracle misses. Enable once the tracer leaves no holes.
+// level-small's walk had maps with sub-pixel cracks (regions covering 99.994–99.998 % of
+// the image) that the self-check's area test catches and the pixel-center oracle misses.
 TEST(LevelVisibility, SmallLevelEveryOtherViewpointIsExact) {
-  GTEST_SKIP() << "known failure: cracks in level-small's maps (see the comment); enable after the BSP fixes";
   check_level("level-small", 2);
 }
 
-// Fails likewise: level-huge has unplaced fragments (9), rejected planes (4), views down
-// to 89.6 % agreement with tens of thousands of occluded-label pixels; level-medium has
-// cracks. Enable after the BSP fixes (it takes ~1 min in Release).
+// level-huge had unplaced fragments, rejected planes and views down to 89.6 % agreement;
+// level-medium had cracks (~1 min in Release).
 TEST(LevelVisibility, MediumAndHugeLevelsEveryFifthViewpointAreExact) {
-  GTEST_SKIP() << "known failure: unplaced fragments and wrong labels on level-huge; enable after the BSP fixes";
   check_level("level-medium", 5);
   check_level("level-huge", 5);
 }

@@ -13,7 +13,8 @@ struct BspOptions {
   int candidates = 16;         // polygon planes scored per split (evenly spaced over the cell's)
   int largest = 8;             // plus this many of the cell's largest-area fragments
   double split_weight = 4.0;   // score = split_weight · fragments split + |front − back|
-  double epsilon = 1e-6;       // plane-side tolerance, relative to the model scale
+  double epsilon = 1e-8;       // plane-side tolerance for vertices not made on the plane,
+                               // relative to the model scale (docs/visibility.md)
   double box_margin = 0.25;    // outer box = polygon bounds grown by this × scale on each side
 };
 
@@ -21,8 +22,11 @@ struct BspStats {
   size_t polygons = 0;
   size_t splits = 0;              // BSP nodes (cells split by a polygon plane)
   size_t fragments_split = 0;     // polygon fragments cut by a split plane
-  size_t rejected_planes = 0;     // splits skipped as inconsistent within the tolerance
+  size_t rejected_planes = 0;     // split attempts inconsistent at their tolerance (each retry counts)
   size_t unplaced_fragments = 0;  // fragments that could not be put on a face (degenerate)
+  size_t aux_splits = 0;          // splits by auxiliary planes (around near-degenerate spots)
+  size_t displaced_fragments = 0; // fragments carved into the nearest parallel face of their
+                                  // cell (their own plane missed the cell by > tolerance)
   double build_ms = 0.0;
 };
 

@@ -35,8 +35,10 @@ struct OracleCounts {
 };
 
 // True when `polygon` passes through the point at distance t_hit along the ray (origin,
-// unit dir): the ray meets its plane there within float ray-tracing precision
-// (2e-6 · t_hit + 1e-7 · model.scale), inside its outline (within 1e-6 · model.scale).
+// unit dir): the ray meets its plane there within float ray-tracing precision plus the snap
+// tolerance (2e-6 · t_hit + 1e-7 · model.scale + kSnapTolerance · model.scale), inside its
+// outline (within 1e-6 · model.scale + the snap tolerance): the BSP welds vertices and
+// snaps planes within kSnapTolerance, so polygons that close tie in depth.
 bool polygon_through_hit(const ModelPolygons& model, uint32_t polygon, const dvec3& origin, const dvec3& dir,
                          double t_hit);
 

@@ -37,7 +37,14 @@ struct ModelPolygons {
   double scale = 1.0;                      // diagonal of the polygons' bounding box, meters (> 0)
 };
 
-// Merges each object's edge-adjacent triangles (shared vertex positions) whose planes agree
+// The snap tolerance, relative to the model scale: vertices closer than it are welded into
+// one (unwelded seams of real content: vertices 1e-5..1e-4 m apart on a 30–200 m level),
+// polygons whose vertices all lie within it of one plane share that plane in the BSP, and
+// the oracle counts a polygon within it of the ray's hit as a depth tie.
+inline constexpr double kSnapTolerance = 1e-5;
+
+// Welds the scene's vertices (kSnapTolerance), then merges each object's edge-adjacent
+// triangles (shared welded vertices) whose planes agree
 // to 1e-6 relative to the model scale into convex polygons, greedily in triangle order;
 // collinear vertices are dropped. Every triangle belongs to exactly one polygon.
 ModelPolygons extract_polygons(const Scene& scene);
