@@ -74,7 +74,10 @@ TEST(MapCheck, PassesOnTheBuiltInModels) {
       const VisibilityMap map = trace_visibility_map(t.wp, cam);
       const MapCheck c = check_visibility_map(map, t.model, *t.rays, cam);
       EXPECT_TRUE(c.pass) << name << " view " << k << ": " << c.reason;
-      EXPECT_NEAR(c.area_ratio, 1.0, 1e-9) << name;
+      // Welding moves input vertices by up to the snap tolerance, which can leave slivers of
+      // ~1e-5 px² uncovered (maze: 1.1e-9 of the image); a crack a pixel center can fall in
+      // is ≥ 1e-3 of a pixel row, far above this bound.
+      EXPECT_NEAR(c.area_ratio, 1.0, 1e-8) << name;
       EXPECT_GE(c.samples, 64u) << name << ": most samples are judged";
       judged += c.samples;
       map_ms += map.stats.ms;
