@@ -255,11 +255,14 @@ TEST(RealContent, ExactVisibilityInTheHouse) {
   ASSERT_EQ(all.size(), 10u);
   const double worst = *std::min_element(all.begin(), all.end());
   const double worst_interior = *std::min_element(interior.begin(), interior.end());
-  known_failure("house worst view agreement_pct", worst, "≥", 99.9, worst >= 99.9);
+  expect_ge("house worst view agreement_pct", worst, 99.9);
   known_failure("house worst view agreement_interior_pct", worst_interior, "≥", 99.99, worst_interior >= 99.99);
   expect_le("house occluded_label_samples", metric(r, "occluded_label_samples"), 0.0);
   const double unplaced = metric(r, "unplaced_fragments");
   known_failure("house unplaced_fragments", unplaced, "≤", 0.0, unplaced <= 0.0);
+  // Maps spoiled by unplaced fragments say so: the self-check flags them.
+  const double failed = metric(r, "maps_failed_selfcheck");
+  known_failure("house maps_failed_selfcheck", failed, "≤", 0.0, failed <= 0.0);
 }
 
 // Hybrid geometry- and image-based rendering: visibility-map mapping beats
