@@ -1,35 +1,16 @@
 // `proxima reflect --method layered`: --layers bounds the maps built and is reported;
 // a bad --layers or --march-steps exits 2 naming the flag with nothing written.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "test_util.h"
+#include "cli/cli_util.h"
 
 namespace proxima {
 namespace {
 
-struct RunResult {
-  int exit_code;
-  std::string output;  // stdout + stderr
-};
-
-RunResult run(const std::string& args) {
-  std::string cmd = std::string(PROXIMA_CLI_PATH) + " reflect " + args + " 2>&1 </dev/null";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return {-1, "popen failed"};
-  std::string output;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) output.append(buf.data(), n);
-  int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+RunResult run(const std::string& args) { return run_cli("reflect " + args); }
 
 const std::string kSmall = " --width 64 --height 48 --cube-size 32 --light-samples 1 --reps 1";
 
