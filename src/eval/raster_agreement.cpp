@@ -2,7 +2,6 @@
 
 #include "proxima/raster/rasterizer.h"
 #include "proxima/scene/builtin_scenes.h"
-#include "proxima/scene/level_scenes.h"
 #include "proxima/trace/reference_renderer.h"
 
 namespace proxima {
@@ -10,9 +9,6 @@ namespace proxima {
 std::vector<CameraAgreement> raster_agreement_on_builtins(int size) {
   std::vector<CameraAgreement> out;
   for (const BuiltinSceneInfo& info : builtin_scenes()) {
-    // The brush-built levels overlap coplanar faces by design: which id a z-fight shows is
-    // arbitrary for both renderers, so they say nothing about the rasterizer.
-    if (is_level_scene(info.name)) continue;
     Scene scene = make_builtin_scene(info.name);
     RayScene rays(scene);
     for (const NamedCamera& nc : scene.cameras) {

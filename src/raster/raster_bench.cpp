@@ -71,6 +71,9 @@ std::optional<RayHit> intersect(const Scene& scene, uint32_t triangle, const Cam
 
 // A center this close (pixels) to both triangles' boundaries lies on their shared edge.
 constexpr double kSharedEdgePx = 1e-4;
+// Two surfaces whose depths differ by at most this (relative) are one surface: float vertex
+// rounding (~1e-7 of a coordinate, coordinates up to ~50× the depth) cannot order them.
+constexpr double kCoincidentDepth = 1e-5;
 
 // Screen distance (pixels) from (px, py) to the boundary of the triangle's projection;
 // nullopt when a vertex is not in front of the camera.
@@ -144,10 +147,13 @@ IdAgreement compare_id_buffers(const Scene& scene, const Camera& camera, const I
       if (r != kNoTriangle && e != kNoTriangle) {
         const dvec3 dir = pixel_dir(camera, cx, cy);
         const auto hr = intersect(scene, r, camera, dir), he = intersect(scene, e, camera, dir);
-        if (hr && he && hr->inside && he->inside &&
-            std::abs(hr->depth - he->depth) <= depth_epsilon * std::max(hr->depth, he->depth)) {
-          ++a.depth;
-          continue;
+        if (hr && he && hr->inside && he->inside) {
+          const double gap = std::abs(hr->depth - he->depth), far = std::max(hr->depth, he->depth);
+          if (gap <= depth_epsilon * far) {
+            ++a.depth;
+            if (gap <= kCoincidentDepth * far) ++a.coincident;
+            continue;
+          }
         }
       }
       ++a.other;

@@ -15,8 +15,7 @@ struct CameraAgreement {
   IdAgreement agreement;
 };
 
-// One entry per built-in scene camera, rendered at size × size, in registry order; the
-// level-* scenes are left out (coplanar overlapping faces by design: ids there are ties).
+// One entry per built-in scene camera, rendered at size × size, in registry order.
 std::vector<CameraAgreement> raster_agreement_on_builtins(int size);
 
 }  // namespace proxima

@@ -52,12 +52,15 @@ struct IdAgreement {
   size_t edge = 0;
   size_t on_shared_edge = 0;  // subset of edge
   size_t depth = 0;
+  size_t coincident = 0;      // subset of depth: both surfaces at one depth within float
+                              // precision (coplanar overlapping faces): either id is right
   size_t other = 0;
 
   double agreement_pct() const { return pixels ? 100.0 * double(agree) / double(pixels) : 100.0; }
-  // Agreement counting centers on a shared edge as agreeing (either id is right there).
+  // Agreement counting centers on a shared edge and coincident surfaces as agreeing (either
+  // id is right there).
   double agreement_with_ties_pct() const {
-    return pixels ? 100.0 * double(agree + on_shared_edge) / double(pixels) : 100.0;
+    return pixels ? 100.0 * double(agree + on_shared_edge + coincident) / double(pixels) : 100.0;
   }
 };
 
