@@ -4,6 +4,7 @@
 # --fuzz also installs clang with its sanitizer and libFuzzer runtimes (scripts/fuzz.sh,
 # CI); `make test` and `make demo` do not need them. --browser also installs Chromium, for
 # scripts/screenshot-report.sh (headless check + screenshot of the demo report).
+# --real-content also installs the real-content corpus' packages (scripts/real-content.sh).
 set -euo pipefail
 
 packages=(
@@ -22,7 +23,11 @@ for arg in "$@"; do
   case "$arg" in
     --fuzz) packages+=(clang libclang-rt-dev zlib1g-dev) ;;
     --browser) packages+=(chromium) ;;
-    *) echo "install-deps: unknown option $arg (--fuzz, --browser)" >&2; exit 2 ;;
+    # scripts/real-content.sh: the packages that ship the corpus' models, and the tools that
+    # unpack and convert them. (blender-data's HDR environments are latitude-longitude maps;
+    # scene files take six cube faces, so they are not installed.)
+    --real-content) packages+=(assimp-utils assimp-testmodels sweethome3d-furniture glmark2-data libcgal-demo unzip) ;;
+    *) echo "install-deps: unknown option $arg (--fuzz, --browser, --real-content)" >&2; exit 2 ;;
   esac
 done
 

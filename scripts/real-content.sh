@@ -26,32 +26,10 @@ done
 [ -n "$out" ] || { echo "real-content: --out: empty directory name" >&2; exit 2; }
 [ "$out" = / ] || out="${out%/}"  # model paths in the scene files are relative to it
 
-# --- packages ---------------------------------------------------------------------------
-# (blender-data's CC0 HDR environments are latitude-longitude maps; scene files take six
-# cube faces, so they are not used and not installed.)
-packages=(assimp-utils assimp-testmodels sweethome3d-furniture glmark2-data libcgal-demo unzip)
-missing=()
-for p in "${packages[@]}"; do
-  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed'; then
-    missing+=("$p")
-  fi
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  if [ "$(id -u)" -eq 0 ]; then
-    sudo=()
-  elif command -v sudo >/dev/null 2>&1; then
-    sudo=(sudo -n)
-  else
-    echo "real-content: unavailable: missing packages (${missing[*]}) and not root" >&2
-    exit 3
-  fi
-  echo "real-content: installing ${missing[*]}" >&2
-  export DEBIAN_FRONTEND=noninteractive
-  if ! { "${sudo[@]}" apt-get update -qq &&
-         "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"; } >&2; then
-    echo "real-content: unavailable: cannot install ${missing[*]}" >&2
-    exit 3
-  fi
+# --- packages (scripts/install-deps.sh --real-content lists them) ------------------------
+if ! bash "$(dirname "$0")/install-deps.sh" --real-content >&2; then
+  echo "real-content: unavailable: its Debian packages cannot be installed here" >&2
+  exit 3
 fi
 
 fzk=/usr/share/assimp/models/IFC/AC14-FZK-Haus.ifc

@@ -154,7 +154,7 @@ TEST(RealContent, EnvMapsInTheGallery) {
 
 // Cluster depth-image reflections: mean error per channel ≤ 6 / 3 / 9 (the
 // thesis'), occlusion-error samples ≤ 3 % on average.
-void cluster_bounds(const fs::path& dir, const std::string& scene, bool known) {
+void expect_cluster_bounds(const fs::path& dir, const std::string& scene, bool known) {
   const Results r = run(dir, "cluster-" + scene, "reflect --method cluster", scene + ".json",
                         "--path walk --frames 100 --frame-step 50 --width 256 --height 192 --ss 2 --compare");
   const char* ch[] = {"r", "g", "b"};
@@ -169,17 +169,17 @@ void cluster_bounds(const fs::path& dir, const std::string& scene, bool known) {
 }
 TEST(RealContent, ClusterReflectionsInTheHouse) {
   REQUIRE_CORPUS();
-  cluster_bounds(dir, "house", true);
+  expect_cluster_bounds(dir, "house", true);
 }
 TEST(RealContent, ClusterReflectionsInTheGallery) {
   REQUIRE_CORPUS();
-  cluster_bounds(dir, "gallery", false);
+  expect_cluster_bounds(dir, "gallery", false);
 }
 
 // Temporal reuse of reflections: mean error ≤ 1.0 on 0–255, ≤ 25 % of the
 // reflective pixels recomputed. Path `pan`: 1.6 m in 100 frames, the camera speed per frame
 // of the built-in runs (living-room / walk, 500 frames).
-void temporal_bounds(const fs::path& dir, const std::string& scene, bool known) {
+void expect_temporal_bounds(const fs::path& dir, const std::string& scene, bool known) {
   const Results r = run(dir, "temporal-" + scene, "reflect --method temporal", scene + ".json",
                         "--path pan --frames 100 --width 96 --height 96 --compare");
   const double mae = metric(r, "temporal_mae_avg"), recompute = metric(r, "recompute_pct_avg");
@@ -194,17 +194,17 @@ void temporal_bounds(const fs::path& dir, const std::string& scene, bool known) 
 }
 TEST(RealContent, TemporalReuseInTheHouse) {
   REQUIRE_CORPUS();
-  temporal_bounds(dir, "house", true);
+  expect_temporal_bounds(dir, "house", true);
 }
 TEST(RealContent, TemporalReuseInTheGallery) {
   REQUIRE_CORPUS();
-  temporal_bounds(dir, "gallery", false);
+  expect_temporal_bounds(dir, "gallery", false);
 }
 
 // Soft shadows from reconstructed depth images: NRR's mean visibility error below
 // conventional's (the bound is set at ref-res 1024; on the trees it holds from 512 on and
 // misses by 0.02 at 256: docs/real-content.md).
-void shadow_bounds(const fs::path& dir, const std::string& scene) {
+void expect_shadow_bounds(const fs::path& dir, const std::string& scene) {
   const Results r = run(dir, "shadows-" + scene, "shadows", scene + ".json",
                         "--sampling nrr,conventional,peeling --ref-res 512 --out-res 256 --light-samples 4 --no-images");
   const double nrr = metric(r, "nrr_visibility_error_mean"), conv = metric(r, "conventional_visibility_error_mean");
@@ -213,13 +213,13 @@ void shadow_bounds(const fs::path& dir, const std::string& scene) {
 }
 TEST(RealContent, SoftShadows) {
   REQUIRE_CORPUS();
-  for (const char* scene : {"house", "trees", "gallery"}) shadow_bounds(dir, scene);
+  for (const char* scene : {"house", "trees", "gallery"}) expect_shadow_bounds(dir, scene);
 }
 
 // Depth-image sampling: NRR images hold no sample redundant with an earlier image
 // under their own definition, nor do depth-peeling layers under pixel redundancy. The
 // available samples per output frame are printed (the thesis' claim, docs/real-content.md).
-void sampling_bounds(const fs::path& dir, const std::string& scene) {
+void expect_sampling_bounds(const fs::path& dir, const std::string& scene) {
   const Results r = run(dir, "sample-" + scene, "sample", scene + ".json",
                         "--method conventional,peeling,nrr-pixel --width 128 --frames 50 --no-images");
   for (int i = 1; i < 3; ++i) {
@@ -236,11 +236,11 @@ void sampling_bounds(const fs::path& dir, const std::string& scene) {
 }
 TEST(RealContent, SamplingTreesAndPlants) {
   REQUIRE_CORPUS();
-  for (const char* scene : {"trees", "tree-maple", "plant-yucca"}) sampling_bounds(dir, scene);
+  for (const char* scene : {"trees", "tree-maple", "plant-yucca"}) expect_sampling_bounds(dir, scene);
 }
 TEST(RealContent, SamplingTheGallery) {
   REQUIRE_CORPUS();
-  sampling_bounds(dir, "gallery");
+  expect_sampling_bounds(dir, "gallery");
 }
 
 // Exact visibility maps on the corpus' building: at every viewpoint
