@@ -20,6 +20,7 @@
 
 #include "proxima/core/error.h"
 #include "proxima/core/image.h"
+#include "proxima/core/image_io.h"
 #include "proxima/core/limits.h"
 #include "proxima/scene/scene.h"
 
@@ -105,6 +106,19 @@ inline void check_scene(const Scene& s) {
 inline void check_image(const ImageF& img) {
   FUZZ_CHECK(img.width() > 0 && img.height() > 0 && img.channels() >= 1 && img.channels() <= 4);
   FUZZ_CHECK(img.data().size() == img.pixel_count() * size_t(img.channels()));
+}
+
+// One input of an 8-bit image reader (PNG, JPEG): read_image_linear either throws
+// InputError or returns a well-formed 3-channel image of decoded sRGB values in [0, 1].
+inline void read_8bit_image(const uint8_t* data, size_t size, const std::string& ext) {
+  init_limits();
+  const auto path = write_input(data, size, ext);
+  expect_input_errors_only([&] {
+    const ImageF img = read_image_linear(path, 3);
+    check_image(img);
+    FUZZ_CHECK(img.channels() == 3);
+    for (float v : img.data()) FUZZ_CHECK(v >= 0.0f && v <= 1.0f);
+  });
 }
 
 }  // namespace proxima::fuzz
