@@ -17,24 +17,12 @@
 #include "proxima/visibility/bsp_build.h"
 #include "proxima/visibility/oracle.h"
 #include "proxima/visibility/visibility_map.h"
+#include "visibility/hand_built_scene.h"
 
 namespace proxima::visibility {
 namespace {
 
 constexpr int kW = 160, kH = 120;
-
-void add_mesh(Scene& s, std::vector<vec3> positions, std::vector<uvec3> triangles) {
-  Mesh mesh;
-  mesh.positions = std::move(positions);
-  mesh.triangles = std::move(triangles);
-  add_object(s, mesh, "brush" + std::to_string(s.objects.size()), 0);
-}
-
-// Quad c, c + u, c + u + v, c + v, wound to face `toward` (single-sided, open).
-void add_quad(Scene& s, vec3 c, vec3 u, vec3 v, vec3 toward) {
-  if (glm::dot(glm::cross(u, v), toward - c) < 0.0f) std::swap(u, v);
-  add_mesh(s, {c, c + u, c + u + v, c + v}, {{0, 1, 2}, {0, 2, 3}});
-}
 
 // An axis-aligned brush (closed box, faces outward, one object), as a level editor writes
 // it: 8 corners, 12 triangles, no CSG against other brushes. `skip` drops one face
