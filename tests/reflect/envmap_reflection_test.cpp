@@ -74,6 +74,22 @@ double reflector_mae(const ImageF& a, const ImageF& b, const ReflectorPixels& pi
   return n ? sum / double(n) : 0.0;
 }
 
+// The same reflector pixels shaded with 1 and with 2 threads (determinism checks).
+std::pair<EnvmapFrame, EnvmapFrame> shade_at_one_and_two_threads(const SceneFixture& s, const Camera& cam,
+                                                                 const ReflectorPixels& pixels,
+                                                                 const EnvmapInputs& in) {
+  std::pair<EnvmapFrame, EnvmapFrame> out;
+  {
+    ThreadLimit limit(1);
+    out.first = shade_reflector_pixels(s.scene, *s.rays, cam, pixels, in);
+  }
+  {
+    ThreadLimit limit(2);
+    out.second = shade_reflector_pixels(s.scene, *s.rays, cam, pixels, in);
+  }
+  return out;
+}
+
 TEST(EnvmapReflection, RectifiedErrorIsAFractionOfPlainOnRoomReflector) {
   SceneFixture s("room-reflector");
   const Camera cam = s.camera("main");
@@ -102,15 +118,7 @@ TEST(EnvmapReflection, OnlyReflectorPixelsAreShadedAndThreadsAgree) {
   const ReflectorPixels pixels = rasterize_reflector_pixels(s.scene, cam, s.reflectors);
   EnvmapInputs in = s.inputs(EnvmapMethod::Rectified);
   in.map = &map;
-  EnvmapFrame one, two;
-  {
-    ThreadLimit limit(1);
-    one = shade_reflector_pixels(s.scene, *s.rays, cam, pixels, in);
-  }
-  {
-    ThreadLimit limit(2);
-    two = shade_reflector_pixels(s.scene, *s.rays, cam, pixels, in);
-  }
+  const auto [one, two] = shade_at_one_and_two_threads(s, cam, pixels, in);
   EXPECT_TRUE(one.color == two.color);
   size_t lit = 0;
   for (int y = 0; y < cam.height; ++y)
@@ -160,15 +168,7 @@ TEST(EnvmapReflection, LayeredIsTheSameForAnyThreadCount) {
   const ReflectorPixels pixels = rasterize_reflector_pixels(s.scene, cam, s.reflectors);
   EnvmapInputs in = s.inputs(EnvmapMethod::Layered);
   in.layers = layers;
-  EnvmapFrame one, two;
-  {
-    ThreadLimit limit(1);
-    one = shade_reflector_pixels(s.scene, *s.rays, cam, pixels, in);
-  }
-  {
-    ThreadLimit limit(2);
-    two = shade_reflector_pixels(s.scene, *s.rays, cam, pixels, in);
-  }
+  const auto [one, two] = shade_at_one_and_two_threads(s, cam, pixels, in);
   EXPECT_TRUE(one.color == two.color);
   EXPECT_TRUE(one.object == two.object);
   EXPECT_EQ(one.stats.map_samples, two.stats.map_samples);
