@@ -14,15 +14,6 @@
 namespace proxima::visibility {
 namespace {
 
-double shoelace(const std::vector<dvec2>& v) {
-  double a = 0.0;
-  for (size_t i = 0; i < v.size(); ++i) {
-    const dvec2 p = v[i], q = v[(i + 1) % v.size()];
-    a += p.x * q.y - q.x * p.y;
-  }
-  return 0.5 * a;
-}
-
 std::string fmt(const char* format, double a = 0, double b = 0, double c = 0, double d = 0) {
   char buf[256];
   std::snprintf(buf, sizeof buf, format, a, b, c, d);
@@ -127,7 +118,7 @@ MapCheck check_visibility_map(const VisibilityMap& map, const ModelPolygons& mod
         fail("region " + std::to_string(r) + " has a vertex outside the image" + fmt(" (%.6g, %.6g)", p.x, p.y));
         break;
       }
-    const double a = shoelace(reg.vertices);
+    const double a = region_area(reg);
     if (!(a > -o.area_tolerance * W * H)) fail("region " + std::to_string(r) + fmt(" has negative area %.6g px²", a));
     area += a;
   }

@@ -560,6 +560,16 @@ ImageU32 rasterize_map(const VisibilityMap& map) {
   return out;
 }
 
+double region_area(const MapRegion& region) {
+  const std::vector<dvec2>& v = region.vertices;
+  double a = 0.0;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const dvec2 p = v[i], q = v[(i + 1) % v.size()];
+    a += p.x * q.y - q.x * p.y;
+  }
+  return 0.5 * a;
+}
+
 ImageU8 map_edge_mask(const VisibilityMap& map, double radius) {
   ImageU8 mask(map.width, map.height, 1, 0);
   for (const MapEdge& e : map.edges) {

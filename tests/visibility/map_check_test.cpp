@@ -41,22 +41,13 @@ Camera frame_camera(const Scene& s, int frame, int frames, int w, int h) {
   return camera_at_time(p, frame_time(p, frame * (p.frames - 1) / std::max(1, frames - 1)), w, h, 1e-3f, 1e4f);
 }
 
-double area_of(const MapRegion& r) {
-  double a = 0;
-  for (size_t i = 0; i < r.vertices.size(); ++i) {
-    const dvec2 p = r.vertices[i], q = r.vertices[(i + 1) % r.vertices.size()];
-    a += 0.5 * (p.x * q.y - q.x * p.y);
-  }
-  return a;
-}
-
 // Index of the largest region showing a polygon (the corruptions below act on it).
 size_t largest_polygon_region(const VisibilityMap& map) {
   size_t best = 0;
   double best_area = -1;
   for (size_t r = 0; r < map.regions.size(); ++r)
-    if (map.regions[r].polygon != kNone && area_of(map.regions[r]) > best_area) {
-      best_area = area_of(map.regions[r]);
+    if (map.regions[r].polygon != kNone && region_area(map.regions[r]) > best_area) {
+      best_area = region_area(map.regions[r]);
       best = r;
     }
   return best;
@@ -96,7 +87,7 @@ class CorruptedMap : public ::testing::Test {
     map_ = trace_visibility_map(t_.wp, cam_);
     ASSERT_TRUE(check_visibility_map(map_, t_.model, *t_.rays, cam_).pass);
     big_ = largest_polygon_region(map_);
-    ASSERT_GT(area_of(map_.regions[big_]), 0.05 * 256 * 192) << "a region large enough for the sparse rays";
+    ASSERT_GT(region_area(map_.regions[big_]), 0.05 * 256 * 192) << "a region large enough for the sparse rays";
   }
   Traced t_;
   Camera cam_;

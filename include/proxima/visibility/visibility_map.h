@@ -70,6 +70,9 @@ VisibilityMap trace_visibility_map(const WingedPair& wp, const Camera& camera, c
 // the center, with the fill rule left edge inclusive, right edge exclusive per row.
 ImageU32 rasterize_map(const VisibilityMap& map);
 
+// Shoelace area of a region, pixels² (positive for a well-formed region).
+double region_area(const MapRegion& region);
+
 // 1 where a pixel center lies within `radius` pixels of a map edge whose two sides show
 // different polygons (or that has only one side), 0 elsewhere.
 ImageU8 map_edge_mask(const VisibilityMap& map, double radius = 1.0);
