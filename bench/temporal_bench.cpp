@@ -17,6 +17,7 @@
 #include "proxima/reflect/temporal_reuse.h"
 #include "proxima/scene/builtin_scenes.h"
 #include "proxima/scene/camera_path.h"
+#include "proxima/scene/camera_select.h"
 
 namespace {
 
@@ -37,7 +38,7 @@ struct Walk {
     ThreadLimit limit(2);
     const CameraPath& path = scene.camera_paths.front();
     const float t0 = path.keys.front().time, t1 = path.keys.back().time;
-    const float far = std::max(10.0f, 4.0f * scene_bounds(scene).diagonal());
+    const float far = scene_far_plane(scene);
     ReflectionOptions ro;
     ro.supersample = 1;
     ro.glossy_rays = 8;

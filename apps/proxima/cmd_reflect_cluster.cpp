@@ -29,16 +29,6 @@ namespace proxima::cli {
 namespace {
 
 
-int find_path(const Scene& scene, const std::string& key) {
-  if (!key.empty() && key.find_first_not_of("0123456789") == std::string::npos) {
-    size_t i = std::stoul(key);
-    return i < scene.camera_paths.size() ? int(i) : -1;
-  }
-  for (size_t i = 0; i < scene.camera_paths.size(); ++i)
-    if (scene.camera_paths[i].name == key) return int(i);
-  return -1;
-}
-
 // Output-resolution image of the samples: clusters in hashed colors, flagged samples red
 // (environment fallback) and yellow (occlusion error), over a dimmed `color`.
 ImageF cluster_image(const ReflectionFrame& frame, const ClusterReflections& cr, const ImageF& color) {
@@ -141,7 +131,7 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
   const CameraPath* path = nullptr;
   int frames = 1;
   if (!f.camera.path.empty()) {
-    const int path_index = find_path(rest, f.camera.path);
+    const int path_index = find_camera_path(rest, f.camera.path);
     if (path_index < 0)
       fail_input("--path: scene '" + rest.name + "' has no camera path '" + f.camera.path + "' (" +
                  std::to_string(rest.camera_paths.size()) + " paths)");
@@ -158,7 +148,7 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
   }
   if (reflective_objects(rest).empty()) fail_input("--scene: '" + rest.name + "' has no reflective object");
   const auto out = prepare_out_dir(f.common.out);
-  const float far = std::max(10.0f, 4.0f * scene_bounds(rest).diagonal());
+  const float far = scene_far_plane(rest);
   ReflectionOptions ro = f.reflection;
   ro.seed = f.common.seed;
   auto time_of = [&](int index) {

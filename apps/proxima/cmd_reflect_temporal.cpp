@@ -27,16 +27,6 @@ namespace {
 // Error heat maps saturate here (0–255 units).
 constexpr float kHeatmapMax = 20.0f;
 
-int find_path(const Scene& scene, const std::string& key) {
-  if (!key.empty() && key.find_first_not_of("0123456789") == std::string::npos) {
-    const size_t i = std::stoul(key);
-    return i < scene.camera_paths.size() ? int(i) : -1;
-  }
-  for (size_t i = 0; i < scene.camera_paths.size(); ++i)
-    if (scene.camera_paths[i].name == key) return int(i);
-  return -1;
-}
-
 void validate(const TemporalReflectRun& r) {
   const auto& c = r.common;
   const auto& t = r.temporal;
@@ -226,7 +216,7 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   const TemporalReflectFlags& tf = run.temporal;
   ThreadLimit limit(run.common.threads);
   const Scene rest = load_scene(run.common.scene);
-  const int path_index = find_path(rest, run.path);
+  const int path_index = find_camera_path(rest, run.path);
   if (path_index < 0)
     fail_input("--path: scene '" + rest.name + "' has no camera path '" + run.path + "' (" +
                std::to_string(rest.camera_paths.size()) + " paths)");
@@ -235,7 +225,7 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   const int frames = tf.frames > 0 ? tf.frames : path.frames;
   const auto out = prepare_out_dir(run.common.out);
   const float t_first = path.keys.front().time, t_last = path.keys.back().time;
-  const float far = std::max(10.0f, 4.0f * scene_bounds(rest).diagonal());
+  const float far = scene_far_plane(rest);
   const bool animated = has_animation(rest);
 
   ReflectionOptions ro;

@@ -157,7 +157,7 @@ Command register_visibility(CLI::App& root) {
 
             // Embree rays serve the oracle and every map's self-check.
             const RayScene rays(scene);
-            const float far = std::max(10.0f, 4.0f * scene_bounds(scene).diagonal());
+            const float far = scene_far_plane(scene);
             OracleCounts total;
             double sum_ms = 0, max_ms = 0, beams = 0, regions = 0, merged = 0, visible = 0, silhouettes = 0;
             double max_beams = 0, check_ms = 0, check_ms_max = 0, worst = 100.0, worst_interior = 100.0;

@@ -5,6 +5,7 @@
 
 #include "proxima/core/error.h"
 #include "proxima/core/limits.h"
+#include "proxima/core/parallel.h"
 
 namespace proxima::cli {
 
@@ -66,60 +67,6 @@ void add_camera_flags(CLI::App* app, CameraChoice& choice) {
   cam->excludes(path);
 }
 
-namespace {
-
-// Index (all digits) or name lookup; −1 if absent.
-template <typename T, typename NameOf>
-int find_by_index_or_name(const std::vector<T>& items, const std::string& key, NameOf name_of) {
-  if (!key.empty() && key.find_first_not_of("0123456789") == std::string::npos) {
-    size_t i = std::stoul(key);
-    return i < items.size() ? int(i) : -1;
-  }
-  for (size_t i = 0; i < items.size(); ++i)
-    if (name_of(items[i]) == key) return int(i);
-  return -1;
-}
-
-}  // namespace
-
-Camera pick_camera(const Scene& scene, const CameraChoice& choice, int width, int height) {
-  Camera cam;
-  if (!choice.path.empty()) {
-    int p = find_by_index_or_name(scene.camera_paths, choice.path, [](const CameraPath& c) { return c.name; });
-    if (p < 0)
-      fail_input("--path: scene '" + scene.name + "' has no camera path '" + choice.path + "' (" +
-                 std::to_string(scene.camera_paths.size()) + " paths)");
-    const CameraPath& path = scene.camera_paths[size_t(p)];
-    if (choice.frame < 0 || choice.frame >= path.frames)
-      fail_input("--frame: " + std::to_string(choice.frame) + " is outside path '" + path.name + "' (0.." +
-                 std::to_string(path.frames - 1) + ")");
-    Bounds3 b = scene_bounds(scene);
-    cam = camera_at_time(path, frame_time(path, choice.frame), width, height, 0.01f,
-                         std::max(10.0f, 4.0f * b.diagonal()));
-  } else if (!scene.cameras.empty()) {
-    int c = choice.camera.empty()
-                ? 0
-                : find_by_index_or_name(scene.cameras, choice.camera, [](const NamedCamera& n) { return n.name; });
-    if (c < 0)
-      fail_input("--camera: scene '" + scene.name + "' has no camera '" + choice.camera + "' (" +
-                 std::to_string(scene.cameras.size()) + " cameras)");
-    cam = scene.cameras[size_t(c)].camera;
-  } else {
-    if (!choice.camera.empty()) fail_input("--camera: scene '" + scene.name + "' has no cameras");
-    // No camera in the file: look at the bounds from the front (+Z), fitting them in view.
-    Bounds3 b = scene_bounds(scene);
-    float r = 0.5f * b.diagonal();
-    vec3 c = b.center();
-    // Clip distances scale with the scene (r > 0: sanitized scenes have a triangle of
-    // non-zero area), so micrometer-sized models are not clipped away.
-    cam = look_at(c + vec3(0.0f, 0.25f * r, 2.5f * r), c, {0, 1, 0}, 45.0f, width, height, 0.01f * r, 10.0f * r);
-  }
-  cam.width = width;
-  cam.height = height;
-  validate_camera(cam, "--width/--height");
-  return cam;
-}
-
 std::filesystem::path prepare_out_dir(const std::string& out) {
   std::filesystem::path dir(out);
   std::error_code ec;
@@ -137,6 +84,13 @@ void publish_results(const std::filesystem::path& out_dir, const Results& result
   write_results_json(out_dir / "results.json", results);
   for (const Table& t : results.tables) std::cout << markdown_table(t) << "\n";
   std::cout << "results: " << (out_dir / "results.json").string() << "\n";
+}
+
+int publish_study(const std::filesystem::path& out_dir, Results results) {
+  results.command = command_line();
+  results.threads = active_threads();
+  publish_results(out_dir, results);
+  return 0;
 }
 
 }  // namespace proxima::cli

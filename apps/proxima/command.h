@@ -12,6 +12,7 @@
 
 #include "proxima/core/camera.h"
 #include "proxima/eval/results.h"
+#include "proxima/scene/camera_select.h"
 #include "proxima/scene/scene.h"
 
 namespace proxima::cli {
@@ -40,15 +41,8 @@ void add_threads_flag(CLI::App* app, CommonOptions& o);
 void add_seed_flag(CLI::App* app, CommonOptions& o);
 void add_out_flag(CLI::App* app, CommonOptions& o, bool required);
 
-// Which camera of a scene a command renders from: --camera N|NAME, or --path P --frame F.
-struct CameraChoice {
-  std::string camera;  // index or name; empty = the scene's first camera
-  std::string path;    // camera path index or name; empty = none
-  int frame = 0;
-};
+// --camera N|NAME, or --path P --frame F (proxima/scene/camera_select.h resolves them).
 void add_camera_flags(CLI::App* app, CameraChoice& choice);
-// Resolves the choice on a scene at the given resolution; throws InputError naming the flag.
-Camera pick_camera(const Scene& scene, const CameraChoice& choice, int width, int height);
 
 // Creates the output directory (InputError naming --out if impossible).
 std::filesystem::path prepare_out_dir(const std::string& out);
@@ -59,6 +53,8 @@ void set_command_line(int argc, char** argv);
 
 // Writes results.json into `out_dir` and prints its tables as Markdown on stdout.
 void publish_results(const std::filesystem::path& out_dir, const Results& results);
+// A study's results with this process's command line and thread count, published.
+int publish_study(const std::filesystem::path& out_dir, Results results);
 
 // Registration, one per subcommand file.
 Command register_scenes(CLI::App& root);

@@ -12,6 +12,7 @@
 #include "proxima/core/image.h"
 #include "proxima/core/progress.h"
 #include "proxima/eval/results.h"
+#include "proxima/study/study.h"
 
 namespace proxima::cli::demo {
 
@@ -55,7 +56,7 @@ int visibility_steps(const Context& c);
 int shadows_steps(const Context& c);
 int temporal_steps(const Context& c);
 
-// A finished child run: its results and where they are, relative to the report.
+// A finished study run: its results and where they are, relative to the report.
 struct ChildRun {
   Results results;
   std::string dir;      // relative to Context::out
@@ -66,6 +67,13 @@ struct ChildRun {
 // its stdout and stderr into <dir>/log.txt, and reads back its results.json. Throws
 // std::runtime_error naming the log when the run fails.
 ChildRun run_child(Context& c, const std::string& dir, std::vector<std::string> args, bool pass_threads = true);
+
+// Runs one study in-process as one progress step: `study` writes its images into
+// <out>/<dir> and returns its results, which are also written there as results.json.
+// `args` is the command reproducing the run (shown in the report, with `--out <dir>` and
+// `--threads N` appended); the study must be called with the options those flags give.
+ChildRun run_study(Context& c, const std::string& dir, std::vector<std::string> args,
+                   const std::function<Results(const study::StudyOutput&)>& study);
 
 // A metric of a child run, NaN if it did not write it.
 double metric(const Results& r, const std::string& name);

@@ -12,6 +12,7 @@
 
 #include "demo.h"
 #include "proxima/core/image_io.h"
+#include "proxima/core/parallel.h"
 #include "proxima/eval/image_error.h"
 
 namespace proxima::cli::demo {
@@ -86,6 +87,28 @@ ChildRun run_child(Context& c, const std::string& dir, std::vector<std::string> 
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw std::runtime_error("`" + run.command + "` failed (log " + log.string() + "):" + tail_of(log));
   run.results = read_results_json(out / "results.json");
+  return run;
+}
+
+ChildRun run_study(Context& c, const std::string& dir, std::vector<std::string> args,
+                   const std::function<Results(const study::StudyOutput&)>& study) {
+  const std::filesystem::path out = c.out / dir;
+  std::filesystem::create_directories(out);
+  args.insert(args.begin(), "proxima");
+  args.push_back("--out");
+  args.push_back((std::filesystem::path(c.out_arg) / dir).string());
+  if (c.threads > 0) {
+    args.push_back("--threads");
+    args.push_back(std::to_string(c.threads));
+  }
+  ChildRun run;
+  run.dir = dir;
+  for (const std::string& a : args) run.command += (run.command.empty() ? "" : " ") + shell_quote(a);
+  c.progress->step(dir);
+  run.results = study(study::StudyOutput{out});
+  run.results.command = args;
+  run.results.threads = active_threads();
+  write_results_json(out / "results.json", run.results);
   return run;
 }
 

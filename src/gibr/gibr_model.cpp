@@ -9,6 +9,7 @@
 #include "proxima/core/rng.h"
 #include "proxima/core/timer.h"
 #include "proxima/gibr/photo_set.h"
+#include "proxima/scene/camera_select.h"
 #include "proxima/visibility/map_check.h"
 
 namespace proxima::gibr {
@@ -72,7 +73,7 @@ GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) 
   pso.period = r.period;
   pso.seed = o.seed;
   g.scene = make_photo_scene(model_scene, pso);
-  g.far = std::max(10.0f, 4.0f * scene_bounds(g.scene).diagonal());
+  g.far = scene_far_plane(g.scene);
   g.rays = std::make_unique<RayScene>(g.scene);
 
   Stopwatch w;

@@ -10,6 +10,7 @@
 #include "proxima/core/rng.h"
 #include "proxima/gibr/photo_set.h"
 #include "proxima/scene/visibility_models.h"
+#include "proxima/scene/camera_select.h"
 
 namespace proxima::gibr {
 namespace {
@@ -47,7 +48,7 @@ TEST(GibrModel, SameMapsAsThePhasesByHand) {
   ppo.width = 40;
   ppo.height = 30;
   ppo.seed = 7;
-  const float far = std::max(10.0f, 4.0f * scene_bounds(scene).diagonal());
+  const float far = scene_far_plane(scene);
   const std::vector<Camera> cams = photo_poses(rays, rooms.camera_paths.front(), ppo, 0.01f, far);
   const WingedPair wp = build_winged_pair(model);
   std::vector<ImageF> photos;

@@ -16,6 +16,7 @@
 #include "proxima/visibility/bsp_build.h"
 #include "proxima/visibility/map_check.h"
 #include "proxima/visibility/oracle.h"
+#include "proxima/scene/camera_select.h"
 
 namespace proxima::visibility {
 namespace {
@@ -30,7 +31,7 @@ std::vector<int> check_level(const char* name, int frame_step) {
   EXPECT_EQ(bsp.unplaced_fragments, 0u) << name;
   const RayScene rays(scene);
   const CameraPath& path = scene.camera_paths.front();
-  const float far = std::max(10.0f, 4.0f * scene_bounds(scene).diagonal());
+  const float far = scene_far_plane(scene);
   std::vector<int> below;
   for (int frame = 0; frame < path.frames; frame += frame_step) {
     const Camera cam = camera_at_time(path, frame_time(path, frame), 512, 384, 1e-3f, far);
