@@ -23,10 +23,15 @@ def same_number(a, b):
     return a == b or (math.isnan(a) and math.isnan(b))
 
 
+SKIPPED = {"metrics": 0, "compared": 0}
+
+
 def compare_results(old, new, where, diffs):
     for name in sorted(set(old["metrics"]) | set(new["metrics"])):
         if TIMING.search(name):
+            SKIPPED["metrics"] += 1
             continue
+        SKIPPED["compared"] += 1
         a, b = old["metrics"].get(name, "missing"), new["metrics"].get(name, "missing")
         if not same_number(a, b):
             diffs.append(f"{where}: metric {name}: {a} != {b}")
@@ -66,13 +71,17 @@ def main():
             images += 1
             if (old_dir / rel).read_bytes() != (new_dir / rel).read_bytes():
                 diffs.append(f"{rel}: images differ")
+        elif rel.name != "results.json":
+            if (old_dir / rel).read_bytes() != (new_dir / rel).read_bytes():
+                diffs.append(f"{rel}: files differ")
         else:
             results += 1
             compare_results(json.loads((old_dir / rel).read_text()), json.loads((new_dir / rel).read_text()),
                             str(rel), diffs)
     for d in diffs:
         print(d)
-    print(f"compared {images} images and {results} results.json: {len(diffs)} differences")
+    print(f"compared {images} images and {results} results.json ({SKIPPED['compared']} metrics, "
+          f"{SKIPPED['metrics']} timings skipped): {len(diffs)} differences")
     sys.exit(1 if diffs else 0)
 
 
