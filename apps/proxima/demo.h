@@ -99,9 +99,6 @@ ImageF side_by_side(const std::vector<ImageF>& images, int shrink);
 // Writes `image` as <out>/<file> (PNG, linear → sRGB) and adds it as `role`.
 void write_image(Context& c, Section& s, const std::string& role, const std::string& file, const ImageF& image);
 
-// Error heat maps of the reflection sections share this scale (0–255 display units).
-constexpr float kReflectionHeatMax = 32.0f;
-
 // Adds the heat-map legend (once per report) to the section.
 void add_heatmap_legend(Context& c, Section& s, float max_error);
 

@@ -89,10 +89,10 @@ void cluster_section(Context& c) {
       const ImageF err = error_image(color, reference);
       add_image(c, section, where + ": Embree, same rays", run.dir + "/reference.png");
       add_image(c, section, where + ": cluster depth images", color_file);
-      write_image(c, section, where + ": error", run.dir + "/heat.png", error_heatmap(err, kReflectionHeatMax));
+      write_image(c, section, where + ": error", run.dir + "/heat.png", error_heatmap(err, kErrorHeatmapMax));
       add_image(c, section, where + ": clusters (red: environment fallback, yellow: occlusion error)",
                 run.dir + "/clusters.png");
-      add_heatmap_legend(c, section, kReflectionHeatMax);
+      add_heatmap_legend(c, section, kErrorHeatmapMax);
       const Window w = worst_window(err, std::max(24, s.size / 8));
       const int zoom = std::max(2, 192 / w.size);
       write_image(c, section, "zoom ×" + std::to_string(zoom) + ": Embree", run.dir + "/zoom_reference.png",
@@ -100,7 +100,7 @@ void cluster_section(Context& c) {
       write_image(c, section, "zoom ×" + std::to_string(zoom) + ": cluster", run.dir + "/zoom_color.png",
                   crop_zoom(color, w, zoom));
       write_image(c, section, "zoom ×" + std::to_string(zoom) + ": error", run.dir + "/zoom_heat.png",
-                  crop_zoom(error_heatmap(err, kReflectionHeatMax), w, zoom));
+                  crop_zoom(error_heatmap(err, kErrorHeatmapMax), w, zoom));
     }
   }
   for (Table* t : {&error, &fps, &steps}) {

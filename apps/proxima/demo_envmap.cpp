@@ -94,13 +94,13 @@ void envmap_section(Context& c) {
   }
   for (size_t i = 0; i < std::size(kMethods); ++i)
     write_image(c, section, std::string("room-parallax: error of ") + kMethods[i],
-                par.dir + "/heat_" + kMethods[i] + ".png", error_heatmap(errors[i], kReflectionHeatMax));
-  add_heatmap_legend(c, section, kReflectionHeatMax);
+                par.dir + "/heat_" + kMethods[i] + ".png", error_heatmap(errors[i], kErrorHeatmapMax));
+  add_heatmap_legend(c, section, kErrorHeatmapMax);
   // One strip for the README: reference, plain, rectified, and the two errors.
   write_image(c, section, "overview: reference | plain env map | rectified | error of plain | error of rectified",
               par.dir + "/overview.png",
-              side_by_side({reference, colors[0], colors[1], error_heatmap(errors[0], kReflectionHeatMax),
-                            error_heatmap(errors[1], kReflectionHeatMax)},
+              side_by_side({reference, colors[0], colors[1], error_heatmap(errors[0], kErrorHeatmapMax),
+                            error_heatmap(errors[1], kErrorHeatmapMax)},
                            2));
   // Zoom where plain env mapping is worst: the sphere's reflection.
   const Window w = worst_window(errors[0], std::max(32, s.width / 8));

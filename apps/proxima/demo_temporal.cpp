@@ -89,10 +89,10 @@ void temporal_section(Context& c) {
       add_image(c, section, where + ": recomputed pixels (red disoccluded, orange unreliable)",
                 run.dir + "/recompute.png");
       write_image(c, section, where + ": error of temporal reuse", run.dir + "/heat_temporal.png",
-                  error_heatmap(error_image(temporal, reference), kReflectionHeatMax));
+                  error_heatmap(error_image(temporal, reference), kErrorHeatmapMax));
       write_image(c, section, where + ": error of direct reprojection", run.dir + "/heat_direct.png",
-                  error_heatmap(error_image(direct, reference), kReflectionHeatMax));
-      add_heatmap_legend(c, section, kReflectionHeatMax);
+                  error_heatmap(error_image(direct, reference), kErrorHeatmapMax));
+      add_heatmap_legend(c, section, kErrorHeatmapMax);
     }
   }
   size_t frames = 0;

@@ -33,6 +33,10 @@ ImageF error_image(const ImageF& approx, const ImageF& reference, const ImageU8*
 // Masked-out pixels (mask 0) are drawn mid grey.
 ImageF error_heatmap(const ImageF& error, float max_error, const ImageU8* mask = nullptr);
 
+// The one error heat-map scale of every command, study and report (0–255 display units):
+// errors at or above it saturate to yellow.
+inline constexpr float kErrorHeatmapMax = 32.0f;
+
 // A horizontal legend bar for error_heatmap: width × height, 0 on the left, max on the right.
 ImageF heatmap_legend(int width, int height);
 
