@@ -205,7 +205,7 @@ uint32_t ordered_bits(float f) {
 // compact). The sort is 16× shorter and the rasterizer's setup reads the triangles and
 // their vertices in runs instead of scattered; early z is a little worse (1024², 3 views:
 // 0–3 % more fragments tested on city and tree, 10–17 % on grass and nest), and the
-// measured time no worse than with the per-triangle sort (docs/RESULTS.md, issue 4).
+// measured time no worse than with the per-triangle sort (docs/journal/sampling.md).
 constexpr size_t kClusterTriangles = 16;
 
 // Centroid of each cluster's triangle centroids.

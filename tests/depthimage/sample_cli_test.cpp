@@ -1,5 +1,5 @@
 // `proxima sample`: bad input exits 2 naming the flag and writes nothing; a small run
-// writes results.json with the metric names of issue 4 and the per-image files.
+// writes results.json with the documented metric names and the per-image files.
 #include <gtest/gtest.h>
 
 #include <array>

@@ -1,4 +1,4 @@
-// `proxima reflect --method cluster` end to end: results.json carries the metrics issue 7 names;
+// `proxima reflect --method cluster` end to end: results.json carries the documented metrics;
 // bad input is exit code 2 with nothing written.
 #include <gtest/gtest.h>
 
@@ -73,7 +73,7 @@ TEST(ClusterCli, BadInputIsExitCodeTwoAndWritesNothing) {
   EXPECT_EQ(run_cli("reflect --method clusters --scene room-reflector --out " + out.string()), 2);
   EXPECT_EQ(run_cli("reflect --method cluster --scene room-reflector --march-block -1 --out " + out.string()), 2);
   EXPECT_EQ(run_cli("reflect --method cluster --scene room-reflector --second-layer maybe --out " + out.string()), 2);
-  // The old subcommand is gone.
+  // There is no reflect-cluster subcommand (the method is `reflect --method cluster`).
   EXPECT_EQ(run_cli("reflect-cluster --scene room-reflector --out " + out.string()), 2);
   EXPECT_FALSE(std::filesystem::exists(out));
 }

@@ -1,4 +1,4 @@
-// `proxima reflect` end to end: the metrics issue 6 names, images, bad input → exit 2
+// `proxima reflect` end to end: the documented metrics, images, bad input → exit 2
 // naming the flag with nothing written, identical images for any --threads.
 #include <gtest/gtest.h>
 #include <sys/wait.h>

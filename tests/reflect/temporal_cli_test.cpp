@@ -1,5 +1,5 @@
-// `proxima reflect --method temporal` end to end: results.json carries the metrics issue 8
-// names; bad input is exit code 2 with nothing written.
+// `proxima reflect --method temporal` end to end: results.json carries the documented
+// metrics; bad input is exit code 2 with nothing written.
 #include <gtest/gtest.h>
 
 #include <fstream>

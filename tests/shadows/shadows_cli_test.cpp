@@ -1,5 +1,5 @@
 // `proxima shadows`: bad input exits 2 naming the flag and writes nothing; a small run
-// writes results.json with the metric names of issue 5 and the images.
+// writes results.json with the documented metric names and the images.
 #include <gtest/gtest.h>
 
 #include <filesystem>
