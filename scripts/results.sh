@@ -9,7 +9,8 @@
 #
 # Usage (from anywhere; the binary must be built):
 #   scripts/results.sh                  # PROXIMA=build/release/proxima OUT=out/results THREADS=2
-# About 3–4 minutes on 2 idle cores. Timings move with the machine's load; errors do not.
+# About 3 minutes on 2 idle cores (9.5 minutes at load average 18). Timings move with the
+# machine's load; errors do not.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${PROXIMA:-build/release/proxima}
@@ -21,6 +22,18 @@ if [ ! -x "$bin" ]; then
 fi
 rm -rf "$out"
 mkdir -p "$out"
+# The page names the commit the binary was built from: refuse a binary older than HEAD.
+"$bin" bench trace --width 8 --height 8 --reps 1 --threads 1 --out "$out/probe" >/dev/null
+built=$(sed -n 's/^  "commit": "\(.*\)",$/\1/p' "$out/probe/results.json")
+head=$(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)
+if [ "$built" != "$head" ]; then
+  echo "results.sh: $bin was built from commit $built, HEAD is $head: reconfigure and rebuild first" \
+    "(cmake -S . -B build/release && cmake --build build/release --target proxima)" >&2
+  exit 2
+fi
+if ! git diff --quiet HEAD -- src include apps 2>/dev/null; then
+  echo "results.sh: warning: uncommitted changes in src/, include/ or apps/: the page names $head" >&2
+fi
 run_named() {  # NAME COMMAND...: stdout to OUT/NAME.log
   local name=$1
   shift
