@@ -16,8 +16,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The repository's docs/ folder (this file is tests/eval/results_page_test.cpp).
-fs::path docs_dir() { return fs::path(__FILE__).parent_path().parent_path().parent_path() / "docs"; }
+// The docs/ folder of the source tree the tested binary was configured from (the
+// CMakeCache.txt beside it names that tree; __FILE__ may be relative or another tree's
+// under a shared compiler cache).
+fs::path docs_dir() {
+  const std::string key = "CMAKE_HOME_DIRECTORY:INTERNAL=";
+  std::ifstream in(fs::path(PROXIMA_CLI_PATH).parent_path() / "CMakeCache.txt");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(key, 0) == 0) return fs::path(line.substr(key.size())) / "docs";
+  return {};
+}
 
 std::string read_text(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -41,7 +49,7 @@ Results run(const std::string& commit, int threads, std::map<std::string, double
 
 TEST(ResultsPage, CommittedPageIsRegeneratedByteForByte) {
   const fs::path json = docs_dir() / "results.json", page_path = docs_dir() / "RESULTS.md";
-  ASSERT_TRUE(fs::exists(json)) << json;
+  ASSERT_TRUE(fs::exists(json)) << json << " (source tree from the CMakeCache.txt beside " << PROXIMA_CLI_PATH << ")";
   const ResultsPage page = results_page(read_results_json(json));
   EXPECT_TRUE(page.missing.empty()) << "docs/results.json lacks " << page.missing.front();
   EXPECT_EQ(page.markdown, read_text(page_path))
