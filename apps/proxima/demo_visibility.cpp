@@ -4,6 +4,10 @@
 
 #include <limits>
 
+#include "proxima/scene/load.h"
+#include "proxima/scene/visibility_models.h"
+#include "proxima/study/visibility.h"
+
 namespace proxima::cli::demo {
 
 namespace {
@@ -24,6 +28,14 @@ struct Settings {
 Settings settings(const Context& c) {
   if (c.full) return {1024, 0, {1, 2, 5, 10}};
   return {256, 10, {1, 2, 3}};
+}
+
+// The options of `proxima visibility --width size --height size [--frames N]`.
+study::VisibilityOptions options(const Settings& s) {
+  study::VisibilityOptions o;
+  o.width = o.height = s.size;
+  o.frames = s.frames;
+  return o;
 }
 
 }  // namespace
@@ -58,7 +70,9 @@ void visibility_section(Context& c) {
     std::vector<std::string> args{"visibility", "--scene", m.scene, "--width", std::to_string(s.size), "--height",
                                   std::to_string(s.size)};
     if (s.frames) args.insert(args.end(), {"--frames", std::to_string(s.frames)});
-    ChildRun run = run_child(c, std::string("visibility/") + m.scene, args);
+    ChildRun run = run_study(c, std::string("visibility/") + m.scene, args, [&](const study::StudyOutput& out) {
+      return study::run_visibility(load_scene(m.scene), options(s), out);
+    });
     section.commands.push_back(run.command);
     const Results& r = run.results;
     for (const auto& [name, value] : r.metrics) c.results->metrics["visibility_" + std::string(m.scene) + "_" + name] = value;
@@ -79,7 +93,12 @@ void visibility_section(Context& c) {
                                   std::to_string(s.size), "--height", std::to_string(s.size), "--no-oracle",
                                   "--no-images"};
     if (s.frames) args.insert(args.end(), {"--frames", std::to_string(s.frames)});
-    ChildRun run = run_child(c, "visibility/building-" + std::to_string(n), args);
+    study::VisibilityOptions o = options(s);
+    o.oracle = false;
+    o.images = false;
+    ChildRun run = run_study(c, "visibility/building-" + std::to_string(n), args, [&](const study::StudyOutput& out) {
+      return study::run_visibility(make_vis_building(n), o, out);
+    });
     section.commands.push_back(run.command);
     const Results& r = run.results;
     for (const auto& [name, value] : r.metrics)
