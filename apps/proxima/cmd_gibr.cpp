@@ -1,8 +1,11 @@
 // `proxima gibr`: hybrid geometry- and image-based rendering, visibility-map mapping against
 // the item-buffer mapping (study/gibr.h, docs/gibr.md).
+#include <unistd.h>
+
 #include "command.h"
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
+#include "proxima/core/progress.h"
 #include "proxima/scene/load.h"
 #include "proxima/study/gibr.h"
 #include "study_out_dir.h"
@@ -81,8 +84,10 @@ int run(GibrFlags& f) {
   study::validate(o);
   ThreadLimit limit(f.common.threads);
   const Scene scene = load_scene(f.common.scene);
+  Progress progress;  // a bar on a terminal; logs and pipes get none
+  Progress* bar = isatty(fileno(stderr)) ? &progress : nullptr;
   Results results =
-      run_study_into(f.common.out, [&](const study::StudyOutput& out) { return study::run_gibr(scene, o, out); });
+      run_study_into(f.common.out, [&](const study::StudyOutput& out) { return study::run_gibr(scene, o, out, bar); });
   return publish_study(f.common.out, std::move(results));
 }
 

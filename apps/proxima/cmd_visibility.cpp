@@ -1,10 +1,13 @@
 // `proxima visibility`: exact visibility maps along a camera path, checked against Embree
 // (study/visibility.h, docs/visibility.md).
+#include <unistd.h>
+
 #include <cstdio>
 
 #include "command.h"
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
+#include "proxima/core/progress.h"
 #include "proxima/scene/load.h"
 #include "proxima/scene/visibility_models.h"
 #include "proxima/study/visibility.h"
@@ -54,8 +57,10 @@ int run(VisibilityFlags& f) {
   study::validate(f.options);
   ThreadLimit limit(f.common.threads);
   const Scene scene = f.floors != 0 ? make_vis_building(f.floors) : load_scene(f.common.scene);
+  Progress progress;  // a bar on a terminal; logs and pipes get none
+  Progress* bar = isatty(fileno(stderr)) ? &progress : nullptr;
   Results results = run_study_into(
-      f.common.out, [&](const study::StudyOutput& out) { return study::run_visibility(scene, f.options, out); });
+      f.common.out, [&](const study::StudyOutput& out) { return study::run_visibility(scene, f.options, out, bar); });
   const int failed = int(results.metrics.at("maps_failed_selfcheck")), maps = int(results.metrics.at("viewpoints"));
   publish_study(f.common.out, std::move(results));
   if (failed > 0)

@@ -118,7 +118,7 @@ struct Renderer {
   NovelViewScratch scratch, scratch1;
 };
 
-// The visibility-map view rendered o.fps_repeat times (each timed), then the item buffer's.
+// The visibility-map view rendered `repeat` times (each timed), then the item buffer's.
 std::pair<NovelView, NovelView> render_views(const GibrModel& g, const Camera& cam, int repeat, Renderer& r,
                                              Timings& t) {
   NovelView nv;

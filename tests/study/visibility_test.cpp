@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <regex>
 
@@ -108,6 +109,21 @@ TEST(VisibilityStudy, SavedWingedPairLoadsBackAndAForeignOneIsRefused) {
   const std::string e = error_of([&] { run_visibility(make_vis_maze(), o, {dir.path / "never"}); });
   EXPECT_NE(e.find("--load: " + o.load + " was built for"), std::string::npos) << e;
   EXPECT_FALSE(std::filesystem::exists(dir.path / "never"));
+}
+
+TEST(VisibilityStudy, ReportsAProgressStepPerViewpoint) {
+  std::FILE* log = std::tmpfile();
+  ASSERT_NE(log, nullptr);
+  {
+    Progress progress(log, false);
+    run_visibility(make_vis_rooms(), small(3), {}, &progress);
+  }
+  std::rewind(log);
+  std::string text;
+  for (int ch; (ch = std::fgetc(log)) != EOF;) text += char(ch);
+  std::fclose(log);
+  for (const char* step : {"frame 0", "frame 1", "frame 2"}) EXPECT_NE(text.find(step), std::string::npos) << text;
+  EXPECT_EQ(text.find("frame 3"), std::string::npos) << text;
 }
 
 TEST(VisibilityStudy, BadOptionsNameTheirFlag) {
