@@ -92,7 +92,7 @@ void BM_ShadeReflector(benchmark::State& state) {
   in.rectify.D = 12.0f;
   for (auto _ : state)
     benchmark::DoNotOptimize(shade_reflector_pixels(r.scene, r.rays, r.camera, r.pixels, in));
-  state.SetLabel(std::string(kScenes[state.range(1)]) + " " + method_name(in.method));
+  state.SetLabel(std::string(kScenes[state.range(1)]) + " " + envmap_method_name(in.method));
 }
 BENCHMARK(BM_ShadeReflector)
     ->ArgsProduct({{0, 1, 2}, {0, 1}})
