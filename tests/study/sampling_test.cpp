@@ -53,7 +53,7 @@ TEST(SamplingStudy, Figure11NrrHoldsTheOccludedBoxConventionalImagesMiss) {
   // Two conventional views of a wall and slabs hold much the same samples.
   EXPECT_GT(r.metrics.at("conventional_redundant_pct_1"), 20.0);
   EXPECT_EQ(r.metrics.at("nrr_pixel_redundant_pct_1"), 0.0);  // NRR under its own definition
-  EXPECT_GT(r.metrics.at("nrr_pixel_occluded_pct_1"), 0.0);    // C, behind A from both views
+  EXPECT_GT(r.metrics.at("nrr_pixel_occluded_pct_1"), 0.0);    // what A hides from both views (C)
   EXPECT_GT(r.metrics.at("nrr_pixel_useful_pct_1"), 0.0);      // the midpoint frames see part of C
   EXPECT_GT(r.metrics.at("nrr_pixel_available_avg_pct"), r.metrics.at("conventional_available_avg_pct"));
   EXPECT_EQ(r.metrics.at("conventional_occluded_pct_0"), 0.0);  // conventional images hold nothing occluded
