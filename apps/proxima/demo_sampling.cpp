@@ -16,17 +16,6 @@ struct Settings {
 };
 Settings settings(const Context& c) { return c.full ? Settings{1024, 1000, 3} : Settings{256, 100, 1}; }
 
-// The options the reproducing command in run_scene gives.
-study::SamplingOptions options(const Context& c, const Settings& s) {
-  study::SamplingOptions o;
-  o.methods = {study::SamplingMethod::Conventional, study::SamplingMethod::Peeling, study::SamplingMethod::NrrPixel};
-  o.width = o.height = s.width;
-  o.frames = s.frames;
-  o.reps = s.reps;
-  o.seed = c.seed;
-  return o;
-}
-
 // The thesis' Tables 2 and 4 (pixel redundancy, 1024², K = 1000), as quoted in docs/RESULTS.md:
 // conventional redundant %, NRR occluded (useful) %, peeling occluded (useful) % for V0..V2,
 // then available avg / min for conventional, NRR, peeling.
@@ -109,12 +98,18 @@ void add_rows(Tables& t, const std::string& scene, const Results& r, const Thesi
 // grass the images of view V1.
 void run_scene(Context& c, Section& section, Tables& t, const Settings& s, size_t k) {
   const std::string scene = kScenes[k];
+  study::SamplingOptions o;  // what the reproducing command gives
+  o.methods = {study::SamplingMethod::Conventional, study::SamplingMethod::Peeling, study::SamplingMethod::NrrPixel};
+  o.width = o.height = s.width;
+  o.frames = s.frames;
+  o.reps = s.reps;
+  o.seed = c.seed;
   ChildRun run = run_study(c, "sampling/" + scene,
                            {"sample", "--scene", scene, "--method", "conventional,peeling,nrr-pixel", "--width",
                             std::to_string(s.width), "--frames", std::to_string(s.frames), "--reps",
                             std::to_string(s.reps), "--seed", std::to_string(c.seed)},
                            [&](const study::StudyOutput& out) {
-                             return study::run_sampling(load_scene(scene), options(c, s), out);
+                             return study::run_sampling(load_scene(scene), o, out);
                            });
   const Results& r = run.results;
   add_rows(t, scene, r, kThesis[k]);
