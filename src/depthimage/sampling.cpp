@@ -23,6 +23,7 @@
 #include <numeric>
 #include <utility>
 
+#include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
 #include "proxima/raster/depth_peeling.h"
 
@@ -33,6 +34,12 @@ constexpr int kMaxBackFaces = 8;  // back-facing hits the visibility ray walks p
 }  // namespace
 
 const char* redundancy_name(Redundancy r) { return r == Redundancy::Pixel ? "pixel" : "visibility"; }
+
+Redundancy parse_redundancy(const std::string& name, const char* flag) {
+  for (Redundancy r : {Redundancy::Pixel, Redundancy::Visibility})
+    if (name == redundancy_name(r)) return r;
+  fail_input(std::string(flag) + ": unknown redundancy '" + name + "' (pixel, visibility)");
+}
 
 RedundancyTest::RedundancyTest(Redundancy kind, const Scene& scene, const RayScene* rays, const Camera& from,
                                const DepthImage& against, float epsilon)
