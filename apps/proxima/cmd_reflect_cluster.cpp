@@ -17,26 +17,30 @@ constexpr const char* kGroup = "cluster (--method cluster)";
 // --image-frame too).
 void add_frame_flags(CLI::App* app, ClusterReflectFlags& f) {
   app->add_option("--frames", f.frames,
-                  "cluster, temporal: with --path and no --frame, the path is divided into N frames (0 = its own count)")
+                  "cluster, temporal: with --path and no --frame, the path is divided into N frames (0 = its "
+                  "own count)")
       ->capture_default_str()
       ->group(kGroup);
   app->add_option("--frame-step", f.frame_step, "cluster, temporal: render every N-th of those frames")
       ->capture_default_str()
       ->group(kGroup);
-  app->add_option("--image-frame", f.image_frame,
-                  "cluster, temporal: frame whose images are written (-1 = cluster: the first rendered; temporal: "
-                  "the first that reuses a key frame)")
+  app->add_option(
+         "--image-frame", f.image_frame,
+         "cluster, temporal: frame whose images are written (-1 = cluster: the first rendered; temporal: "
+         "the first that reuses a key frame)")
       ->capture_default_str()
       ->group(kGroup);
-  app->add_flag("--full-reference", f.full_reference,
-                "cluster: with --compare, also render_reference (shadows, jittered area-light samples, 1 bounce); "
-                "untimed")
+  app->add_flag(
+         "--full-reference", f.full_reference,
+         "cluster: with --compare, also render_reference (shadows, jittered area-light samples, 1 bounce); "
+         "untimed")
       ->group(kGroup);
 }
 
 // The method's own parameters: sampling, clustering, cluster images, marching.
 void add_method_flags(CLI::App* app, ClusterReflectFlags& f) {
-  app->add_option("--ss", f.reflection.supersample, "cluster: K×K samples per pixel (the reference's sub-pixel grid)")
+  app->add_option("--ss", f.reflection.supersample,
+                  "cluster: K×K samples per pixel (the reference's sub-pixel grid)")
       ->capture_default_str()
       ->group(kGroup);
   app->add_option("--theta-bins", f.cluster.clustering.max_theta_bins, "cluster: MAXTHETABINS")
@@ -45,20 +49,24 @@ void add_method_flags(CLI::App* app, ClusterReflectFlags& f) {
   app->add_option("--phi-bins", f.cluster.clustering.max_phi_bins, "cluster: MAXPHIBINS")
       ->capture_default_str()
       ->group(kGroup);
-  app->add_option("--min-bin-scale", f.cluster.clustering.min_bin_scale,
-                  "cluster: lower bound of a reflector's bin scale per axis (0..1; 1 = 13×8 bins for every reflector)")
+  app->add_option(
+         "--min-bin-scale", f.cluster.clustering.min_bin_scale,
+         "cluster: lower bound of a reflector's bin scale per axis (0..1; 1 = 13×8 bins for every reflector)")
       ->capture_default_str()
       ->group(kGroup);
-  app->add_option("--resolution-scale", f.cluster.resolution_scale, "cluster: image texels per pixel footprint")
+  app->add_option("--resolution-scale", f.cluster.resolution_scale,
+                  "cluster: image texels per pixel footprint")
       ->capture_default_str()
       ->group(kGroup);
-  app->add_option("--second-layer", f.cluster.second_layer,
-                  "cluster: glossy and curved clusters get a second depth layer that rays hidden behind a nearer "
-                  "surface are marched in (true/false)")
+  app->add_option(
+         "--second-layer", f.cluster.second_layer,
+         "cluster: glossy and curved clusters get a second depth layer that rays hidden behind a nearer "
+         "surface are marched in (true/false)")
       ->capture_default_str()
       ->group(kGroup);
-  app->add_option("--march-block", f.cluster.march_block,
-                  "cluster: block size of the depth minima the march skips with (0 = texel by texel; same result)")
+  app->add_option(
+         "--march-block", f.cluster.march_block,
+         "cluster: block size of the depth minima the march skips with (0 = texel by texel; same result)")
       ->capture_default_str()
       ->group(kGroup);
 }

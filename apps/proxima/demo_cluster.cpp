@@ -27,12 +27,6 @@ struct Settings {
 };
 Settings settings(const Context& c) { return c.full ? Settings{512, 90} : Settings{256, 300}; }
 
-}  // namespace
-
-int cluster_steps(const Context& c) { return c.full ? int(std::size(kFull)) : int(std::size(kQuick)); }
-
-namespace {
-
 Section intro(const Settings& s) {
   const int frames = 900 / s.frame_step;
   return {"cluster", "Cluster depth-image reflections (thesis ch. 4)",
@@ -119,6 +113,8 @@ void add_images(Context& c, Section& section, const ChildRun& run, const std::st
 }
 
 }  // namespace
+
+int cluster_steps(const Context& c) { return c.full ? int(std::size(kFull)) : int(std::size(kQuick)); }
 
 void cluster_section(Context& c) {
   const Settings s = settings(c);

@@ -27,28 +27,22 @@ struct Settings {
 };
 Settings settings(const Context& c) { return c.full ? Settings{512, 500} : Settings{128, 60}; }
 
-}  // namespace
-
-int temporal_steps(const Context&) { return int(std::size(kRuns)); }
-
-namespace {
-
 Section intro(const Settings& s) {
   return {"temporal", "Temporal reuse of reflections (thesis ch. 5)",
-                  "A key frame's reflection depth image (normal, depth, reflected radiance and reflection "
-                  "distance per pixel) is reused by later frames: a best-match search finds, per reflective "
-                  "pixel, where the key frame saw the same reflected point; the key frame's grid is warped by "
-                  "those offsets and reprojected; pixels the warp cannot supply (disoccluded, stretched) "
-                  "and those whose blend of key samples is likely visibly wrong (expected display error above 8 "
-                  "levels, --blend-error) are traced again with Embree. A new key frame starts when more than 30% of the reflective pixels "
-                  "were recomputed, or once a reuse frame's work (recomputed rays plus the fixed steps) reaches the "
-                  "average work per frame since the key frame (--keyframe-cost). Compared with full ray tracing of every frame and with direct depth "
-                  "reprojection, which treats reflections as if they were painted on the surface. "
-                  "docs/temporal.md.\n\n"
-                  "This run: " + std::to_string(s.size) + "² frames, the first " + std::to_string(s.frames) +
-                      " frames of each path, 8 lobe rays on glossy surfaces. The thesis ran 500 frames at "
-                      "1024² on a GPU (MAE 0.13–0.45, 18–21% recomputed).",
-                  {}, {}, {}};
+          "A key frame's reflection depth image (normal, depth, reflected radiance and reflection "
+          "distance per pixel) is reused by later frames: a best-match search finds, per reflective "
+          "pixel, where the key frame saw the same reflected point; the key frame's grid is warped by "
+          "those offsets and reprojected; pixels the warp cannot supply (disoccluded, stretched) "
+          "and those whose blend of key samples is likely visibly wrong (expected display error above 8 "
+          "levels, --blend-error) are traced again with Embree. A new key frame starts when more than 30% of the reflective pixels "
+          "were recomputed, or once a reuse frame's work (recomputed rays plus the fixed steps) reaches the "
+          "average work per frame since the key frame (--keyframe-cost). Compared with full ray tracing of every frame and with direct depth "
+          "reprojection, which treats reflections as if they were painted on the surface. "
+          "docs/temporal.md.\n\n"
+          "This run: " + std::to_string(s.size) + "² frames, the first " + std::to_string(s.frames) +
+              " frames of each path, 8 lobe rays on glossy surfaces. The thesis ran 500 frames at "
+              "1024² on a GPU (MAE 0.13–0.45, 18–21% recomputed).",
+          {}, {}, {}};
 }
 
 // One path through the study, with the command line that reproduces it.
@@ -113,6 +107,8 @@ Table per_frame_table(const std::vector<std::string>& paths, const std::vector<s
 }
 
 }  // namespace
+
+int temporal_steps(const Context&) { return int(std::size(kRuns)); }
 
 void temporal_section(Context& c) {
   const Settings s = settings(c);

@@ -85,9 +85,10 @@ Schedule schedule(const Scene& scene, const ClusterReflectOptions& o) {
 // Per-frame figures of the run, reduced in the tables.
 struct ClusterSeries {
   Series reflective_pct, cluster_ms, reference_ms, reference_dynamic_ms, envmap_ms, envmap_build_ms, step1_ms,
-      cameras_ms, images_ms, intersection_ms, clusters, samples_per_cluster, occlusion_pct, fallback_pct, planar_pct,
-      mae_r, mae_g, mae_b, env_r, env_g, env_b, texels, fill_pct, occlusion_ray_pct, occlusion_mirror_pct,
-      occlusion_glossy_pct, full_r, full_g, full_b, traced_full, second_texels, second_ray_pct;
+      cameras_ms, images_ms, intersection_ms, clusters, samples_per_cluster, occlusion_pct, fallback_pct,
+      planar_pct, mae_r, mae_g, mae_b, env_r, env_g, env_b, texels, fill_pct, occlusion_ray_pct,
+      occlusion_mirror_pct, occlusion_glossy_pct, full_r, full_g, full_b, traced_full, second_texels,
+      second_ray_pct;
   Series cause_pct[kOcclusionCauses], cause_mirror_pct[kOcclusionCauses];
 };
 
@@ -147,7 +148,8 @@ FrameRun run_frame(const Scene& scene, const Camera& camera, const ClusterReflec
       f.env_radiance = envmap_frame_reflections(scene, f.frame, map, EnvmapMethod::Rectified, rectify);
       e_ms.push_back(step1 + w.elapsed_ms());
     }
-    f.cluster = render_cluster_reflections(scene, f.frame, o.cluster, bounds, o.compare ? &f.traced : nullptr);
+    f.cluster =
+        render_cluster_reflections(scene, f.frame, o.cluster, bounds, o.compare ? &f.traced : nullptr);
     const ClusterFrameStats& st = f.cluster.stats;
     s1.push_back(step1 + st.clustering_ms);
     s2.push_back(st.cameras_ms);
@@ -177,17 +179,21 @@ void add_occlusion_errors(const FrameRun& f, double samples, ClusterSeries& s) {
   uint64_t mirror_cause[kOcclusionCauses] = {}, glossy_errors = 0;
   for (size_t i = 0; i < f.frame.sample_count(); ++i) {
     const bool mirror = glossy_lobe_half_angle(f.frame.gloss[i]) <= 0.0f;
-    if (mirror) ++mirror_cause[f.cluster.occlusion_cause[i]];
-    else glossy_errors += f.cluster.occlusion_cause[i] != uint8_t(OcclusionCause::None);
+    if (mirror)
+      ++mirror_cause[f.cluster.occlusion_cause[i]];
+    else
+      glossy_errors += f.cluster.occlusion_cause[i] != uint8_t(OcclusionCause::None);
   }
   for (int c = 1; c < kOcclusionCauses; ++c) {
     s.cause_pct[c].add(100.0 * double(st.occlusion_cause_samples[c]) / samples);
-    if (st.mirror_samples > 0) s.cause_mirror_pct[c].add(100.0 * double(mirror_cause[c]) / double(st.mirror_samples));
+    if (st.mirror_samples > 0)
+      s.cause_mirror_pct[c].add(100.0 * double(mirror_cause[c]) / double(st.mirror_samples));
   }
   if (st.mirror_samples > 0)
     s.occlusion_mirror_pct.add(100.0 * double(st.mirror_occlusion_error_samples) / double(st.mirror_samples));
   if (st.mirror_samples < st.reflective_samples)
-    s.occlusion_glossy_pct.add(100.0 * double(glossy_errors) / double(st.reflective_samples - st.mirror_samples));
+    s.occlusion_glossy_pct.add(100.0 * double(glossy_errors) /
+                               double(st.reflective_samples - st.mirror_samples));
 }
 
 // Ground truth with shadows and jittered area-light samples; the Embree pass on the same
@@ -247,8 +253,8 @@ void add_mae(const ImageError& e, Series& r, Series& g, Series& b) {
 void add_metrics(const ClusterReflectOptions& o, const ClusterSeries& s, Results& results) {
   auto& m = results.metrics;
   m["frames"] = double(s.cluster_ms.values.size());
-  m["frames_with_reflections"] = double(std::count_if(s.reflective_pct.values.begin(), s.reflective_pct.values.end(),
-                                                      [](double v) { return v > 0.0; }));
+  m["frames_with_reflections"] = double(std::count_if(
+      s.reflective_pct.values.begin(), s.reflective_pct.values.end(), [](double v) { return v > 0.0; }));
   m["reflective_pct_avg"] = s.reflective_pct.avg();
   m["reflective_pct_max"] = s.reflective_pct.max();
   m["clusters_avg"] = s.clusters.avg();
@@ -302,20 +308,21 @@ void add_metrics(const ClusterReflectOptions& o, const ClusterSeries& s, Results
 void add_tables(const ClusterReflectOptions& o, const ClusterSeries& s, const std::string& where,
                 Results& results) {
   const std::string size = std::to_string(o.width) + "x" + std::to_string(o.height) + ", " +
-                           std::to_string(o.reflection.supersample) + "x" + std::to_string(o.reflection.supersample) +
-                           " ss";
+                           std::to_string(o.reflection.supersample) + "x" +
+                           std::to_string(o.reflection.supersample) + " ss";
   auto& t = results.tables;
-  t.push_back({"Frame rate (thesis Table 13), " + where + ", " + size,
-               {"reflective_pct_max", "reflective_pct_avg", "embree_fps_max", "embree_fps_min", "embree_fps_avg",
-                "embree_dynamic_fps_avg", "cluster_fps_max", "cluster_fps_min", "cluster_fps_avg"},
-               {{s.reflective_pct.max(), s.reflective_pct.avg(), fps(s.reference_ms.min()), fps(s.reference_ms.max()),
-                 fps(s.reference_ms.avg()), fps(s.reference_dynamic_ms.avg()), fps(s.cluster_ms.min()),
-                 fps(s.cluster_ms.max()), fps(s.cluster_ms.avg())}}});
+  t.push_back(
+      {"Frame rate (thesis Table 13), " + where + ", " + size,
+       {"reflective_pct_max", "reflective_pct_avg", "embree_fps_max", "embree_fps_min", "embree_fps_avg",
+        "embree_dynamic_fps_avg", "cluster_fps_max", "cluster_fps_min", "cluster_fps_avg"},
+       {{s.reflective_pct.max(), s.reflective_pct.avg(), fps(s.reference_ms.min()), fps(s.reference_ms.max()),
+         fps(s.reference_ms.avg()), fps(s.reference_dynamic_ms.avg()), fps(s.cluster_ms.min()),
+         fps(s.cluster_ms.max()), fps(s.cluster_ms.avg())}}});
   t.push_back({"Step times in ms (thesis Table 14), " + where,
-               {"gbuffer_clustering_max", "gbuffer_clustering_avg", "cameras_max", "cameras_avg", "depth_images_max",
-                "depth_images_avg", "intersection_max", "intersection_avg"},
-               {{s.step1_ms.max(), s.step1_ms.avg(), s.cameras_ms.max(), s.cameras_ms.avg(), s.images_ms.max(),
-                 s.images_ms.avg(), s.intersection_ms.max(), s.intersection_ms.avg()}}});
+               {"gbuffer_clustering_max", "gbuffer_clustering_avg", "cameras_max", "cameras_avg",
+                "depth_images_max", "depth_images_avg", "intersection_max", "intersection_avg"},
+               {{s.step1_ms.max(), s.step1_ms.avg(), s.cameras_ms.max(), s.cameras_ms.avg(),
+                 s.images_ms.max(), s.images_ms.avg(), s.intersection_ms.max(), s.intersection_ms.avg()}}});
   // One row per run: runs at other bin counts, output sizes and image scales make Tables 15–17.
   t.push_back({"Parameters vs frame rate (thesis Tables 15–17), " + where,
                {"clusters_avg", "width", "height", "resolution_scale", "texels_avg", "cluster_fps_avg"},
@@ -354,10 +361,11 @@ void add_compare_tables(const ClusterReflectOptions& o, const ClusterSeries& s, 
   for (int c = 1; c < kOcclusionCauses; ++c)
     causes.rows.push_back({std::string(kCauseNames[c]), s.cause_pct[c].avg(), s.cause_mirror_pct[c].avg()});
   t.push_back(std::move(causes));
-  t.push_back({"Fallbacks, % of reflective samples, " + where,
-               {"occlusion_error_rays_pct_avg", "occlusion_error_glossy_pct_avg", "env_fallback_pct_avg",
-                "behind_fill_pct_avg"},
-               {{s.occlusion_ray_pct.avg(), s.occlusion_glossy_pct.avg(), s.fallback_pct.avg(), s.fill_pct.avg()}}});
+  t.push_back(
+      {"Fallbacks, % of reflective samples, " + where,
+       {"occlusion_error_rays_pct_avg", "occlusion_error_glossy_pct_avg", "env_fallback_pct_avg",
+        "behind_fill_pct_avg"},
+       {{s.occlusion_ray_pct.avg(), s.occlusion_glossy_pct.avg(), s.fallback_pct.avg(), s.fill_pct.avg()}}});
 }
 
 }  // namespace
@@ -383,7 +391,8 @@ void validate(const ClusterReflectOptions& o) {
   if (!(o.cluster.resolution_scale > 0.0f && o.cluster.resolution_scale <= 8.0f))
     fail_input("--resolution-scale: must be in (0, 8]");
   if (o.cube_size < 1 || o.cube_size > kMaxImageSide) fail_input("--cube-size: " + sides);
-  if (o.cluster.march_block < 0 || o.cluster.march_block > 256) fail_input("--march-block: must be in 0..256");
+  if (o.cluster.march_block < 0 || o.cluster.march_block > 256)
+    fail_input("--march-block: must be in 0..256");
 }
 
 void validate(const ClusterReflectOptions& o, const Scene& scene) {

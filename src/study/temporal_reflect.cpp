@@ -43,7 +43,8 @@ ImageF recompute_image(const ReflectionFrame& frame, const std::vector<uint8_t>&
 // Σ error / reflective pixels per frame, averaged over all frames, so they add up to
 // temporal_mae_avg.
 constexpr int kSurfaces = 4, kPlaces = 3;
-constexpr const char* kSurfaceNames[kSurfaces] = {"curved mirror", "curved glossy", "planar mirror", "planar glossy"};
+constexpr const char* kSurfaceNames[kSurfaces] = {"curved mirror", "curved glossy", "planar mirror",
+                                                  "planar glossy"};
 constexpr const char* kPlaceNames[kPlaces] = {"inside", "reflector edge", "next to recomputed"};
 constexpr int kClassKey = kSurfaces * kPlaces, kClassRecomputed = kClassKey + 1, kClassCount = kClassKey + 2;
 std::string class_name(int c) {
@@ -54,7 +55,8 @@ std::string class_name(int c) {
 // Neighbouring unit normals further apart than this (chord length) count as curved.
 constexpr float kCurvedNormalChord = 1e-3f;
 
-std::vector<uint8_t> error_classes(const ReflectionFrame& frame, bool key, const std::vector<uint8_t>& flags) {
+std::vector<uint8_t> error_classes(const ReflectionFrame& frame, bool key,
+                                   const std::vector<uint8_t>& flags) {
   const size_t n = frame.sample_count();
   std::vector<uint8_t> cls(n, uint8_t(kClassKey));
   if (key) return cls;
@@ -79,7 +81,8 @@ std::vector<uint8_t> error_classes(const ReflectionFrame& frame, bool key, const
           continue;
         }
         near = near || flags[size_t(j)] != kReuseOk;
-        if (four && glm::length(frame.normal[size_t(j)] - frame.normal[i]) > kCurvedNormalChord) curved = true;
+        if (four && glm::length(frame.normal[size_t(j)] - frame.normal[i]) > kCurvedNormalChord)
+          curved = true;
       }
     const int surface = (curved ? 0 : 2) + (frame.gloss[i] > 0.0f ? 1 : 0);
     const int place = edge ? 1 : near ? 2 : 0;
@@ -144,7 +147,8 @@ TemporalOptions temporal_options(const TemporalReflectOptions& o) {
   to.warp.recompute_splats = o.recompute_splats;
   to.warp.blend_error = o.blend_error;
   to.keyframe_cost = o.keyframe_cost;
-  to.warp.edge_rule = o.edge_rule == "recompute" ? ReflectedEdgeRule::kRecompute : ReflectedEdgeRule::kNearest;
+  to.warp.edge_rule =
+      o.edge_rule == "recompute" ? ReflectedEdgeRule::kRecompute : ReflectedEdgeRule::kNearest;
   to.warp.depth_discontinuity = o.depth_discontinuity;
   to.match.extrapolate = o.match_extrapolate;
   return to;
@@ -153,13 +157,14 @@ TemporalOptions temporal_options(const TemporalReflectOptions& o) {
 // Everything a run accumulates over its frames.
 struct TemporalSeries {
   Series mirror_temporal_mae, mirror_direct_mae;
-  Series reflective_pct, recompute_pct, traced_pct, temporal_mae, direct_mae, direct_recompute_pct, temporal_ms,
-      reference_ms, frame_temporal_ms, frame_reference_ms, diffuse_ms, key_ms, match_ms, warp_ms, reproject_ms,
-      recompute_ms, compose_ms, intervals, curved_pct, edge_pct, temporal_cpu_ms, reference_cpu_ms, match_steps;
+  Series reflective_pct, recompute_pct, traced_pct, temporal_mae, direct_mae, direct_recompute_pct,
+      temporal_ms, reference_ms, frame_temporal_ms, frame_reference_ms, diffuse_ms, key_ms, match_ms, warp_ms,
+      reproject_ms, recompute_ms, compose_ms, intervals, curved_pct, edge_pct, temporal_cpu_ms,
+      reference_cpu_ms, match_steps;
   Table per_frame{"Per frame",
                   {"frame", "key", "reflective_pct", "recompute_pct", "disoccluded_pct", "unreliable_pct",
-                   "temporal_mae", "direct_mae", "diffuse_ms", "key_ms", "match_ms", "warp_ms", "reproject_ms",
-                   "recompute_ms", "compose_ms", "reference_trace_ms"},
+                   "temporal_mae", "direct_mae", "diffuse_ms", "key_ms", "match_ms", "warp_ms",
+                   "reproject_ms", "recompute_ms", "compose_ms", "reference_trace_ms"},
                   {}};
   int keyframes = 0, since_key = 0;
   ErrorBreakdown breakdown;
@@ -211,15 +216,17 @@ struct Comparison {
 };
 
 // The reference traced from `options` (another seed or lobe count) on the frame's camera.
-ImageF traced_image(const Scene& scene, const RayScene& rays, const Camera& camera, const ReflectionOptions& options) {
+ImageF traced_image(const Scene& scene, const RayScene& rays, const Camera& camera,
+                    const ReflectionOptions& options) {
   const ReflectionFrame f = prepare_reflection_frame(scene, camera, options);
   return compose_reflections(f, trace_reflections(scene, rays, f).radiance);
 }
 
 // The error figures of a compared frame with reflective pixels.
-void add_errors(const Scene& scene, const RayScene& rays, const TemporalFrame& f, const std::vector<uint8_t>& flags,
-                const TemporalState& state, const TemporalReflectOptions& o, const ReflectionOptions& ro,
-                uint64_t direct_recomputed, Comparison& c, TemporalSeries& s) {
+void add_errors(const Scene& scene, const RayScene& rays, const TemporalFrame& f,
+                const std::vector<uint8_t>& flags, const TemporalState& state,
+                const TemporalReflectOptions& o, const ReflectionOptions& ro, uint64_t direct_recomputed,
+                Comparison& c, TemporalSeries& s) {
   const ReflectionFrame& frame = f.frame;
   c.temporal_mae = compare_images(f.color, c.reference, &c.mask).mae_avg;
   c.direct_mae = compare_images(c.direct, c.reference, &c.mask).mae_avg;
@@ -234,13 +241,15 @@ void add_errors(const Scene& scene, const RayScene& rays, const TemporalFrame& f
     s.mirror_temporal_mae.add(compare_images(f.color, c.reference, &mirror).mae_avg);
     s.mirror_direct_mae.add(compare_images(c.direct, c.reference, &mirror).mae_avg);
   }
-  s.direct_recompute_pct.add(100.0 * double(direct_recomputed) / std::max<double>(1.0, double(f.st.reflective)));
+  s.direct_recompute_pct.add(100.0 * double(direct_recomputed) /
+                             std::max<double>(1.0, double(f.st.reflective)));
   if (!f.st.key) s.age_mae[age_bin(state.frames_since_key)].add(c.temporal_mae);
   if (o.breakdown) {
     // The reference against itself with another seed: the glossy lobe noise floor.
     ReflectionOptions other = ro;
     other.seed = ro.seed + 1;
-    const ImageF seed_error = error_image(traced_image(scene, rays, frame.camera, other), c.reference, &c.mask);
+    const ImageF seed_error =
+        error_image(traced_image(scene, rays, frame.camera, other), c.reference, &c.mask);
     s.breakdown.add(frame, error_classes(frame, f.st.key, flags), error_image(f.color, c.reference, &c.mask),
                     &seed_error);
   }
@@ -259,8 +268,9 @@ void add_errors(const Scene& scene, const RayScene& rays, const TemporalFrame& f
 // Full reflection ray tracing of the same frame (every reflective sample's rays, timed) and
 // direct reprojection of the current key frame; errors where the frame has reflective pixels.
 Comparison compare_frame(const Scene& scene, const RayScene& rays, const TemporalFrame& f,
-                         const std::vector<uint8_t>& flags, const TemporalState& state, const TemporalOptions& to,
-                         const TemporalReflectOptions& o, const ReflectionOptions& ro, TemporalSeries& s) {
+                         const std::vector<uint8_t>& flags, const TemporalState& state,
+                         const TemporalOptions& to, const TemporalReflectOptions& o,
+                         const ReflectionOptions& ro, TemporalSeries& s) {
   Comparison c;
   Stopwatch watch;
   const double trace_cpu = process_cpu_ms();
@@ -271,8 +281,8 @@ Comparison compare_frame(const Scene& scene, const RayScene& rays, const Tempora
   s.reference_ms.add(c.trace_ms);
   s.frame_reference_ms.add(f.diffuse_ms + c.trace_ms + f.compose_ms);
   uint64_t direct_recomputed = 0;
-  c.direct = compose_reflections(f.frame,
-                                 direct_reprojection(scene, rays, f.frame, state.key, to.reproject, &direct_recomputed));
+  c.direct = compose_reflections(
+      f.frame, direct_reprojection(scene, rays, f.frame, state.key, to.reproject, &direct_recomputed));
   c.mask = reflective_pixel_mask(f.frame);
   if (f.st.reflective > 0) add_errors(scene, rays, f, flags, state, o, ro, direct_recomputed, c, s);
   return c;
@@ -282,10 +292,10 @@ void add_per_frame_row(int frame_index, const TemporalFrame& f, const Comparison
   const TemporalFrameStats& st = f.st;
   const double n = std::max<double>(1.0, double(st.reflective));
   s.per_frame.rows.push_back({double(frame_index), st.key ? 1.0 : 0.0, s.reflective_pct.values.back(),
-                              st.key ? 100.0 : 100.0 * st.recompute_fraction(), 100.0 * double(st.disoccluded) / n,
-                              100.0 * double(st.unreliable) / n, c.temporal_mae, c.direct_mae, f.diffuse_ms,
-                              st.key_ms, st.match_ms, st.warp_ms, st.reproject_ms, st.recompute_ms, f.compose_ms,
-                              c.trace_ms});
+                              st.key ? 100.0 : 100.0 * st.recompute_fraction(),
+                              100.0 * double(st.disoccluded) / n, 100.0 * double(st.unreliable) / n,
+                              c.temporal_mae, c.direct_mae, f.diffuse_ms, st.key_ms, st.match_ms, st.warp_ms,
+                              st.reproject_ms, st.recompute_ms, f.compose_ms, c.trace_ms});
 }
 
 void write_images(const StudyOutput& out, const TemporalFrame& f, const std::vector<uint8_t>& flags,
@@ -371,30 +381,30 @@ Table one_row(std::string title, std::vector<std::string> columns, const std::ve
 
 void add_compare_tables(const TemporalSeries& s, const std::string& where, Results& results) {
   const auto& m = results.metrics;
-  results.tables.push_back(one_row(
-      "Frame rate (thesis Table 22), " + where,
-      {"reflective_pct_max", "reflective_pct_avg", "reference_fps_max", "reference_fps_min", "reference_fps_avg",
-       "temporal_fps_max", "temporal_fps_min", "temporal_fps_avg", "keyframe_interval_max", "keyframe_interval_avg",
-       "recompute_pct"},
-      {s.reflective_pct.max(), s.reflective_pct.avg(), fps(s.frame_reference_ms.min()),
-       fps(s.frame_reference_ms.max()), fps(s.frame_reference_ms.avg()), fps(s.frame_temporal_ms.min()),
-       fps(s.frame_temporal_ms.max()), fps(s.frame_temporal_ms.avg()), s.intervals.max(), s.intervals.avg(),
-       s.recompute_pct.avg()}));
-  results.tables.push_back(one_row(
-      "Reflections: temporal vs direct reprojection vs full ray tracing, " + where,
-      {"temporal_mae_avg", "temporal_mae_max", "direct_mae_avg", "direct_mae_max", "temporal_mae_mirror_avg",
-       "direct_mae_mirror_avg", "temporal_reflection_ms_avg", "traced_reflection_ms_avg", "speedup_reflections",
-       "speedup_frames"},
-      {s.temporal_mae.avg(), s.temporal_mae.max(), s.direct_mae.avg(), s.direct_mae.max(),
-       s.mirror_temporal_mae.avg(), s.mirror_direct_mae.avg(), s.temporal_ms.avg(), s.reference_ms.avg(),
-       m.at("speedup_vs_reference"), m.at("frame_speedup_vs_reference")}));
+  results.tables.push_back(
+      one_row("Frame rate (thesis Table 22), " + where,
+              {"reflective_pct_max", "reflective_pct_avg", "reference_fps_max", "reference_fps_min",
+               "reference_fps_avg", "temporal_fps_max", "temporal_fps_min", "temporal_fps_avg",
+               "keyframe_interval_max", "keyframe_interval_avg", "recompute_pct"},
+              {s.reflective_pct.max(), s.reflective_pct.avg(), fps(s.frame_reference_ms.min()),
+               fps(s.frame_reference_ms.max()), fps(s.frame_reference_ms.avg()),
+               fps(s.frame_temporal_ms.min()), fps(s.frame_temporal_ms.max()), fps(s.frame_temporal_ms.avg()),
+               s.intervals.max(), s.intervals.avg(), s.recompute_pct.avg()}));
+  results.tables.push_back(
+      one_row("Reflections: temporal vs direct reprojection vs full ray tracing, " + where,
+              {"temporal_mae_avg", "temporal_mae_max", "direct_mae_avg", "direct_mae_max",
+               "temporal_mae_mirror_avg", "direct_mae_mirror_avg", "temporal_reflection_ms_avg",
+               "traced_reflection_ms_avg", "speedup_reflections", "speedup_frames"},
+              {s.temporal_mae.avg(), s.temporal_mae.max(), s.direct_mae.avg(), s.direct_mae.max(),
+               s.mirror_temporal_mae.avg(), s.mirror_direct_mae.avg(), s.temporal_ms.avg(),
+               s.reference_ms.avg(), m.at("speedup_vs_reference"), m.at("frame_speedup_vs_reference")}));
   Table ages{"Temporal MAE by key-frame age (reuse frames), " + where,
              {"frames_since_key", "frames", "temporal_mae_avg"},
              {}};
   for (int b = 0; b < kAgeBins; ++b) {
-    const std::string label = b + 1 < kAgeBins
-                                  ? std::to_string(kAgeBinStart[b]) + "-" + std::to_string(kAgeBinStart[b + 1] - 1)
-                                  : std::to_string(kAgeBinStart[b]) + "+";
+    const std::string label =
+        b + 1 < kAgeBins ? std::to_string(kAgeBinStart[b]) + "-" + std::to_string(kAgeBinStart[b + 1] - 1)
+                         : std::to_string(kAgeBinStart[b]) + "+";
     ages.rows.push_back({label, double(s.age_mae[b].values.size()), s.age_mae[b].avg()});
   }
   results.tables.push_back(ages);
@@ -409,9 +419,9 @@ void add_breakdown(const ErrorBreakdown& breakdown, const std::string& where, Re
   for (double p : breakdown.pixels) all += p;
   for (int c = 0; c < kClassCount; ++c) {
     const double p = std::max(1.0, breakdown.pixels[c]);
-    by_class.rows.push_back({class_name(c), 100.0 * breakdown.pixels[c] / std::max(1.0, all), breakdown.error[c] / p,
-                             breakdown.contribution[c].avg(), breakdown.seed_error[c] / p,
-                             breakdown.seed_contribution[c].avg()});
+    by_class.rows.push_back({class_name(c), 100.0 * breakdown.pixels[c] / std::max(1.0, all),
+                             breakdown.error[c] / p, breakdown.contribution[c].avg(),
+                             breakdown.seed_error[c] / p, breakdown.seed_contribution[c].avg()});
     std::string key = class_name(c);
     key.erase(std::remove(key.begin(), key.end(), ','), key.end());
     std::replace(key.begin(), key.end(), ' ', '_');
@@ -423,25 +433,29 @@ void add_breakdown(const ErrorBreakdown& breakdown, const std::string& where, Re
   results.tables.push_back(by_class);
 }
 
-void add_hq_reference(const TemporalSeries& s, int reference_rays, const std::string& where, Results& results) {
+void add_hq_reference(const TemporalSeries& s, int reference_rays, const std::string& where,
+                      Results& results) {
   auto& m = results.metrics;
   m["hq_temporal_mae_avg"] = s.hq_temporal_mae.avg();
   m["hq_reference_mae_avg"] = s.hq_reference_mae.avg();
   m["hq_direct_mae_avg"] = s.hq_direct_mae.avg();
-  results.tables.push_back({"MAE against a reference with " + std::to_string(reference_rays) +
-                                " glossy lobe rays, " + where,
-                            {"temporal", "reference", "direct"},
-                            {{s.hq_temporal_mae.avg(), s.hq_reference_mae.avg(), s.hq_direct_mae.avg()}}});
+  results.tables.push_back(
+      {"MAE against a reference with " + std::to_string(reference_rays) + " glossy lobe rays, " + where,
+       {"temporal", "reference", "direct"},
+       {{s.hq_temporal_mae.avg(), s.hq_reference_mae.avg(), s.hq_direct_mae.avg()}}});
 }
 
 // Thesis Table 23: mean ms per step over all frames, and its share of the frame.
 void add_step_table(const TemporalSeries& s, const std::string& where, Results& results) {
   const double total = s.frame_temporal_ms.avg() > 0.0 ? s.frame_temporal_ms.avg() : 1.0;
   Table steps{"Step times (thesis Table 23), " + where, {"step", "ms_avg", "pct"}, {}};
-  auto step = [&](const char* name, double ms) { steps.rows.push_back({std::string(name), ms, 100.0 * ms / total}); };
+  auto step = [&](const char* name, double ms) {
+    steps.rows.push_back({std::string(name), ms, 100.0 * ms / total});
+  };
   step("diffuse shading (G-buffer)", s.diffuse_ms.avg());
-  step("key frame: trace all + reflection depth image",
-       s.key_ms.values.empty() ? 0.0 : s.key_ms.avg() * double(s.keyframes) / double(s.per_frame.rows.size()));
+  step(
+      "key frame: trace all + reflection depth image",
+      s.key_ms.values.empty() ? 0.0 : s.key_ms.avg() * double(s.keyframes) / double(s.per_frame.rows.size()));
   step("best match", s.match_ms.avg());
   step("reflection offset (warp)", s.warp_ms.avg());
   step("reprojection", s.reproject_ms.avg());
@@ -449,6 +463,39 @@ void add_step_table(const TemporalSeries& s, const std::string& where, Results& 
   step("composition", s.compose_ms.avg());
   step("total", s.frame_temporal_ms.avg());
   results.tables.push_back(steps);
+}
+
+// Metrics and tables of the whole run; `where` names scene, path and size in the titles.
+void add_results(const TemporalReflectOptions& o, const TemporalSeries& s, const std::string& where,
+                 Results& results) {
+  add_metrics(o, s, results);
+  if (o.compare) {
+    add_compare_metrics(s, results);
+    add_compare_tables(s, where, results);
+  }
+  if (o.breakdown) add_breakdown(s.breakdown, where, results);
+  if (o.reference_rays > 0) add_hq_reference(s, o.reference_rays, where, results);
+  add_step_table(s, where, results);
+  results.tables.push_back(s.per_frame);
+}
+
+// The temporal method on one frame: the G-buffer and the diffuse (non-reflected) shading,
+// shared by both methods; the reuse; the blend. Its figures go into the series.
+TemporalFrame render_frame(const Scene& scene, const RayScene& rays, const Camera& camera,
+                           const ReflectionOptions& ro, const TemporalOptions& to, TemporalState& state,
+                           std::vector<vec3>& reflected, std::vector<uint8_t>& flags, TemporalSeries& s) {
+  TemporalFrame f;
+  Stopwatch watch;
+  f.frame = prepare_reflection_frame(scene, camera, ro);
+  f.diffuse_ms = watch.elapsed_ms();
+  const double cpu = process_cpu_ms();
+  temporal_reflections_into(scene, rays, f.frame, state, to, reflected, &f.st, &flags);
+  s.temporal_cpu_ms.add(process_cpu_ms() - cpu);
+  watch.restart();
+  f.color = compose_reflections(f.frame, reflected);
+  f.compose_ms = watch.elapsed_ms();
+  add_temporal(f, s);
+  return f;
 }
 
 const CameraPath& camera_path(const Scene& scene, const std::string& key) {
@@ -467,24 +514,29 @@ void validate(const TemporalReflectOptions& o) {
   if (o.height < 1 || o.height > kMaxImageSide) fail_input("--height: " + sides);
   if (o.path.empty()) fail_input("--path: --method temporal needs a camera path (index or name)");
   if (o.light_samples < 1 || o.light_samples > 64) fail_input("--light-samples: must be in 1..64");
-  if (o.glossy_rays < 1 || o.glossy_rays > 1024) fail_input("--glossy-rays: must be in 1..1024 for --method temporal");
+  if (o.glossy_rays < 1 || o.glossy_rays > 1024)
+    fail_input("--glossy-rays: must be in 1..1024 for --method temporal");
   if (o.frames < 0 || o.frames > 100000) fail_input("--frames: must be in 0..100000");
   if (o.frame_step < 1 || o.frame_step > 100000) fail_input("--frame-step: must be in 1..100000");
   if (!(o.threshold >= 0.0f && o.threshold <= 1.0f)) fail_input("--threshold: must be in [0, 1]");
-  if (!(o.stretch_limit >= 1.0f) || !std::isfinite(o.stretch_limit)) fail_input("--stretch-limit: must be ≥ 1");
+  if (!(o.stretch_limit >= 1.0f) || !std::isfinite(o.stretch_limit))
+    fail_input("--stretch-limit: must be ≥ 1");
   if (!(o.spread_limit >= 1.0f)) fail_input("--spread-limit: must be ≥ 1 (inf = off)");
   if (!(o.curved_contrast >= 0.0f)) fail_input("--curved-contrast: must be ≥ 0");
   if (!(o.edge_contrast >= 0.0f)) fail_input("--edge-contrast: must be ≥ 0 (inf = off)");
   if (!(o.blend_error >= 0.0f)) fail_input("--blend-error: must be ≥ 0 (inf = off)");
   if (!(o.keyframe_cost >= 0.0f && o.keyframe_cost < kInf))
     fail_input("--keyframe-cost: must be finite and ≥ 0 (0 = off)");
-  if (o.edge_rule != "nearest" && o.edge_rule != "recompute") fail_input("--edge-rule: must be nearest or recompute");
+  if (o.edge_rule != "nearest" && o.edge_rule != "recompute")
+    fail_input("--edge-rule: must be nearest or recompute");
   if (o.image_frame < -1) fail_input("--image-frame: must be ≥ -1");
   if (!(o.depth_discontinuity > 0.0f) || !std::isfinite(o.depth_discontinuity))
     fail_input("--depth-discontinuity: must be > 0");
-  if (!(o.lobe_seed_cell >= 0.0f && o.lobe_seed_cell <= 1.0f)) fail_input("--lobe-seed-cell: must be in [0, 1]");
+  if (!(o.lobe_seed_cell >= 0.0f && o.lobe_seed_cell <= 1.0f))
+    fail_input("--lobe-seed-cell: must be in [0, 1]");
   if (o.reference_rays < 0 || o.reference_rays > 1024) fail_input("--reference-rays: must be in 0..1024");
-  if ((o.breakdown || o.reference_rays > 0) && !o.compare) fail_input("--breakdown / --reference-rays need --compare");
+  if ((o.breakdown || o.reference_rays > 0) && !o.compare)
+    fail_input("--breakdown / --reference-rays need --compare");
 }
 
 void validate(const TemporalReflectOptions& o, const Scene& scene) {
@@ -515,7 +567,8 @@ Results run_temporal_reflect(const Scene& rest, const TemporalReflectOptions& o,
   if (progress) progress->begin("reflect temporal", (frames + o.frame_step - 1) / o.frame_step);
   for (int frame_index = 0; frame_index < frames; frame_index += o.frame_step) {
     if (progress) progress->step("frame " + std::to_string(frame_index) + "/" + std::to_string(frames));
-    const float t = frames > 1 ? t_first + float(frame_index) * (t_last - t_first) / float(frames - 1) : t_first;
+    const float t =
+        frames > 1 ? t_first + float(frame_index) * (t_last - t_first) / float(frames - 1) : t_first;
     if (animated) {
       // Reuse assumes a static scene (thesis §5.5.4); moving parts are posed but reused as is.
       scene = pose_scene(rest, t);
@@ -523,18 +576,7 @@ Results run_temporal_reflect(const Scene& rest, const TemporalReflectOptions& o,
     }
     const Camera camera = camera_at_time(path, t, o.width, o.height, 0.01f, far);
 
-    // Shared by both methods: the G-buffer and the diffuse (non-reflected) shading.
-    TemporalFrame f;
-    Stopwatch watch;
-    f.frame = prepare_reflection_frame(scene, camera, ro);
-    f.diffuse_ms = watch.elapsed_ms();
-    const double cpu = process_cpu_ms();
-    temporal_reflections_into(scene, rays, f.frame, state, to, reflected, &f.st, &flags);
-    s.temporal_cpu_ms.add(process_cpu_ms() - cpu);
-    watch.restart();
-    f.color = compose_reflections(f.frame, reflected);
-    f.compose_ms = watch.elapsed_ms();
-    add_temporal(f, s);
+    const TemporalFrame f = render_frame(scene, rays, camera, ro, to, state, reflected, flags, s);
     const Comparison c = o.compare ? compare_frame(scene, rays, f, flags, state, to, o, ro, s) : Comparison{};
     add_per_frame_row(frame_index, f, c, s);
     const bool image_here = o.image_frame < 0 ? !f.st.key : o.image_frame == frame_index;
@@ -547,17 +589,10 @@ Results run_temporal_reflect(const Scene& rest, const TemporalReflectOptions& o,
   if (progress) progress->end();
   s.intervals.add(double(s.since_key));  // the last key frame's run, to the end of the path
 
-  add_metrics(o, s, results);
-  const std::string where = rest.name + " / " + path.name + " (" + std::to_string(o.width) + "x" +
-                            std::to_string(o.height) + ")";
-  if (o.compare) {
-    add_compare_metrics(s, results);
-    add_compare_tables(s, where, results);
-  }
-  if (o.breakdown) add_breakdown(s.breakdown, where, results);
-  if (o.reference_rays > 0) add_hq_reference(s, o.reference_rays, where, results);
-  add_step_table(s, where, results);
-  results.tables.push_back(s.per_frame);
+  add_results(
+      o, s,
+      rest.name + " / " + path.name + " (" + std::to_string(o.width) + "x" + std::to_string(o.height) + ")",
+      results);
   return results;
 }
 

@@ -130,7 +130,8 @@ TEST(TemporalReflectStudy, SameMetricsAndImagesForOneAndTwoThreads) {
   Results runs[2];
   for (int threads : {1, 2}) {
     ThreadLimit limit(threads);
-    runs[threads - 1] = study::run_temporal_reflect(room(), tiny_options(), {dir.path / std::to_string(threads)});
+    runs[threads - 1] =
+        study::run_temporal_reflect(room(), tiny_options(), {dir.path / std::to_string(threads)});
   }
   const std::regex timing("_ms|fps|speedup");
   size_t compared = 0;

@@ -28,17 +28,18 @@ struct ClusterReflectOptions {
   // rendered; with --frame (frame_given) that frame of the path only.
   CameraChoice camera;
   bool frame_given = false;  // --frame was given
-  bool compare = false;      // --compare: Embree on the same rays + env mapping: errors, occlusion errors, timing
-  int reps = 1;              // --reps: timing repetitions per frame (medians), 1..100
+  bool compare = false;  // --compare: Embree on the same rays + env mapping: errors, occlusion errors, timing
+  int reps = 1;          // --reps: timing repetitions per frame (medians), 1..100
   // The env-map comparison: rectified lookups on one distance cube map per frame.
   int cube_size = 512;         // --cube-size: cube face side, texels
   float d_e = 0.01f;           // --d-e: rectification tolerance, meters
   float distance = 0.0f;       // --distance: search length D, meters; 0 = the scene's bounding-box diagonal
   bool edge_fallback = false;  // --edge fallback: plain lookup where the search ends beside the environment
-  int frames = 0;               // --frames: frames the path is divided into; 0 = the path's own count
-  int frame_step = 1;           // --frame-step: run every frame_step-th frame
-  int image_frame = -1;         // --image-frame: frame whose images are written; −1 = the first one rendered
-  bool full_reference = false;  // --full-reference: also render_reference (shadows, jittered area light, 1 bounce)
+  int frames = 0;              // --frames: frames the path is divided into; 0 = the path's own count
+  int frame_step = 1;          // --frame-step: run every frame_step-th frame
+  int image_frame = -1;        // --image-frame: frame whose images are written; −1 = the first one rendered
+  bool full_reference =
+      false;  // --full-reference: also render_reference (shadows, jittered area light, 1 bounce)
   // --ss (supersample), --gloss-rays (glossy_rays), --light-samples (area_light_samples),
   // --seed (seed).
   ReflectionOptions reflection;

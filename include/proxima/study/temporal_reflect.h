@@ -24,30 +24,48 @@
 namespace proxima::study {
 
 struct TemporalReflectOptions {
-  int width = 1024;     // --width: output pixels
-  int height = 768;     // --height: output pixels
-  std::string path;     // --path: camera path, index or name (required)
-  bool compare = false;  // --compare: also full ray tracing and direct reprojection, errors and speed-up
-  int light_samples = 4;  // --light-samples: n of the n×n area-light stratum centres, 1..64
-  int glossy_rays = 16;   // --glossy-rays: lobe rays per glossy sample, 1..1024
-  uint64_t seed = 1;      // --seed
-  int frames = 0;               // --frames: frames the path is divided into; 0 = the path's own count
-  int frame_step = 1;           // --frame-step: render every frame_step-th frame (reuse spans the skipped ones)
-  float threshold = 0.3f;       // --threshold: key-frame threshold on the recomputed fraction, [0, 1]
-  float stretch_limit = 16.0f;  // --stretch-limit: warp triangles stretched more than this in area are unreliable
-  float spread_limit = kInf;    // --spread-limit: off; e.g. 8: warp triangles on reflectors bending directions more are unreliable
-  float depth_discontinuity = 0.1f;  // --depth-discontinuity: warp corners whose s.d or s.d + s.r differ more (relative) are not connected
-  float curved_contrast = 0.05f;  // --curved-contrast: ... where s·Lr varies by more than this between neighbours (linear)
-  float edge_contrast = kInf;     // --edge-contrast: off; warp triangles whose corners' s·Lr differ more span a reflected edge
+  int width = 1024;        // --width: output pixels
+  int height = 768;        // --height: output pixels
+  std::string path;        // --path: camera path, index or name (required)
+  bool compare = false;    // --compare: also full ray tracing and direct reprojection, errors and speed-up
+  int light_samples = 4;   // --light-samples: n of the n×n area-light stratum centres, 1..64
+  int glossy_rays = 16;    // --glossy-rays: lobe rays per glossy sample, 1..1024
+  uint64_t seed = 1;       // --seed
+  int frames = 0;          // --frames: frames the path is divided into; 0 = the path's own count
+  int frame_step = 1;      // --frame-step: render every frame_step-th frame (reuse spans the skipped ones)
+  float threshold = 0.3f;  // --threshold: key-frame threshold on the recomputed fraction, [0, 1]
+  // --stretch-limit: warp triangles stretched more than this (area ratio) are unreliable.
+  float stretch_limit = 16.0f;
+  // --spread-limit: inf = off; e.g. 8: warp triangles on reflectors that bend neighbouring
+  // reflection directions more than this many times their view angle are unreliable.
+  float spread_limit = kInf;
+  // --depth-discontinuity: warp corners whose s.d or s.d + s.r differ by more than this
+  // fraction are not connected.
+  float depth_discontinuity = 0.1f;
+  // --curved-contrast: the spread limit applies only where s·Lr differs between neighbouring
+  // key pixels by more than this (linear).
+  float curved_contrast = 0.05f;
+  // --edge-contrast: inf = off; warp triangles whose corners' s·Lr differ by more than this
+  // (linear, any channel) span an edge of the reflected image and follow edge_rule.
+  float edge_contrast = kInf;
   std::string edge_rule = "nearest";  // --edge-rule: there "nearest" corner's Lr, or "recompute"
-  bool recompute_splats = false;  // --recompute-splats: samples no warp triangle reached are recomputed
-  float blend_error = 8.0f;       // --blend-error: inf = off (the thesis' method); reused samples whose expected display error (0–255) exceeds this are recomputed
-  float keyframe_cost = 1.0f;     // --keyframe-cost: 0 = off (the thesis' policy alone); TemporalOptions::keyframe_cost
-  bool match_extrapolate = false;  // --match-extrapolate: best match also starts from the offsets' last change continued
-  int image_frame = -1;            // --image-frame: frame whose images are written; −1 = the first non-key frame
-  float lobe_seed_cell = 0.0f;     // --lobe-seed-cell: > 0: glossy lobe rays seeded per world cell of this size × diagonal
-  bool breakdown = false;          // --breakdown (needs compare): error by pixel class, key-frame age, seed noise
-  int reference_rays = 0;          // --reference-rays (needs compare): > 0: also errors against a reference with this many lobe rays
+  bool recompute_splats = false;      // --recompute-splats: samples no warp triangle reached are recomputed
+  // --blend-error: reused samples whose expected display error (0–255) exceeds this are
+  // recomputed; inf = off (the thesis' method).
+  float blend_error = 8.0f;
+  // --keyframe-cost: TemporalOptions::keyframe_cost (rays per reflective key pixel that the
+  // fixed steps cost); 0 = off (the thesis' threshold policy alone).
+  float keyframe_cost = 1.0f;
+  bool match_extrapolate =
+      false;             // --match-extrapolate: best match also starts from the last change continued
+  int image_frame = -1;  // --image-frame: frame whose images are written; −1 = the first non-key frame
+  // --lobe-seed-cell: > 0 seeds glossy lobe rays per world cell of this edge × the scene
+  // diagonal instead of per pixel, in the method and the reference alike; 0 = per pixel.
+  float lobe_seed_cell = 0.0f;
+  bool breakdown = false;  // --breakdown (needs compare): error by pixel class, key-frame age, seed noise
+  // --reference-rays (needs compare): > 0: also errors against a reference with this many
+  // glossy lobe rays.
+  int reference_rays = 0;
 };
 
 // Throws InputError naming the flag for options out of range.
@@ -62,7 +80,7 @@ void validate(const TemporalReflectOptions& options, const Scene& scene);
 // reused as they are), writes the images of one frame into `out`. Deterministic metrics
 // (errors, counts, key frames) are the same for any thread count. `progress`, when given,
 // gets one stage with a step per frame.
-Results run_temporal_reflect(const Scene& scene, const TemporalReflectOptions& options, const StudyOutput& out,
-                             Progress* progress = nullptr);
+Results run_temporal_reflect(const Scene& scene, const TemporalReflectOptions& options,
+                             const StudyOutput& out, Progress* progress = nullptr);
 
 }  // namespace proxima::study
