@@ -147,8 +147,7 @@ TemporalOptions temporal_options(const TemporalReflectOptions& o) {
   to.warp.recompute_splats = o.recompute_splats;
   to.warp.blend_error = o.blend_error;
   to.keyframe_cost = o.keyframe_cost;
-  to.warp.edge_rule =
-      o.edge_rule == "recompute" ? ReflectedEdgeRule::kRecompute : ReflectedEdgeRule::kNearest;
+  to.warp.edge_rule = parse_reflected_edge_rule(o.edge_rule, "--edge-rule");
   to.warp.depth_discontinuity = o.depth_discontinuity;
   to.match.extrapolate = o.match_extrapolate;
   return to;
@@ -327,7 +326,8 @@ void add_metrics(const TemporalReflectOptions& o, const TemporalSeries& s, Resul
   m["recompute_pct_avg"] = s.recompute_pct.avg();  // non-key frames
   m["curved_pct_avg"] = s.curved_pct.avg();        // of those, on strongly curved reflectors
   m["edge_contrast"] = o.edge_contrast;
-  m["edge_rule_recompute"] = o.edge_rule == "recompute" ? 1.0 : 0.0;
+  m["edge_rule_recompute"] =
+      parse_reflected_edge_rule(o.edge_rule, "--edge-rule") == ReflectedEdgeRule::kRecompute ? 1.0 : 0.0;
   m["recompute_splats"] = o.recompute_splats ? 1.0 : 0.0;
   m["blend_error"] = o.blend_error;
   m["keyframe_cost"] = o.keyframe_cost;
@@ -527,8 +527,7 @@ void validate(const TemporalReflectOptions& o) {
   if (!(o.blend_error >= 0.0f)) fail_input("--blend-error: must be ≥ 0 (inf = off)");
   if (!(o.keyframe_cost >= 0.0f && o.keyframe_cost < kInf))
     fail_input("--keyframe-cost: must be finite and ≥ 0 (0 = off)");
-  if (o.edge_rule != "nearest" && o.edge_rule != "recompute")
-    fail_input("--edge-rule: must be nearest or recompute");
+  parse_reflected_edge_rule(o.edge_rule, "--edge-rule");
   if (o.image_frame < -1) fail_input("--image-frame: must be ≥ -1");
   if (!(o.depth_discontinuity > 0.0f) || !std::isfinite(o.depth_discontinuity))
     fail_input("--depth-discontinuity: must be > 0");
