@@ -66,11 +66,7 @@ struct Schedule {
 Schedule schedule(const Scene& scene, const ClusterReflectOptions& o) {
   Schedule s;
   if (!o.camera.path.empty()) {
-    const int path_index = find_camera_path(scene, o.camera.path);
-    if (path_index < 0)
-      fail_input("--path: scene '" + scene.name + "' has no camera path '" + o.camera.path + "' (" +
-                 std::to_string(scene.camera_paths.size()) + " paths)");
-    s.path = &scene.camera_paths[size_t(path_index)];
+    s.path = &camera_path(scene, o.camera.path);
     s.frames = o.frames > 0 ? o.frames : s.path->frames;
   }
   s.sequence = s.path && !o.frame_given;

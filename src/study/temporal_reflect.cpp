@@ -498,14 +498,6 @@ TemporalFrame render_frame(const Scene& scene, const RayScene& rays, const Camer
   return f;
 }
 
-const CameraPath& camera_path(const Scene& scene, const std::string& key) {
-  const int path_index = find_camera_path(scene, key);
-  if (path_index < 0)
-    fail_input("--path: scene '" + scene.name + "' has no camera path '" + key + "' (" +
-               std::to_string(scene.camera_paths.size()) + " paths)");
-  return scene.camera_paths[size_t(path_index)];
-}
-
 }  // namespace
 
 void validate(const TemporalReflectOptions& o) {
