@@ -62,7 +62,7 @@ TEST(ClusterCli, BadInputIsExitCodeTwoAndWritesNothing) {
   EXPECT_EQ(exit_code("reflect --method clusters --scene room-reflector --out " + out.string()), 2);
   EXPECT_EQ(exit_code("reflect --method cluster --scene room-reflector --march-block -1 --out " + out.string()), 2);
   EXPECT_EQ(exit_code("reflect --method cluster --scene room-reflector --second-layer maybe --out " + out.string()), 2);
-  // The old subcommand is gone.
+  // There is no reflect-cluster subcommand (the method is `reflect --method cluster`).
   EXPECT_EQ(exit_code("reflect-cluster --scene room-reflector --out " + out.string()), 2);
   EXPECT_FALSE(std::filesystem::exists(out));
 }
