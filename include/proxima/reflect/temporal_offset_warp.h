@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "proxima/core/image.h"
@@ -31,6 +32,9 @@ enum class ReflectedEdgeRule : uint8_t {
   kNearest,    // take the Lr of the triangle's corner nearest the pixel (largest barycentric)
   kRecompute,  // mark the triangle's pixels kWarpEdge: recomputed by the ray tracer
 };
+const char* reflected_edge_rule_name(ReflectedEdgeRule rule);  // "nearest" | "recompute"
+// Throws InputError "<flag>: must be nearest or recompute" for any other name.
+ReflectedEdgeRule parse_reflected_edge_rule(const std::string& name, const char* flag);
 
 struct WarpOptions {
   float stretch_limit = 16.0f;        // warped / original triangle area above this → unreliable
