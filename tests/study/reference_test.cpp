@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "proxima/core/image_io.h"
 #include "proxima/core/parallel.h"
 #include "proxima/scene/builtin_scenes.h"
@@ -47,8 +49,6 @@ TEST(ReferenceStudy, ResultsCarryTheCoverageTableAndImages) {
   const Scene scene = make_builtin_scene("cornell");
   TempDir dir;
   const Results r = study::run_reference(scene, tiny(), {dir.path});
-  // The cornell box fills the default view: every primary ray hits a wall.
-  EXPECT_EQ(r.metrics.at("coverage_pct"), 100.0);
   EXPECT_GT(r.metrics.at("render_ms"), 0.0);
   ASSERT_EQ(r.tables.size(), 1u);
   EXPECT_EQ(r.tables[0].title, "render cornell");
@@ -57,16 +57,24 @@ TEST(ReferenceStudy, ResultsCarryTheCoverageTableAndImages) {
     ASSERT_TRUE(r.images.count(role)) << role;
     EXPECT_TRUE(std::filesystem::exists(dir.path / r.images.at(role))) << role;
   }
-  // The EXR colour is the render itself; ids are −1 only where nothing was hit.
+  // The EXR colour is the render itself; the coverage is the share of pixels with an id
+  // (−1 where nothing was hit) and of finite depth.
   const study::ReferenceRender direct = study::render_reference_view(scene, tiny(), true);
   EXPECT_TRUE(read_exr(dir.path / "color.exr") == direct.color);
   const ImageF ids = read_exr(dir.path / "id.exr");
-  for (size_t i = 0; i < ids.data().size(); ++i) EXPECT_GE(ids.data()[i], 0.0f);
+  const ImageF depth = read_exr(dir.path / "depth.exr");
+  size_t with_id = 0;
+  for (size_t i = 0; i < ids.data().size(); ++i) {
+    with_id += ids.data()[i] >= 0.0f;
+    EXPECT_EQ(ids.data()[i] >= 0.0f, std::isfinite(depth.data()[i])) << i;
+  }
+  EXPECT_GT(with_id, ids.data().size() / 2);  // the box fills most of the view
+  EXPECT_DOUBLE_EQ(r.metrics.at("coverage_pct"), 100.0 * double(with_id) / double(ids.data().size()));
 
   // Without a directory nothing is written and no image roles are listed.
   const Results quiet = study::run_reference(scene, tiny(), {});
   EXPECT_TRUE(quiet.images.empty());
-  EXPECT_EQ(quiet.metrics.at("coverage_pct"), 100.0);
+  EXPECT_EQ(quiet.metrics.at("coverage_pct"), r.metrics.at("coverage_pct"));
 }
 
 TEST(ReferenceStudy, CoverageCountsMisses) {
