@@ -1,7 +1,7 @@
 // Same image bits for --threads 1 and --threads 2 (issue 13; DESIGN.md determinism) from
 // every command that writes images, on every built-in scene the command accepts (sample: all but the
 // two big interiors), at small
-// sizes. `render` is covered by Cli.RenderIsIdenticalForOneAndTwoThreadsOnEveryBuiltinScene.
+// sizes. `render` is covered by ReferenceStudy.SameBitsForOneAndTwoThreadsOnEveryBuiltinScene.
 // Every image file of the output directory (PNG, EXR, SVG) must be byte-identical; a scene
 // a command refuses (exit 2, e.g. no reflector, no camera path) must be refused alike.
 #include <gtest/gtest.h>

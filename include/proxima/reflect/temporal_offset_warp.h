@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "proxima/core/image.h"
+#include "proxima/core/large_buffer.h"
 #include "proxima/reflect/temporal_best_match.h"
 #include "proxima/reflect/temporal_depth_image.h"
 
@@ -119,7 +120,7 @@ struct IntermediateReflection {
   uint32_t key_options[4] = {};   // bits of depth_discontinuity, spread_limit, curved_contrast, edge_contrast
   std::vector<WarpSample> sample;   // per reflective key pixel: z and Lr of its vertex
   std::vector<uint8_t> flat;        // likewise: not on a strongly curved reflector
-  std::vector<uint32_t> index;      // per key pixel (row-major): its index in key.pixels, set
+  LargeBuffer<uint32_t> index;      // per key pixel (row-major): its index in key.pixels, set
                                     // on reflective pixels only
   std::vector<WarpCandidate> candidates;  // in the warp's triangle order
   uint64_t triangles = 0, stretched = 0, curved = 0, discontinuous = 0, edges = 0;
