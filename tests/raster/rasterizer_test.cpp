@@ -444,7 +444,9 @@ struct HashedKeepRuns : HashedKeep {
     for (int k = 0; k < n; ++k) {
       EXPECT_EQ(f[k].y, f[0].y);
       EXPECT_EQ(f[k].triangle, f[0].triangle);
-      if (k > 0) EXPECT_GT(f[k].x, f[k - 1].x);
+      if (k > 0) {
+        EXPECT_GT(f[k].x, f[k - 1].x);
+      }
       if (keep(f[k])) bits |= uint64_t(1) << k;
     }
     return bits;

@@ -1,10 +1,10 @@
 // Demo section: reflections from clustered depth images (thesis ch. 4; docs/cluster_reflections.md).
-#include "demo.h"
+#include "demo_sections.h"
 #include "proxima/eval/image_error.h"
 #include "proxima/scene/load.h"
 #include "proxima/study/cluster_reflect.h"
 
-namespace proxima::cli::demo {
+namespace proxima::study::demo {
 
 namespace {
 
@@ -68,7 +68,7 @@ struct Tables {
 };
 
 // One path through the study, with the command line that reproduces it.
-ChildRun run_path(Context& c, const Run& run_def, const Settings& s) {
+StudyRun run_path(Context& c, const Run& run_def, const Settings& s) {
   const std::vector<std::string> args = {"reflect", "--method", "cluster", "--scene", run_def.scene, "--path",
                                          run_def.path, "--frames", "900", "--frame-step",
                                          std::to_string(s.frame_step), "--width", std::to_string(s.size),
@@ -89,12 +89,12 @@ ChildRun run_path(Context& c, const Run& run_def, const Settings& s) {
 }
 
 // Images of the first frame, the heat map on the reflection sections' common scale.
-void add_images(Context& c, Section& section, const ChildRun& run, const std::string& where, const Settings& s) {
+void add_images(Context& c, Section& section, const StudyRun& run, const std::string& where, const Settings& s) {
   auto it = run.results.images.find("cluster");
   const std::string color_file =
       run.dir + "/" + (it != run.results.images.end() ? it->second : std::string("cluster.png"));
-  const ImageF color = read_child_image(c, color_file);
-  const ImageF reference = read_child_image(c, run.dir + "/reference.png");
+  const ImageF color = read_study_image(c, color_file);
+  const ImageF reference = read_study_image(c, run.dir + "/reference.png");
   const ImageF err = error_image(color, reference);
   add_image(c, section, where + ": Embree, same rays", run.dir + "/reference.png");
   add_image(c, section, where + ": cluster depth images", color_file);
@@ -125,7 +125,7 @@ void cluster_section(Context& c) {
   for (int i = 0; i < n; ++i) {
     const Run& run_def = runs[i];
     const std::string where = std::string(run_def.scene) + " / " + run_def.path;
-    const ChildRun run = run_path(c, run_def, s);
+    const StudyRun run = run_path(c, run_def, s);
     section.commands.push_back(run.command);
     for (const auto& [name, value] : run.results.metrics)
       c.results->metrics["cluster_" + std::string(run_def.scene) + "_" + run_def.path + "_" + name] = value;
@@ -144,4 +144,4 @@ void cluster_section(Context& c) {
   c.results->sections.push_back(section);
 }
 
-}  // namespace proxima::cli::demo
+}  // namespace proxima::study::demo

@@ -1,12 +1,12 @@
 // Demo section: hybrid geometry- and image-based rendering (Funkhouser, sections 1–2;
 // `proxima gibr`, docs/gibr.md): radiance maps from photographs mapped through exact
 // visibility maps vs a z-buffer item buffer.
-#include "demo.h"
+#include "demo_sections.h"
 
 #include "proxima/scene/load.h"
 #include "proxima/study/gibr.h"
 
-namespace proxima::cli::demo {
+namespace proxima::study::demo {
 
 namespace {
 
@@ -42,7 +42,7 @@ void gibr_section(Context& c) {
   o.height = s.h;
   o.photo_images = false;
   o.seed = c.seed;
-  ChildRun run = run_study(c, "gibr/rooms",
+  StudyRun run = run_study(c, "gibr/rooms",
                            {"gibr", "--scene", "rooms", "--photos", std::to_string(s.photos), "--frames",
                             std::to_string(s.frames), "--photo-width", std::to_string(s.photo_w), "--photo-height",
                             std::to_string(s.photo_h), "--width", std::to_string(s.w), "--height", std::to_string(s.h),
@@ -66,4 +66,4 @@ void gibr_section(Context& c) {
   c.results->sections.push_back(section);
 }
 
-}  // namespace proxima::cli::demo
+}  // namespace proxima::study::demo

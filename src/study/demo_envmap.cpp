@@ -1,11 +1,11 @@
 // Demo section: environment maps with distance and position rectification (Wang et al. 2012;
 // `proxima reflect`, study/envmap_reflect.h, docs/envmap.md).
-#include "demo.h"
+#include "demo_sections.h"
 #include "proxima/eval/image_error.h"
 #include "proxima/scene/load.h"
 #include "proxima/study/envmap_reflect.h"
 
-namespace proxima::cli::demo {
+namespace proxima::study::demo {
 
 namespace {
 
@@ -47,7 +47,7 @@ Section intro(const Settings& s) {
 
 // `proxima reflect --compare` on one scene, in-process: the study's options and the flags
 // that reproduce them.
-ChildRun run_reflect(Context& c, Section& section, const Settings& s, const std::string& dir,
+StudyRun run_reflect(Context& c, Section& section, const Settings& s, const std::string& dir,
                      const std::string& scene_name, const std::string& camera, int cube, int reps) {
   study::EnvmapReflectOptions o;
   o.compare = true;
@@ -62,7 +62,7 @@ ChildRun run_reflect(Context& c, Section& section, const Settings& s, const std:
                                 std::to_string(reps), "--seed", std::to_string(c.seed), "--scene", scene_name};
   if (!camera.empty()) args.insert(args.end(), {"--camera", camera});
   const Scene scene = load_scene(scene_name);
-  ChildRun run = run_study(c, dir, args, [&](const study::StudyOutput& out) {
+  StudyRun run = run_study(c, dir, args, [&](const study::StudyOutput& out) {
     return study::run_envmap_reflect(scene, o, out);
   });
   section.commands.push_back(run.command);
@@ -104,13 +104,13 @@ Results paper_scenes(Context& c, Section& section, const Settings& s) {
 // method's image, its error heat map, an overview strip and zoomed crops of the window
 // where plain env mapping errs most (the sphere's reflection).
 void parallax_images(Context& c, Section& section, const Settings& s) {
-  const ChildRun par = run_reflect(c, section, s, "envmap/room-parallax", "room-parallax", "left", s.cube, s.reps);
+  const StudyRun par = run_reflect(c, section, s, "envmap/room-parallax", "room-parallax", "left", s.cube, s.reps);
   add_run(c, section, par.results, "room-parallax");
-  const ImageF reference = read_child_image(c, par.dir + "/reference.png");
+  const ImageF reference = read_study_image(c, par.dir + "/reference.png");
   add_image(c, section, "room-parallax: Embree reference", par.dir + "/reference.png");
   std::vector<ImageF> colors, errors;
   for (const char* m : kMethods) {
-    colors.push_back(read_child_image(c, par.dir + "/" + m + ".png"));
+    colors.push_back(read_study_image(c, par.dir + "/" + m + ".png"));
     errors.push_back(error_image(colors.back(), reference));
     add_image(c, section, std::string("room-parallax: ") + m, par.dir + "/" + m + ".png");
   }
@@ -171,4 +171,4 @@ void envmap_section(Context& c) {
   c.results->sections.push_back(section);
 }
 
-}  // namespace proxima::cli::demo
+}  // namespace proxima::study::demo

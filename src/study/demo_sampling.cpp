@@ -1,11 +1,11 @@
 // Demo section: depth-image sampling (thesis ch. 2; `proxima sample`, docs/depthimage.md).
 #include <algorithm>
 
-#include "demo.h"
+#include "demo_sections.h"
 #include "proxima/scene/load.h"
 #include "proxima/study/sampling.h"
 
-namespace proxima::cli::demo {
+namespace proxima::study::demo {
 
 namespace {
 
@@ -104,7 +104,7 @@ void run_scene(Context& c, Section& section, Tables& t, const Settings& s, size_
   o.frames = s.frames;
   o.reps = s.reps;
   o.seed = c.seed;
-  ChildRun run = run_study(c, "sampling/" + scene,
+  StudyRun run = run_study(c, "sampling/" + scene,
                            {"sample", "--scene", scene, "--method", "conventional,peeling,nrr-pixel", "--width",
                             std::to_string(s.width), "--frames", std::to_string(s.frames), "--reps",
                             std::to_string(s.reps), "--seed", std::to_string(c.seed)},
@@ -147,4 +147,4 @@ void sampling_section(Context& c) {
   c.results->sections.push_back(section);
 }
 
-}  // namespace proxima::cli::demo
+}  // namespace proxima::study::demo

@@ -1,6 +1,6 @@
 // Demo section: exact visibility maps by beam tracing a BSP cell complex (Funkhouser;
 // `proxima visibility`, docs/visibility.md).
-#include "demo.h"
+#include "demo_sections.h"
 
 #include <limits>
 
@@ -8,7 +8,7 @@
 #include "proxima/scene/visibility_models.h"
 #include "proxima/study/visibility.h"
 
-namespace proxima::cli::demo {
+namespace proxima::study::demo {
 
 namespace {
 
@@ -59,7 +59,7 @@ void run_model(Context& c, Section& section, const Settings& s, const Model& m, 
   std::vector<std::string> args{"visibility", "--scene", m.scene, "--width", std::to_string(s.size), "--height",
                                 std::to_string(s.size)};
   if (s.frames) args.insert(args.end(), {"--frames", std::to_string(s.frames)});
-  ChildRun run = run_study(c, std::string("visibility/") + m.scene, args, [&](const study::StudyOutput& out) {
+  StudyRun run = run_study(c, std::string("visibility/") + m.scene, args, [&](const study::StudyOutput& out) {
     return study::run_visibility(load_scene(m.scene), options(s), out);
   });
   section.commands.push_back(run.command);
@@ -85,7 +85,7 @@ void run_building(Context& c, Section& section, const Settings& s, int n, Table&
   study::VisibilityOptions o = options(s);
   o.oracle = false;
   o.images = false;
-  ChildRun run = run_study(c, "visibility/building-" + std::to_string(n), args, [&](const study::StudyOutput& out) {
+  StudyRun run = run_study(c, "visibility/building-" + std::to_string(n), args, [&](const study::StudyOutput& out) {
     return study::run_visibility(make_vis_building(n), o, out);
   });
   section.commands.push_back(run.command);
@@ -128,4 +128,4 @@ void visibility_section(Context& c) {
   c.results->sections.push_back(section);
 }
 
-}  // namespace proxima::cli::demo
+}  // namespace proxima::study::demo

@@ -1,12 +1,12 @@
 // Demo sections for the ground truth: Embree reference renders (proxima/study/reference.h),
 // rasterizer vs Embree (proxima/study/raster_bench.h).
-#include "demo.h"
+#include "demo_sections.h"
 #include "proxima/core/image_io.h"
 #include "proxima/scene/load.h"
 #include "proxima/study/raster_bench.h"
 #include "proxima/study/reference.h"
 
-namespace proxima::cli::demo {
+namespace proxima::study::demo {
 
 void reference_section(Context& c) {
   Section section{"reference", "Reference renders (Embree ray tracing)",
@@ -63,4 +63,4 @@ void raster_section(Context& c) {
        {"proxima bench raster   # adds ms/frame beside Mesa llvmpipe"}});
 }
 
-}  // namespace proxima::cli::demo
+}  // namespace proxima::study::demo

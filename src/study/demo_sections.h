@@ -1,6 +1,6 @@
 // `proxima demo` sections: one function per technique, each adding its prose, tables,
 // images, plots and reproducing commands to the report's Results. A technique joins the
-// demo with one demo_<technique>.cpp and one line in demo_sections() (cmd_demo.cpp).
+// demo with one demo_<technique>.cpp and one line in demo_sections() (demo.cpp).
 #pragma once
 
 #include <filesystem>
@@ -8,27 +8,25 @@
 #include <string>
 #include <vector>
 
-#include "command.h"
 #include "proxima/core/image.h"
 #include "proxima/core/progress.h"
 #include "proxima/eval/results.h"
 #include "proxima/study/study.h"
 
-namespace proxima::cli::demo {
+namespace proxima::study::demo {
 
 struct Context {
   bool full = false;  // the papers' settings instead of the ≤ 10-minute ones
-  int threads = 0;    // passed on to every child run (0 = all cores)
+  int threads = 0;    // shown in every reproducing command (0 = all cores)
   uint64_t seed = 1;
   int width = 512, height = 512;  // reference renders
   std::filesystem::path out;      // the report's directory
   std::string out_arg;            // --out as given, for the reproducing commands
   Results* results = nullptr;
   Progress* progress = nullptr;
-  CLI::App* root = nullptr;
 };
 
-// One technique's section. `steps` is its number of progress steps (child runs).
+// One technique's section. `steps` is its number of progress steps (study runs).
 struct SectionDef {
   std::string id;
   std::string stage;  // progress label
@@ -36,7 +34,7 @@ struct SectionDef {
   std::function<void(Context&)> run;
 };
 
-// Every section, in page order (cmd_demo.cpp).
+// Every section, in page order (demo.cpp).
 std::vector<SectionDef> demo_sections();
 
 // The sections themselves (demo_<technique>.cpp).
@@ -57,32 +55,27 @@ int shadows_steps(const Context& c);
 int temporal_steps(const Context& c);
 
 // A finished study run: its results and where they are, relative to the report.
-struct ChildRun {
+struct StudyRun {
   Results results;
   std::string dir;      // relative to Context::out
   std::string command;  // the shell command reproducing it
 };
 
-// Runs this binary as `proxima <args> --out <out>/<dir> [--threads N]` (one progress step),
-// its stdout and stderr into <dir>/log.txt, and reads back its results.json. Throws
-// std::runtime_error naming the log when the run fails.
-ChildRun run_child(Context& c, const std::string& dir, std::vector<std::string> args, bool pass_threads = true);
-
 // Runs one study in-process as one progress step: `study` writes its images into
 // <out>/<dir> and returns its results, which are also written there as results.json.
 // `args` is the command reproducing the run (shown in the report, with `--out <dir>` and
 // `--threads N` appended); the study must be called with the options those flags give.
-ChildRun run_study(Context& c, const std::string& dir, std::vector<std::string> args,
+StudyRun run_study(Context& c, const std::string& dir, std::vector<std::string> args,
                    const std::function<Results(const study::StudyOutput&)>& study);
 
-// A metric of a child run, NaN if it did not write it.
+// A metric of a study run, NaN if it did not write it.
 double metric(const Results& r, const std::string& name);
 
 // Adds image file `file` (relative to the report) under `role` to the report and section.
 void add_image(Context& c, Section& s, const std::string& role, const std::string& file);
 
-// Reads an 8-bit image written by a child (linear RGB).
-ImageF read_child_image(const Context& c, const std::string& file);
+// Reads an 8-bit image a study wrote (linear RGB).
+ImageF read_study_image(const Context& c, const std::string& file);
 
 // The size × size window (on a stride of size / 8) with the largest summed error.
 struct Window {
@@ -105,4 +98,4 @@ void add_heatmap_legend(Context& c, Section& s, float max_error);
 // "12.3" — short numbers for table cells that combine several values.
 std::string fixed(double v, int decimals);
 
-}  // namespace proxima::cli::demo
+}  // namespace proxima::study::demo

@@ -1,21 +1,15 @@
-// Shared machinery of the demo sections (demo.h): child runs, images, crops.
-#include <fcntl.h>
-#include <sys/wait.h>
-#include <unistd.h>
+// Shared machinery of the demo sections (demo_sections.h): study runs, images, crops.
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
-#include <stdexcept>
 
-#include "demo.h"
+#include "demo_sections.h"
 #include "proxima/core/image_io.h"
 #include "proxima/core/parallel.h"
 #include "proxima/eval/image_error.h"
 
-namespace proxima::cli::demo {
+namespace proxima::study::demo {
 
 std::string fixed(double v, int decimals) {
   if (!std::isfinite(v)) return "–";
@@ -35,62 +29,9 @@ std::string shell_quote(const std::string& a) {
   return q + "'";
 }
 
-std::string tail_of(const std::filesystem::path& log) {
-  std::ifstream in(log);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  std::string out;
-  for (size_t i = lines.size() > 5 ? lines.size() - 5 : 0; i < lines.size(); ++i) out += "\n  " + lines[i];
-  return out;
-}
-
 }  // namespace
 
-ChildRun run_child(Context& c, const std::string& dir, std::vector<std::string> args, bool pass_threads) {
-  const std::filesystem::path out = c.out / dir;
-  std::filesystem::create_directories(out);
-  args.push_back("--out");
-  args.push_back(out.string());
-  if (pass_threads && c.threads > 0) {
-    args.push_back("--threads");
-    args.push_back(std::to_string(c.threads));
-  }
-  ChildRun run;
-  run.dir = dir;
-  run.command = "proxima";
-  for (size_t i = 0; i < args.size(); ++i)
-    run.command += " " + shell_quote(args[i] == out.string() ? (std::filesystem::path(c.out_arg) / dir).string() : args[i]);
-  c.progress->step(dir);
-
-  const std::filesystem::path log = out / "log.txt";
-  std::vector<std::string> argv_s{"proxima"};
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  std::fflush(nullptr);
-  const pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error("demo: fork failed for " + run.command);
-  if (pid == 0) {
-    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) {
-      dup2(fd, 1);
-      dup2(fd, 2);
-      close(fd);
-    }
-    execv("/proc/self/exe", argv.data());
-    _exit(127);
-  }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw std::runtime_error("`" + run.command + "` failed (log " + log.string() + "):" + tail_of(log));
-  run.results = read_results_json(out / "results.json");
-  return run;
-}
-
-ChildRun run_study(Context& c, const std::string& dir, std::vector<std::string> args,
+StudyRun run_study(Context& c, const std::string& dir, std::vector<std::string> args,
                    const std::function<Results(const study::StudyOutput&)>& study) {
   const std::filesystem::path out = c.out / dir;
   std::filesystem::create_directories(out);
@@ -101,7 +42,7 @@ ChildRun run_study(Context& c, const std::string& dir, std::vector<std::string> 
     args.push_back("--threads");
     args.push_back(std::to_string(c.threads));
   }
-  ChildRun run;
+  StudyRun run;
   run.dir = dir;
   for (const std::string& a : args) run.command += (run.command.empty() ? "" : " ") + shell_quote(a);
   c.progress->step(dir);
@@ -122,7 +63,7 @@ void add_image(Context& c, Section& s, const std::string& role, const std::strin
   s.images.push_back(role);
 }
 
-ImageF read_child_image(const Context& c, const std::string& file) { return read_image_linear(c.out / file, 3); }
+ImageF read_study_image(const Context& c, const std::string& file) { return read_image_linear(c.out / file, 3); }
 
 Window worst_window(const ImageF& error, int size) {
   Window best{0, 0, std::min({size, error.width(), error.height()})};
@@ -181,4 +122,4 @@ void add_heatmap_legend(Context& c, Section& s, float max_error) {
   add_image(c, s, "heat-map legend: error 0 (left, black) to ≥ " + fixed(max_error, 0) + " (right, yellow), 0–255 display scale", file);
 }
 
-}  // namespace proxima::cli::demo
+}  // namespace proxima::study::demo

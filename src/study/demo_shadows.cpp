@@ -6,12 +6,12 @@
 #include <variant>
 #include <vector>
 
-#include "demo.h"
+#include "demo_sections.h"
 #include "proxima/eval/image_error.h"
 #include "proxima/scene/load.h"
 #include "proxima/study/shadows.h"
 
-namespace proxima::cli::demo {
+namespace proxima::study::demo {
 
 namespace {
 
@@ -59,7 +59,7 @@ struct Tables {
 
 // The light-size-1 run's figures: time per step, every shadow and error image, and a
 // close-up of the penumbra where NRR errs most.
-void add_light1_figures(Context& c, Section& section, Tables& t, const ChildRun& run, const Settings& s) {
+void add_light1_figures(Context& c, Section& section, Tables& t, const StudyRun& run, const Settings& s) {
   for (const char* sampling : {"nrr", "conventional", "peeling"}) {
     const std::string p = std::string(sampling) + "_";
     t.times.rows.push_back({std::string(sampling), metric(run.results, p + "time_reference_ms"),
@@ -72,8 +72,8 @@ void add_light1_figures(Context& c, Section& section, Tables& t, const ChildRun&
     add_image(c, section, std::string("light 1: ") + sampling + " error (green too bright, red too dark)",
               run.dir + "/" + sampling + "_error.png");
   }
-  const ImageF truth = read_child_image(c, run.dir + "/geometry_shadow.png");
-  const ImageF nrr = read_child_image(c, run.dir + "/nrr_shadow.png");
+  const ImageF truth = read_study_image(c, run.dir + "/geometry_shadow.png");
+  const ImageF nrr = read_study_image(c, run.dir + "/nrr_shadow.png");
   const Window w = worst_window(error_image(nrr, truth), std::max(24, s.out_res / 8));
   const int zoom = std::max(2, 192 / w.size);
   write_image(c, section, "zoom ×" + std::to_string(zoom) + ": geometry", run.dir + "/zoom_geometry.png",
@@ -88,7 +88,7 @@ void run_light(Context& c, Section& section, Tables& t, const Settings& s, doubl
   std::vector<std::string> args = {"shadows", "--scene", "city", "--sampling", "nrr,conventional,peeling",
                                    "--light-size", label, "--light-samples", std::to_string(s.light_samples),
                                    "--ref-res", std::to_string(s.ref_res), "--out-res", std::to_string(s.out_res)};
-  ChildRun run = run_study(c, "shadows/city-light-" + label, args, [&](const study::StudyOutput& out) {
+  StudyRun run = run_study(c, "shadows/city-light-" + label, args, [&](const study::StudyOutput& out) {
     return study::run_shadows(load_scene("city"), options(s, size), out);
   });
   section.commands.push_back(run.command);
@@ -126,4 +126,4 @@ void shadows_section(Context& c) {
   c.results->sections.push_back(section);
 }
 
-}  // namespace proxima::cli::demo
+}  // namespace proxima::study::demo

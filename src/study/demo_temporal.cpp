@@ -6,12 +6,12 @@
 #include <variant>
 #include <vector>
 
-#include "demo.h"
+#include "demo_sections.h"
 #include "proxima/eval/image_error.h"
 #include "proxima/scene/load.h"
 #include "proxima/study/temporal_reflect.h"
 
-namespace proxima::cli::demo {
+namespace proxima::study::demo {
 
 namespace {
 
@@ -46,7 +46,7 @@ Section intro(const Settings& s) {
 }
 
 // One path through the study, with the command line that reproduces it.
-ChildRun run_path(Context& c, const Run& run_def, const Settings& s) {
+StudyRun run_path(Context& c, const Run& run_def, const Settings& s) {
   const std::vector<std::string> args = {"reflect", "--method", "temporal", "--scene", run_def.scene, "--path",
                                          run_def.path, "--frames", std::to_string(s.frames), "--width",
                                          std::to_string(s.size), "--height", std::to_string(s.size),
@@ -76,10 +76,10 @@ std::vector<double> recompute_series(const Results& r) {
   return series;
 }
 
-void add_images(Context& c, Section& section, const ChildRun& run, const std::string& where) {
-  const ImageF temporal = read_child_image(c, run.dir + "/temporal.png");
-  const ImageF direct = read_child_image(c, run.dir + "/direct.png");
-  const ImageF reference = read_child_image(c, run.dir + "/reference.png");
+void add_images(Context& c, Section& section, const StudyRun& run, const std::string& where) {
+  const ImageF temporal = read_study_image(c, run.dir + "/temporal.png");
+  const ImageF direct = read_study_image(c, run.dir + "/direct.png");
+  const ImageF reference = read_study_image(c, run.dir + "/reference.png");
   add_image(c, section, where + ": full ray tracing", run.dir + "/reference.png");
   add_image(c, section, where + ": temporal reuse", run.dir + "/temporal.png");
   add_image(c, section, where + ": direct reprojection", run.dir + "/direct.png");
@@ -121,7 +121,7 @@ void temporal_section(Context& c) {
   std::vector<std::vector<double>> series;
   for (const Run& run_def : kRuns) {
     const std::string where = std::string(run_def.scene) + " / " + run_def.path;
-    const ChildRun run = run_path(c, run_def, s);
+    const StudyRun run = run_path(c, run_def, s);
     section.commands.push_back(run.command);
     const Results& r = run.results;
     for (const auto& [name, value] : r.metrics)
@@ -144,4 +144,4 @@ void temporal_section(Context& c) {
   c.results->sections.push_back(section);
 }
 
-}  // namespace proxima::cli::demo
+}  // namespace proxima::study::demo
