@@ -3,9 +3,7 @@
 #include "cmd_reflect_cluster.h"
 
 #include "proxima/core/error.h"
-#include "proxima/core/parallel.h"
-#include "proxima/core/progress.h"
-#include "proxima/scene/load.h"
+#include "scene_study.h"
 
 namespace proxima::cli {
 
@@ -83,14 +81,8 @@ int run_cluster_reflect(const ClusterReflectFlags& f) {
   o.width = f.common.width;
   o.height = f.common.height;
   o.reflection.seed = f.common.seed;
-  study::validate(o);
-  if (f.common.threads < 0) fail_input("--threads: must be ≥ 0");
-  ThreadLimit limit(f.common.threads);
-  const Scene scene = load_scene(f.common.scene);
-  study::validate(o, scene);  // before --out is made
-  const auto out = prepare_out_dir(f.common.out);
-  Progress progress;
-  return publish_study(out, study::run_cluster_reflect(scene, o, study::StudyOutput{out}, &progress));
+  SceneStudyRun run = run_scene_study(f.common, o, true, study::run_cluster_reflect);
+  return publish_study(run.out, std::move(run.results));
 }
 
 }  // namespace proxima::cli

@@ -5,9 +5,7 @@
 #include <iostream>
 
 #include "proxima/core/error.h"
-#include "proxima/core/parallel.h"
-#include "proxima/core/progress.h"
-#include "proxima/scene/load.h"
+#include "scene_study.h"
 
 namespace proxima::cli {
 
@@ -97,14 +95,7 @@ int run_temporal_reflect(const TemporalReflectRun& run) {
   o.compare = run.compare;
   o.light_samples = run.light_samples;
   o.glossy_rays = run.glossy_rays;
-  study::validate(o);
-  if (run.common.threads < 0) fail_input("--threads: must be ≥ 0");
-  ThreadLimit limit(run.common.threads);
-  const Scene scene = load_scene(run.common.scene);
-  study::validate(o, scene);  // before --out is made
-  const auto out = prepare_out_dir(run.common.out);
-  Progress progress;
-  Results results = study::run_temporal_reflect(scene, o, study::StudyOutput{out}, &progress);
+  auto [out, results] = run_scene_study(run.common, o, true, study::run_temporal_reflect);
   // Everything into results.json; the per-frame table (one row per frame) is not printed.
   Results printed = results;
   std::erase_if(printed.tables, [](const Table& t) { return t.title == "Per frame"; });

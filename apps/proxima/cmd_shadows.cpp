@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "command.h"
+#include "scene_study.h"
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
 #include "proxima/scene/load.h"
@@ -70,16 +71,9 @@ Command register_shadows(CLI::App& root) {
   app->add_flag("--no-images", f.no_images, "write results.json only");
 
   return {app, [] {
-            // Every input checked before the output directory exists.
-            if (f.common.threads < 0) fail_input("--threads: must be ≥ 0");
             const study::ShadowsOptions& options = finish_options(f);
-            study::validate(options);
-            ThreadLimit limit(f.common.threads);
-            const Scene scene = load_scene(f.common.scene);
-            study::validate(options, scene);
-            const auto out = prepare_out_dir(f.common.out);
-            const study::StudyOutput images{f.no_images ? std::filesystem::path() : out};
-            return publish_study(out, study::run_shadows(scene, options, images));
+            SceneStudyRun run = run_scene_study(f.common, options, !f.no_images, study::run_shadows);
+            return publish_study(run.out, std::move(run.results));
           }};
 }
 
