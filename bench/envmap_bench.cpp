@@ -1,7 +1,8 @@
-// Google Benchmark micro-benchmarks of environment maps with distance (issue 6) on
-// room-reflector (filtered cube-map samples, coherent and random directions) and on the
-// paper's two Table 1 reflectors, room-reflector and room-car (the frame's reflector
-// visibility and the shading pass per method at 1024×768 with a 512² map), 1 thread. The figures in docs/RESULTS.md come from `proxima reflect --compare`; these
+// Google Benchmark micro-benchmarks of environment maps with distance on room-reflector
+// (filtered cube-map samples, coherent and random directions) and on the paper's two
+// Table 1 reflectors, room-reflector and room-car (the frame's reflector visibility and the
+// shading pass per method at 1024×768 with a 512² map), 1 thread. The figures in
+// docs/RESULTS.md and docs/journal/envmap.md come from `proxima reflect --compare`; these
 // are for profiling.
 #include <benchmark/benchmark.h>
 
@@ -91,7 +92,7 @@ void BM_ShadeReflector(benchmark::State& state) {
   in.rectify.D = 12.0f;
   for (auto _ : state)
     benchmark::DoNotOptimize(shade_reflector_pixels(r.scene, r.rays, r.camera, r.pixels, in));
-  state.SetLabel(std::string(kScenes[state.range(1)]) + " " + method_name(in.method));
+  state.SetLabel(std::string(kScenes[state.range(1)]) + " " + envmap_method_name(in.method));
 }
 BENCHMARK(BM_ShadeReflector)
     ->ArgsProduct({{0, 1, 2}, {0, 1}})

@@ -1,4 +1,4 @@
-// gibr/ novel-view benchmark (issue 10): render_novel_view at 640×480 with 2 × 2 samples per
+// gibr/ novel-view benchmark: render_novel_view at 640×480 with 2 × 2 samples per
 // pixel (`proxima gibr --novel-ss 0`), over the 10 views `proxima gibr --views path --frames 10`
 // renders, on the visibility-map radiance maps `proxima gibr --photos 100` builds; the fast
 // path beside the plain one (NovelViewOptions::fast, same bits) in one run. Scene 0..2 =

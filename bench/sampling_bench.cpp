@@ -1,4 +1,4 @@
-// Google Benchmark micro-benchmarks of depth-image sampling (issue 4): 3 images of
+// Google Benchmark micro-benchmarks of depth-image sampling: 3 images of
 // 1024×1024 (triangle view set, as `proxima sample`) on nest, grass, city and tree, by
 // conventional rendering, 3-layer depth peeling and NRR with pixel redundancy, shaded.
 // The issue's bound: NRR (pixel) ≤ 2.5× conventional and ≤ 1.3× peeling. Compare the

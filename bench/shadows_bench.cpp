@@ -1,4 +1,4 @@
-// Google Benchmark of soft shadows from reconstructed depth images (issue 5, thesis
+// Google Benchmark of soft shadows from reconstructed depth images (thesis
 // ch. 3 §3.4.3, Figure 20): the time of ONE shadow map (rasterized depth, 1024², from the
 // light's centre) of the original grass geometry vs of its NRR + hybrid reconstruction
 // (four 1024² reference images from the light corners, light size 1) as the grass grows

@@ -6,6 +6,10 @@
 // 0.05 --edge-rule recompute --recompute-splats; reprojection's `blend`: the mesh's
 // blend_error (0 = off; 8 = the CLI's default --blend-error, which times the risk test). 1 thread. The figures in docs/RESULTS.md
 // come from `proxima reflect --compare`; these are for profiling.
+// BM_TemporalWalk is the whole method through the library: the walk at side², every frame
+// temporal reuse beside full reflection ray tracing (as `proxima reflect --method temporal
+// --path walk --glossy-rays 8 --threshold 0.3 --compare --threads 1` with the CLI's
+// defaults), so its buffers get what every library user gets (core/large_buffer.h).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -14,6 +18,7 @@
 #include <utility>
 
 #include "proxima/core/parallel.h"
+#include "proxima/core/timer.h"
 #include "proxima/reflect/temporal_reuse.h"
 #include "proxima/scene/builtin_scenes.h"
 #include "proxima/scene/camera_path.h"
@@ -138,6 +143,58 @@ void BM_TemporalDepthImage(benchmark::State& state) {
   state.counters["reflective"] = double(key.pixels.size());
 }
 
+// The walk's `frames` frames, each: the G-buffer, temporal reuse (timed), full reflection
+// tracing of the same frame (timed). Counters: mean ms per frame of each and their ratio.
+void BM_TemporalWalk(benchmark::State& state) {
+  const int side = int(state.range(0)), frames = int(state.range(1));
+  const Scene scene = make_builtin_scene("living-room");
+  const RayScene rays(scene);
+  const CameraPath& path = scene.camera_paths[size_t(find_camera_path(scene, "walk"))];
+  const float t0 = path.keys.front().time, t1 = path.keys.back().time;
+  const float far = scene_far_plane(scene);
+  ReflectionOptions ro;
+  ro.supersample = 1;
+  ro.glossy_rays = 8;
+  TemporalOptions to;  // the CLI's defaults where they differ from the library's
+  to.keyframe_threshold = 0.3f;
+  to.keyframe_cost = 1.0f;
+  to.warp.blend_error = 8.0f;
+  ThreadLimit limit(1);
+  // Wall and process CPU time: on a shared machine the CPU times are the steadier figures.
+  double temporal_ms = 0.0, reference_ms = 0.0, temporal_cpu = 0.0, reference_cpu = 0.0;
+  int keyframes = 0;
+  for (auto _ : state) {
+    TemporalState temporal;
+    std::vector<vec3> reflected;
+    std::vector<uint8_t> flags;
+    temporal_ms = reference_ms = temporal_cpu = reference_cpu = 0.0;
+    keyframes = 0;
+    for (int f = 0; f < frames; ++f) {
+      const float t = frames > 1 ? t0 + float(f) * (t1 - t0) / float(frames - 1) : t0;
+      const ReflectionFrame frame = prepare_reflection_frame(scene, camera_at_time(path, t, side, side, 0.01f, far), ro);
+      TemporalFrameStats st;
+      double cpu = process_cpu_ms();
+      temporal_reflections_into(scene, rays, frame, temporal, to, reflected, &st, &flags);
+      temporal_cpu += process_cpu_ms() - cpu;
+      temporal_ms += st.reflection_ms();
+      keyframes += st.key ? 1 : 0;
+      Stopwatch watch;
+      cpu = process_cpu_ms();
+      const TracedReflections traced = trace_reflections(scene, rays, frame);
+      reference_cpu += process_cpu_ms() - cpu;
+      reference_ms += watch.elapsed_ms();
+      benchmark::DoNotOptimize(traced.radiance.data());
+    }
+  }
+  state.counters["temporal_ms"] = temporal_ms / frames;
+  state.counters["reference_ms"] = reference_ms / frames;
+  state.counters["speedup"] = temporal_ms > 0.0 ? reference_ms / temporal_ms : 0.0;
+  state.counters["temporal_cpu_ms"] = temporal_cpu / frames;
+  state.counters["reference_cpu_ms"] = reference_cpu / frames;
+  state.counters["speedup_cpu"] = temporal_cpu > 0.0 ? reference_cpu / temporal_cpu : 0.0;
+  state.counters["keyframes"] = keyframes;
+}
+
 #define TEMPORAL_ARGS ArgsProduct({{256, 512, 1024}, {0, 1}})->ArgNames({"side", "rules"})->Unit(benchmark::kMillisecond)
 BENCHMARK(BM_TemporalBestMatch)->TEMPORAL_ARGS;
 BENCHMARK(BM_TemporalBestMatchInto)->TEMPORAL_ARGS;
@@ -148,5 +205,10 @@ BENCHMARK(BM_TemporalReproject)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TemporalDepthImage)->ArgsProduct({{256, 512, 1024}, {0}})->ArgNames({"side", "rules"})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TemporalTrace)->ArgsProduct({{256, 512, 1024}, {0}})->ArgNames({"side", "rules"})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TemporalWalk)
+    ->Args({1024, 100})
+    ->ArgNames({"side", "frames"})
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace

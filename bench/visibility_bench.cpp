@@ -1,10 +1,10 @@
-// visibility/ benchmarks (issue 9), 1 thread (the code is serial): BSP → winged-pair build
+// visibility/ benchmarks, 1 thread (the code is serial): BSP → winged-pair build
 // per test model, the visibility map per viewpoint along each model's `walk` (20 frames
 // spread over the path; 20 iterations = one pass), and the output-sensitivity sweep: the
-// floor-1 walk of `building --floors N`, N = 1, 2, 5, 10 (issue target: < 25 % growth from
+// floor-1 walk of `building --floors N`, N = 1, 2, 5, 10 (target: < 25 % growth from
 // 1 to 10). Map resolution 512² (the map's cost hardly depends on it). Brush-built level:
 // build and map of `level-large` (~19k triangles: coplanar overlaps, T-junctions, unwelded
-// seams) at 512 × 384 along its walk (issue target: ≤ 20 ms average, ≤ 100 ms maximum per
+// seams) at 512 × 384 along its walk (target: ≤ 20 ms average, ≤ 100 ms maximum per
 // map, subdivision ≤ 1 s). Counters: beams and regions per viewpoint, averaged over the
 // iterations.
 #include <benchmark/benchmark.h>

@@ -1,6 +1,5 @@
-// `proxima reflect --method temporal` (issue 8, thesis ch. 5): temporal reuse of reflections
-// along a camera path, optionally side by side with full reflection ray tracing and the
-// direct depth reprojection baseline (--compare).
+// `proxima reflect --method temporal`: the flags of study/temporal_reflect.h. cmd_reflect.cpp
+// owns the flags shared with the other methods and dispatches here.
 #pragma once
 
 #include <string>
@@ -8,30 +7,13 @@
 #include <CLI/CLI.hpp>
 
 #include "command.h"
-#include "proxima/core/math.h"
+#include "proxima/study/temporal_reflect.h"
 
 namespace proxima::cli {
 
-// Flags only the temporal method has; `proxima reflect` owns the shared ones.
-struct TemporalReflectFlags {
-  int frames = 0;               // frames the path is divided into; 0 = the path's own count
-  int frame_step = 1;           // render every frame_step-th frame (reuse spans the skipped ones)
-  float threshold = 0.3f;       // key-frame threshold on the recomputed fraction
-  float stretch_limit = 16.0f;  // warp triangles stretched more than this in area are unreliable
-  float spread_limit = kInf;    // off; e.g. 8: warp triangles on reflectors bending directions more are unreliable
-  float depth_discontinuity = 0.1f;  // warp corners whose s.d or s.d + s.r differ more (relative) are not connected
-  float curved_contrast = 0.05f;  // ... where s·Lr varies by more than this between neighbours
-  float edge_contrast = kInf;   // off; warp triangles whose corners' s·Lr differ more span a reflected edge
-  std::string edge_rule = "nearest";  // there: "nearest" corner's Lr, or "recompute"
-  bool recompute_splats = false;  // samples no warp triangle reached are recomputed
-  float blend_error = 8.0f;     // inf = off (the thesis' method); reused samples whose expected display error (blend_risk, 0–255) exceeds this are recomputed
-  float keyframe_cost = 1.0f;   // 0 = off (the thesis' policy alone); fixed steps' cost per key pixel in traced rays (TemporalOptions::keyframe_cost)
-  bool match_extrapolate = false;  // best match also starts from the offsets' last change continued
-  int image_frame = -1;         // frame whose images are written; −1 = the first non-key frame
-  float lobe_seed_cell = 0.0f;  // > 0: glossy lobe rays seeded per world cell of this size × diagonal
-  bool breakdown = false;       // with --compare: temporal error by pixel class, key-frame age, seed noise
-  int reference_rays = 0;       // > 0, with --compare: also errors against a reference with this many lobe rays
-};
+// The study's options; add_temporal_reflect_flags binds the temporal-only ones, cmd_reflect.cpp
+// copies --frames --frame-step --image-frame (the cluster group's) in.
+using TemporalReflectFlags = study::TemporalReflectOptions;
 
 // What a temporal run reads: the shared `reflect` flags and the temporal ones.
 struct TemporalReflectRun {
@@ -43,12 +25,13 @@ struct TemporalReflectRun {
   TemporalReflectFlags temporal;
 };
 
-// --threshold --stretch-limit --spread-limit (--frames --frame-step --image-frame are the cluster group's,
-// copied into TemporalReflectFlags by cmd_reflect.cpp).
+// --threshold --stretch-limit --spread-limit --curved-contrast --edge-contrast --edge-rule
+// --recompute-splats --blend-error --keyframe-cost --match-extrapolate --depth-discontinuity
+// --lobe-seed-cell --breakdown --reference-rays.
 void add_temporal_reflect_flags(CLI::App* app, TemporalReflectFlags& flags);
 
-// Runs the path, writes results.json (metrics, tables shaped like the thesis' Tables 22–23,
-// a per-frame table) and images into --out. InputError naming the flag for bad input.
+// Runs the study, writes results.json (with the per-frame table, which is not printed) and
+// images into --out. InputError naming the flag for bad input (before anything is written).
 int run_temporal_reflect(const TemporalReflectRun& run);
 
 }  // namespace proxima::cli

@@ -69,5 +69,6 @@ Command register_shadows(CLI::App& root);
 Command register_view(CLI::App& root);
 Command register_bench_view(CLI::App& bench);  // `bench view`, cmd_bench_view.cpp
 Command register_gibr(CLI::App& root);
+Command register_results(CLI::App& root);  // cmd_results.cpp
 
 }  // namespace proxima::cli

@@ -3,6 +3,9 @@
 // visibility maps vs a z-buffer item buffer.
 #include "demo.h"
 
+#include "proxima/scene/load.h"
+#include "proxima/study/gibr.h"
+
 namespace proxima::cli::demo {
 
 namespace {
@@ -30,11 +33,21 @@ void gibr_section(Context& c) {
                       std::to_string(s.photo_h) + ", " + std::to_string(s.frames) + " novel views at " +
                       std::to_string(s.w) + "×" + std::to_string(s.h) + ".",
                   {}, {}, {}};
-  ChildRun run = run_child(c, "gibr/rooms",
+  study::GibrOptions o;
+  o.model.photos = s.photos;
+  o.frames = s.frames;
+  o.model.photo_width = s.photo_w;
+  o.model.photo_height = s.photo_h;
+  o.width = s.w;
+  o.height = s.h;
+  o.photo_images = false;
+  o.seed = c.seed;
+  ChildRun run = run_study(c, "gibr/rooms",
                            {"gibr", "--scene", "rooms", "--photos", std::to_string(s.photos), "--frames",
                             std::to_string(s.frames), "--photo-width", std::to_string(s.photo_w), "--photo-height",
                             std::to_string(s.photo_h), "--width", std::to_string(s.w), "--height", std::to_string(s.h),
-                            "--no-photo-images"});
+                            "--no-photo-images", "--seed", std::to_string(c.seed)},
+                           [&](const study::StudyOutput& out) { return study::run_gibr(load_scene("rooms"), o, out); });
   section.commands.push_back(run.command);
   const Results& r = run.results;
   for (const auto& [name, value] : r.metrics) c.results->metrics["gibr_rooms_" + name] = value;

@@ -1,10 +1,10 @@
-// Demo sections for the ground truth: Embree reference renders, rasterizer vs Embree.
+// Demo sections for the ground truth: Embree reference renders (proxima/study/reference.h),
+// rasterizer vs Embree (proxima/study/raster_bench.h).
 #include "demo.h"
 #include "proxima/core/image_io.h"
-#include "proxima/core/timer.h"
-#include "proxima/eval/raster_agreement.h"
 #include "proxima/scene/load.h"
-#include "proxima/trace/reference_renderer.h"
+#include "proxima/study/raster_bench.h"
+#include "proxima/study/reference.h"
 
 namespace proxima::cli::demo {
 
@@ -17,22 +17,20 @@ void reference_section(Context& c) {
   Table table{"reference renders", {"scene", "triangles", "width", "height", "bvh_build_ms", "render_ms"}, {}};
   for (const char* name : {"cornell", "living-room"}) {
     c.progress->step(name);
-    Scene scene = load_scene(name);
-    Camera cam = pick_camera(scene, {}, c.width, c.height);
-    RayScene rays(scene);
-    ReferenceOptions opts;
-    opts.seed = c.seed;
-    opts.supersample = 2;
-    Stopwatch w;
-    ImageF color = render_reference(scene, rays, cam, opts);
-    double ms = w.elapsed_ms();
-    std::string role = std::string(name) + "_reference";
-    write_png_linear(c.out / (role + ".png"), color);
+    const Scene scene = load_scene(name);
+    study::ReferenceStudyOptions options;
+    options.width = c.width;
+    options.height = c.height;
+    options.seed = c.seed;
+    options.supersample = 2;
+    const study::ReferenceRender r = study::render_reference_view(scene, options, false);
+    const std::string role = std::string(name) + "_reference";
+    write_png_linear(c.out / (role + ".png"), r.color);
     add_image(c, section, role, role + ".png");
-    std::string metric = std::string(name) == "cornell" ? "cornell_render_ms" : "living_room_render_ms";
-    c.results->metrics[metric] = ms;
-    table.rows.push_back({std::string(name), double(scene.triangles.size()), double(cam.width), double(cam.height),
-                          rays.build_ms(), ms});
+    const std::string metric = std::string(name) == "cornell" ? "cornell_render_ms" : "living_room_render_ms";
+    c.results->metrics[metric] = r.render_ms;
+    table.rows.push_back({std::string(name), double(r.triangles), double(r.camera.width), double(r.camera.height),
+                          r.bvh_build_ms, r.render_ms});
     section.commands.push_back("proxima render --scene " + std::string(name) + " --width " + std::to_string(c.width) +
                                " --height " + std::to_string(c.height) + " --spp 2 --out out/" + name);
   }
@@ -45,16 +43,14 @@ void raster_section(Context& c) {
   Table table{"rasterized vs ray-cast triangle ids, 512×512",
               {"scene", "camera", "agreement_pct", "edge_ties", "on_shared_edge", "depth_ties", "other"},
               {}};
-  double min_pct = 100.0, min_with_ties = 100.0;
-  for (const CameraAgreement& a : raster_agreement_on_builtins(512)) {
+  const study::AgreementSummary s = study::agreement_summary(512);
+  for (const CameraAgreement& a : s.cameras) {
     const IdAgreement& g = a.agreement;
-    min_pct = std::min(min_pct, g.agreement_pct());
-    min_with_ties = std::min(min_with_ties, g.agreement_with_ties_pct());
     table.rows.push_back({a.scene, a.camera, g.agreement_pct(), double(g.edge), double(g.on_shared_edge),
                           double(g.depth), double(g.other)});
   }
-  c.results->metrics["id_agreement_pct"] = min_pct;
-  c.results->metrics["id_agreement_with_ties_pct"] = min_with_ties;
+  c.results->metrics["id_agreement_pct"] = s.min_agreement_pct;
+  c.results->metrics["id_agreement_with_ties_pct"] = s.min_with_ties_pct;
   c.results->tables.push_back(table);
   c.results->sections.push_back(
       {"raster", "Software rasterizer vs Embree",

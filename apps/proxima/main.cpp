@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
       cli::register_shadows(root),
       cli::register_view(root),
       cli::register_gibr(root),
+      cli::register_results(root),
   };
   try {
     root.parse(argc, argv);

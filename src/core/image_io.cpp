@@ -13,8 +13,8 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STBI_FAILURE_USERMSG
 // stb decodes PNG only: the least decoder code facing untrusted files. stb's JPEG decoder
-// (Debian's 2022-09 stb) writes past its Huffman size table on a malformed DHT segment
-// (found by png_fuzz); JPEG goes through libjpeg-turbo's TurboJPEG API instead.
+// (Debian's 2022-09 stb) writes past its Huffman size table on a malformed DHT
+// segment; JPEG goes through libjpeg-turbo's TurboJPEG API instead.
 #define STBI_ONLY_PNG
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
@@ -52,7 +52,7 @@ void check_regular_file(const fs::path& path) {
 }
 
 // stb_image grows its buffer to a chunk's declared length before reading it, so a
-// 100-byte PNG declaring a 1 GiB IDAT chunk allocates 2 GiB (found by png_fuzz). Chunks
+// 100-byte PNG declaring a 1 GiB IDAT chunk allocates 2 GiB. Chunks
 // must fit in the file.
 void check_png_chunks(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);

@@ -23,6 +23,7 @@
 #include <numeric>
 #include <utility>
 
+#include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
 #include "proxima/raster/depth_peeling.h"
 
@@ -33,6 +34,12 @@ constexpr int kMaxBackFaces = 8;  // back-facing hits the visibility ray walks p
 }  // namespace
 
 const char* redundancy_name(Redundancy r) { return r == Redundancy::Pixel ? "pixel" : "visibility"; }
+
+Redundancy parse_redundancy(const std::string& name, const char* flag) {
+  for (Redundancy r : {Redundancy::Pixel, Redundancy::Visibility})
+    if (name == redundancy_name(r)) return r;
+  fail_input(std::string(flag) + ": unknown redundancy '" + name + "' (pixel, visibility)");
+}
 
 RedundancyTest::RedundancyTest(Redundancy kind, const Scene& scene, const RayScene* rays, const Camera& from,
                                const DepthImage& against, float epsilon)
@@ -205,7 +212,7 @@ uint32_t ordered_bits(float f) {
 // compact). The sort is 16× shorter and the rasterizer's setup reads the triangles and
 // their vertices in runs instead of scattered; early z is a little worse (1024², 3 views:
 // 0–3 % more fragments tested on city and tree, 10–17 % on grass and nest), and the
-// measured time no worse than with the per-triangle sort (docs/RESULTS.md, issue 4).
+// measured time no worse than with the per-triangle sort (docs/journal/sampling.md).
 constexpr size_t kClusterTriangles = 16;
 
 // Centroid of each cluster's triangle centroids.

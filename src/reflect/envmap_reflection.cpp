@@ -15,6 +15,7 @@
 #include <atomic>
 #include <vector>
 
+#include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
 #include "proxima/core/rng.h"
 #include "proxima/raster/rasterizer.h"
@@ -42,7 +43,7 @@ EnvLookup lookup(const EnvmapInputs& in, const Environment& env, vec3 x, vec3 di
 
 }  // namespace
 
-const char* method_name(EnvmapMethod method) {
+const char* envmap_method_name(EnvmapMethod method) {
   switch (method) {
     case EnvmapMethod::Plain:
       return "envmap";
@@ -54,6 +55,12 @@ const char* method_name(EnvmapMethod method) {
       return "layered";
   }
   return "?";
+}
+
+EnvmapMethod parse_envmap_method(const std::string& name, const char* flag) {
+  for (EnvmapMethod m : {EnvmapMethod::Plain, EnvmapMethod::Rectified, EnvmapMethod::Average, EnvmapMethod::Layered})
+    if (name == envmap_method_name(m)) return m;
+  fail_input(std::string(flag) + ": unknown env-map method '" + name + "' (envmap, rectified, average, layered)");
 }
 
 std::vector<uint32_t> reflective_objects(const Scene& scene) {

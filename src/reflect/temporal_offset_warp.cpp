@@ -12,6 +12,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "proxima/core/error.h"
 #include "proxima/core/image_io.h"
 #include "proxima/core/parallel.h"
 
@@ -697,6 +698,16 @@ void warp_reflections_into(const ReflectionDepthImage& key, const OffsetBuffer& 
     for (int c = 0; c < 3; ++c) radiance[3 * at + size_t(c)] = lr[c];
     state[at] = !flat[j] ? uint8_t(kWarpCurved) : splat_flat;
   }
+}
+
+const char* reflected_edge_rule_name(ReflectedEdgeRule rule) {
+  return rule == ReflectedEdgeRule::kRecompute ? "recompute" : "nearest";
+}
+
+ReflectedEdgeRule parse_reflected_edge_rule(const std::string& name, const char* flag) {
+  for (ReflectedEdgeRule rule : {ReflectedEdgeRule::kNearest, ReflectedEdgeRule::kRecompute})
+    if (name == reflected_edge_rule_name(rule)) return rule;
+  fail_input(std::string(flag) + ": must be nearest or recompute");
 }
 
 }  // namespace proxima

@@ -560,7 +560,7 @@ Scene make_bathroom() {
   return s;
 }
 
-// ---- room-teapot, room-parallax (environment maps with distance, issue 6) ------------
+// ---- room-teapot, room-parallax (environment maps with distance) ---------------------
 // `src` without the object named `name` (every other object, material, light, camera kept).
 Scene without_object(const Scene& src, const std::string& name) {
   Scene s;

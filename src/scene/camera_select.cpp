@@ -28,16 +28,20 @@ int find_camera_path(const Scene& scene, const std::string& key) {
   return find_by_index_or_name(scene.camera_paths, key, [](const CameraPath& c) { return c.name; });
 }
 
+const CameraPath& camera_path(const Scene& scene, const std::string& key) {
+  const int p = find_camera_path(scene, key);
+  if (p < 0)
+    fail_input("--path: scene '" + scene.name + "' has no camera path '" + key + "' (" +
+               std::to_string(scene.camera_paths.size()) + " paths)");
+  return scene.camera_paths[size_t(p)];
+}
+
 float scene_far_plane(const Scene& scene) { return std::max(10.0f, 4.0f * scene_bounds(scene).diagonal()); }
 
 Camera pick_camera(const Scene& scene, const CameraChoice& choice, int width, int height) {
   Camera cam;
   if (!choice.path.empty()) {
-    const int p = find_camera_path(scene, choice.path);
-    if (p < 0)
-      fail_input("--path: scene '" + scene.name + "' has no camera path '" + choice.path + "' (" +
-                 std::to_string(scene.camera_paths.size()) + " paths)");
-    const CameraPath& path = scene.camera_paths[size_t(p)];
+    const CameraPath& path = camera_path(scene, choice.path);
     if (choice.frame < 0 || choice.frame >= path.frames)
       fail_input("--frame: " + std::to_string(choice.frame) + " is outside path '" + path.name + "' (0.." +
                  std::to_string(path.frames - 1) + ")");

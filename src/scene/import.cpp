@@ -44,7 +44,7 @@
 #include "proxima/scene/ply_check.h"
 
 // Debian's assimp 5.2 is built with its internal assertions on, and a failed one calls
-// abort() — e.g. TriangulateProcess on a malformed PLY face list (found by ply_fuzz). This
+// abort() — e.g. TriangulateProcess on a malformed PLY face list. This
 // definition interposes the library's (its calls go through the PLT; the executables
 // export it, see CMakeLists.txt): it throws instead, which assimp's importers and
 // post-processing steps catch and report as a failed import.

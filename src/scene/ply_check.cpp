@@ -85,8 +85,8 @@ struct Header {
 
 Header parse_header(const fs::path& path, const std::string& head) {
   auto fail = [&](const std::string& why) -> void { fail_input(path.string() + ": PLY header " + why); };
-  // A `.ply` must start with the magic line (assimp looped forever reading a file that
-  // began with an empty line and a garbled format; found by ply_fuzz).
+  // A `.ply` must start with the magic line (assimp loops forever reading a file that
+  // begins with an empty line and a garbled format).
   if (head.size() > 3 && head[3] != '\n' && head[3] != '\r') fail("does not start with the line 'ply'");
   Header h;
   bool format = false;
@@ -98,7 +98,7 @@ Header parse_header(const fs::path& path, const std::string& head) {
     std::string line = head.substr(pos, eol - pos);
     const bool crlf = !line.empty() && line.back() == '\r';
     if (crlf) line.pop_back();
-    // assimp 5.2 loops forever on NUL bytes in a header line (ply_fuzz).
+    // assimp 5.2 loops forever on NUL bytes in a header line.
     for (char c : line)
       if (!(c == '\t' || (c >= ' ' && c <= '~'))) fail("line " + std::to_string(number) + " is not ASCII text");
     pos = eol + 1;
@@ -106,8 +106,8 @@ Header parse_header(const fs::path& path, const std::string& head) {
     std::istringstream words(line);
     std::vector<std::string> w;
     for (std::string x; words >> x;) w.push_back(x);
-    // Keywords are matched exactly, as assimp's parser does: it missed `end_headeR`, read
-    // the binary body as header and crashed (SEGV; found by ply_fuzz).
+    // Keywords are matched exactly, as assimp's parser does: it misses `end_headeR`, reads
+    // the binary body as header and crashes (SEGV).
     const std::string keyword = line.substr(0, line.find_first_of(" \t"));
     if (keyword == "end_header") {
       if (!format) fail("has no valid format line (ascii, binary_little_endian or binary_big_endian 1.0)");
@@ -123,8 +123,8 @@ Header parse_header(const fs::path& path, const std::string& head) {
       h.ascii = w[1] == "ascii";
       h.big_endian = w[1] == "binary_big_endian";
     } else if (keyword == "property") {
-      // `property TYPE NAME` or `property list TYPE TYPE NAME`: assimp took `property float(y`
-      // and crashed in post-processing (BUS; found by ply_fuzz).
+      // `property TYPE NAME` or `property list TYPE TYPE NAME`: assimp takes `property float(y`
+      // and crashes in post-processing (BUS).
       const auto& types = ply_types();
       const bool scalar = w.size() == 3 && types.count(w[1]);
       const bool list = w.size() == 5 && w[1] == "list" && types.count(w[2]) && types.count(w[3]);

@@ -38,7 +38,7 @@ uint32_t add_object(Scene& scene, const Mesh& mesh, const std::string& name, uin
 
 // Non-finite vertices (possible in scenes built through the API; load refuses them) are
 // left out: one NaN would make every bound, and the epsilons derived from the scene size,
-// NaN (found by DegenerateGeometry.RasterTraceAndRenderAtEveryScale: NaN shadow rays).
+// NaN, and the shadow rays with them (DegenerateGeometry.RasterTraceAndRenderAtEveryScale).
 Bounds3 scene_bounds(const Scene& scene) {
   Bounds3 b;
   for (const vec3& p : scene.positions)

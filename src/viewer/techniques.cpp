@@ -93,7 +93,7 @@ const DistanceCubeMap& cube_map(const ViewerScene& vs, ReflectionShared& shared,
 Technique envmap_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<ReflectionShared> shared,
                            EnvmapMethod method) {
   Technique t;
-  t.name = method_name(method);
+  t.name = envmap_method_name(method);
   t.label = method == EnvmapMethod::Plain ? "env map" : "rectified env map";
   t.render = [vs, shared, method](const Camera& camera) {
     const TechniqueSettings& s = shared->settings;

@@ -144,7 +144,7 @@ class Tracer {
       ++map.stats.cells_visited;
       // Every sightline of a beam passes through all the cells of its chain, and a
       // sightline crosses a convex cell once: a longer chain means cells that overlap (a
-      // corrupt --load file; found by winged_pair_fuzz), and tracing would never end.
+      // corrupt --load file), and tracing would never end.
       if (item.depth > wp_.cells.size())
         fail_input("inconsistent winged pair: a beam passes through more cells than there are (overlapping cells)");
       // Faces whose projection's bounding box misses the region's by more than the clip

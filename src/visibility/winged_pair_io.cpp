@@ -40,7 +40,7 @@ class Reader {
   }
   // A record count; each record takes at least `record_bytes` of the file (fields of at
   // least one digit and a separator), so a count the file cannot hold is refused before
-  // anything is allocated for it (found by winged_pair_fuzz).
+  // anything is allocated for it.
   size_t count(size_t record_bytes = 1) {
     long long x;
     if (!(in_ >> x) || x < 0 || x > (1ll << 31)) fail("bad count");

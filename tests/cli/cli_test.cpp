@@ -83,27 +83,26 @@ TEST(Cli, InfoCountsDroppedDegenerateTriangles) {
   EXPECT_NE(r.output.find("dropped degenerate:  2"), std::string::npos) << r.output;
 }
 
-TEST(Cli, RenderIsIdenticalForOneAndTwoThreadsOnEveryBuiltinScene) {
-  for (const BuiltinSceneInfo& scene : builtin_scenes()) {
-    TempDir dir;
-    std::string common =
-        "render --scene " + scene.name + " --width 64 --height 48 --spp 2 --glossy-rays 4 --seed 9 ";
-    RunResult a = run_cli(common + "--threads 1 --out " + (dir.path / "t1").string());
-    RunResult b = run_cli(common + "--threads 2 --out " + (dir.path / "t2").string());
-    ASSERT_EQ(a.exit_code, 0) << scene.name << ": " << a.output;
-    ASSERT_EQ(b.exit_code, 0) << scene.name << ": " << b.output;
-    for (const char* f : {"color.exr", "depth.exr", "normal.exr", "id.exr"}) {
-      ImageF ia = read_exr(dir.path / "t1" / f);
-      ImageF ib = read_exr(dir.path / "t2" / f);
-      EXPECT_TRUE(ia == ib) << scene.name << ": " << f;
-    }
-    ImageF depth = read_exr(dir.path / "t1" / "depth.exr");
-    EXPECT_EQ(depth.width(), 64);
-    EXPECT_EQ(depth.height(), 48);
-    std::ifstream pa(dir.path / "t1" / "color.png", std::ios::binary), pb(dir.path / "t2" / "color.png", std::ios::binary);
-    EXPECT_TRUE(std::string(std::istreambuf_iterator<char>(pa), {}) == std::string(std::istreambuf_iterator<char>(pb), {}))
-        << scene.name << ": color.png";
-  }
+TEST(Cli, RenderWritesItsImagesAndResults) {
+  TempDir dir;
+  RunResult r = run_cli("render --scene cornell --width 64 --height 48 --spp 2 --glossy-rays 4 --seed 9 --threads 2 "
+                        "--out " + dir.path.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(dir.path / "results.json");
+  nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["threads"], 2);
+  EXPECT_EQ(j["command"][1], "render");
+  EXPECT_GT(j["metrics"]["coverage_pct"].get<double>(), 50.0);  // the cornell box fills most of the view
+  EXPECT_LE(j["metrics"]["coverage_pct"].get<double>(), 100.0);
+  for (const char* f : {"color.png", "color.exr", "depth.exr", "normal.exr", "id.exr"})
+    EXPECT_TRUE(std::filesystem::exists(dir.path / f)) << f;
+  const ImageF depth = read_exr(dir.path / "depth.exr");
+  EXPECT_EQ(depth.width(), 64);
+  EXPECT_EQ(depth.height(), 48);
+  r = run_cli("render --scene cornell --spp 0 --out " + (dir.path / "bad").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("--spp"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "bad"));
 }
 
 TEST(Cli, BenchTraceWritesTheNamedMetrics) {
@@ -123,18 +122,20 @@ TEST(Cli, BenchTraceWritesTheNamedMetrics) {
 
 TEST(Cli, BenchRasterWritesTheNamedMetrics) {
   TempDir dir;
-  RunResult r = run_cli("bench raster --scene cornell --width 96 --height 96 --reps 1 --out " + dir.path.string());
+  // The agreement pass is tested on the study (tests/study/raster_bench_test.cpp).
+  RunResult r = run_cli("bench raster --scene cornell --width 96 --height 96 --reps 1 --skip-agreement --out " +
+                        dir.path.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::ifstream in(dir.path / "results.json");
   nlohmann::json j = nlohmann::json::parse(in);
-  // The rasterizer agrees with Embree item buffers on every built-in camera (issue 3: ≥ 99.9%,
-  // a pixel center on the edge two triangles share counting for either).
-  EXPECT_GE(j["metrics"]["id_agreement_with_ties_pct"].get<double>(), 99.9);
-  EXPECT_GE(j["metrics"]["id_agreement_with_ties_pct"].get<double>(), j["metrics"]["id_agreement_pct"].get<double>());
-  EXPECT_EQ(j["metrics"]["id_disagreements_other"].get<double>(), 0.0);
   for (const char* m : {"raster_ms_depth_id", "tris_per_s"}) EXPECT_GT(j["metrics"][m].get<double>(), 0.0) << m;
   // llvmpipe figures are present, as numbers when the optional harness ran, else null.
   for (const char* m : {"llvmpipe_ms_depth_id", "speedup_vs_llvmpipe"}) EXPECT_TRUE(j["metrics"].contains(m)) << m;
+  EXPECT_FALSE(j["metrics"].contains("id_agreement_pct"));
+  r = run_cli("bench raster --scene cornell --reps 0 --out " + (dir.path / "bad").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("--reps"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "bad"));
 }
 
 TEST(Cli, DemoWritesResultsAndAReportShowingThem) {

@@ -1,7 +1,7 @@
 // Same image bits for --threads 1 and --threads 2 (issue 13; DESIGN.md determinism) from
 // every command that writes images, on every built-in scene the command accepts (sample: all but the
 // two big interiors), at small
-// sizes. `render` is covered by Cli.RenderIsIdenticalForOneAndTwoThreadsOnEveryBuiltinScene.
+// sizes. `render` is covered by ReferenceStudy.SameBitsForOneAndTwoThreadsOnEveryBuiltinScene.
 // Every image file of the output directory (PNG, EXR, SVG) must be byte-identical; a scene
 // a command refuses (exit 2, e.g. no reflector, no camera path) must be refused alike.
 #include <gtest/gtest.h>
@@ -55,7 +55,9 @@ TEST_P(ThreadDeterminism, SameImageBitsForOneAndTwoThreads) {
   const RunResult a = run_cli(c.command + " --threads 1" + common + (dir.path / "t1").string());
   const RunResult b = run_cli(c.command + " --threads 2" + common + (dir.path / "t2").string());
   ASSERT_EQ(a.exit_code, b.exit_code) << a.output << "\n" << b.output;
-  if (c.must_run) ASSERT_EQ(a.exit_code, 0) << a.output;
+  if (c.must_run) {
+    ASSERT_EQ(a.exit_code, 0) << a.output;
+  }
   if (a.exit_code == 2) return;  // the command does not apply to this scene
   ASSERT_EQ(a.exit_code, 0) << a.output;
   const auto fa = image_files(dir.path / "t1"), fb = image_files(dir.path / "t2");

@@ -54,8 +54,8 @@ TEST(ImageIo, SrgbTransferInverts) {
   for (float v = 0.0f; v <= 1.0f; v += 0.01f) EXPECT_NEAR(srgb_to_linear(linear_to_srgb(v)), v, 1e-5f);
 }
 
-// Regression (exr_fuzz, issue 13): an EXR whose pixel data fails to decode was freed twice
-// (tinyexr frees the half-decoded image, read_exr freed it again).
+// An EXR whose pixel data fails to decode is freed once: tinyexr frees the half-decoded
+// image itself, so read_exr must not free it again.
 TEST(ImageIo, TruncatedExrFailsWithoutDoubleFree) {
   TempDir dir;
   ImageF img(64, 64, 3);
@@ -69,8 +69,9 @@ TEST(ImageIo, TruncatedExrFailsWithoutDoubleFree) {
   }
 }
 
-// Regression (png_fuzz, issue 13): a PNG whose first IDAT chunk is empty made stb_image call
-// memcpy(NULL, …, 0), fatal under UBSan (make asan) — now a plain decode error.
+// A PNG whose first IDAT chunk is empty makes stb_image call memcpy(NULL, …, 0), fatal
+// under UBSan (make asan) unless image_io.cpp is built without that check: a plain decode
+// error.
 TEST(ImageIo, PngWithEmptyIdatChunkIsAnInputError) {
   TempDir dir;
   std::string png = "\x89PNG\r\n\x1a\n";
@@ -81,8 +82,8 @@ TEST(ImageIo, PngWithEmptyIdatChunkIsAnInputError) {
   EXPECT_THROW(read_image_linear(dir.path / "empty_idat.png"), InputError);
 }
 
-// Regression (png_fuzz in CI, issue 13): a PNG declaring a 1 GiB IDAT chunk in a tiny file
-// made stb_image allocate 2 GiB before noticing the data is missing.
+// A PNG declaring a 1 GiB IDAT chunk in a tiny file would make stb_image allocate 2 GiB
+// before noticing the data is missing.
 TEST(ImageIo, PngChunkLongerThanTheFileIsRejectedBeforeAllocating) {
   TempDir dir;
   std::string png = "\x89PNG\r\n\x1a\n";

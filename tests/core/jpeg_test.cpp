@@ -197,7 +197,7 @@ TEST(Jpeg, HeaderOverTheMemoryLimitIsRefusedBeforeDecoding) {
       << error;
 }
 
-// Regression (png_fuzz): stb's JPEG decoder wrote past its Huffman table on this 19-byte file
+// stb's JPEG decoder writes past its Huffman table on this 19-byte file
 // (a DHT segment whose counts sum above 256). With its leading fill byte it is not a JPEG
 // to the content check; without it libjpeg-turbo reads it and refuses it.
 TEST(Jpeg, MalformedHuffmanTableIsAnInputError) {

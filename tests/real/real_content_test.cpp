@@ -1,6 +1,6 @@
 // The real-content tier (`make test-real`, docs/real-content.md): every technique on the
 // scenes scripts/real-content.sh builds from models no one here wrote, held to the bounds
-// the built-in scenes are held to (docs/RESULTS.md, the issues' "Must show"). Skipped when
+// the built-in scenes are held to (docs/RESULTS.md and docs/journal/). Skipped when
 // PROXIMA_REAL_CONTENT (the corpus directory) is unset, failed when it names no corpus. Each run keeps its output (images,
 // results.json) in $PROXIMA_REAL_CONTENT/out/<run>.
 //

@@ -13,6 +13,7 @@
 #include "proxima/scene/procedural.h"
 #include "proxima/trace/reference_renderer.h"
 #include "reflect_test_scenes.h"
+#include "test_util.h"
 
 namespace proxima {
 namespace {
@@ -214,6 +215,14 @@ TEST(EnvmapReflection, GlossyLobeFollowsTheReferenceSamples) {
   EXPECT_EQ(same.stats.lookups, 9 * pixels.count);
   EXPECT_LT(e_same, 0.002);
   EXPECT_GT(e_other, 5.0 * e_same) << e_same << " vs " << e_other;
+}
+
+TEST(EnvmapReflection, MethodNamesParseBackAndUnknownNamesAreRefused) {
+  for (EnvmapMethod m : {EnvmapMethod::Plain, EnvmapMethod::Rectified, EnvmapMethod::Average, EnvmapMethod::Layered})
+    EXPECT_EQ(parse_envmap_method(envmap_method_name(m)), m) << envmap_method_name(m);
+  const std::string message = error_of([] { parse_envmap_method("mirror", "--method"); });
+  EXPECT_EQ(message, "--method: unknown env-map method 'mirror' (envmap, rectified, average, layered)");
+  EXPECT_NE(error_of([] { parse_envmap_method("reference"); }), "");  // the reference is not a lookup
 }
 
 }  // namespace

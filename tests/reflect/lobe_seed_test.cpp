@@ -1,4 +1,4 @@
-// Glossy lobe rays seeded by the surface point (ReflectionOptions::lobe_seed_cell, issue 8):
+// Glossy lobe rays seeded by the surface point (ReflectionOptions::lobe_seed_cell):
 // a point draws the same lobe samples from any view, so a reflection reused from another
 // frame carries the noise the reference has there; determinism for any thread count.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Temporal reuse of reflections (issue 8): exact reuse for an unchanged camera, the best
+// Temporal reuse of reflections: exact reuse for an unchanged camera, the best
 // match against the analytic mirror correspondence, temporal vs direct reprojection on a
 // planar mirror, disocclusion flags, determinism.
 #include <gtest/gtest.h>

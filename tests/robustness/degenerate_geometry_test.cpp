@@ -1,4 +1,4 @@
-// Degenerate geometry straight into the renderers (issue 13), bypassing sanitize_scene: a
+// Degenerate geometry straight into the renderers, bypassing sanitize_scene: a
 // Scene built through the library API may hold what load_scene would drop or refuse.
 // Zero-area, collinear, duplicate, NaN and Inf triangles at scales 1e-6 … 1e6 go through
 // the rasterizer, the Embree item buffer and the reference renderer without a crash; the

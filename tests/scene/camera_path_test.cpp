@@ -21,9 +21,9 @@ TEST(CameraPath, KeysAreHitExactlyAndFramesSpanTheKeys) {
   EXPECT_EQ(end.vfov_deg, 40.0f);
 }
 
-// Regression (issue 13): two valid keys whose spline puts the position on the target
-// half-way (a dolly through the look-at point) gave a NaN camera, which render reported as
-// a bad --width/--height. The frame now keeps the nearer key's view direction.
+// Two valid keys whose spline puts the position on the target half-way (a dolly through
+// the look-at point) leave no view direction there; the frame keeps the nearer key's view
+// direction instead of becoming a NaN camera.
 TEST(CameraPath, TargetPassingThroughThePositionKeepsAValidCamera) {
   const CameraPath p = path_of({{0.0f, {0, 0, 0}, {0, 0, -1}, 60.0f}, {1.0f, {0, 0, -2}, {0, 0, -1}, 60.0f}});
   for (int f = 0; f < p.frames; ++f) {
@@ -35,7 +35,7 @@ TEST(CameraPath, TargetPassingThroughThePositionKeepsAValidCamera) {
   EXPECT_NEAR(camera_forward(mid).z, 1.0f, 1e-6f);  // w = 0.5: the second key's view direction, +z
 }
 
-// Regression (issue 13): keys looking up-left and up-right interpolate to looking straight
+// Keys looking up-left and up-right interpolate to looking straight
 // up, parallel to `up`, where look_at has no right vector.
 TEST(CameraPath, ViewSweepingThroughUpKeepsAValidCamera) {
   const CameraPath p = path_of({{0.0f, {0, 0, 0}, {-1, 1, 0}, 60.0f}, {1.0f, {0, 0, 0}, {1, 1, 0}, 60.0f}});

@@ -277,8 +277,8 @@ std::string deep_gltf(int depth) {
                         "min": [0, 0, 0], "max": [1, 1, 0]}]})";
 }
 
-// Regression (issue 13): a glTF node chain 100000 deep overflowed the stack (a crash inside
-// assimp's recursive node building). Graphs up to kMaxNodeDepth levels load, every level's
+// A glTF node chain 100000 deep would overflow the stack inside assimp's recursive node
+// building. Graphs up to kMaxNodeDepth levels load, every level's
 // transform applied; deeper ones are refused before assimp recurses into them.
 TEST(ImportTest, DeepNodeGraphLoadsWithoutStackOverflow) {
   TempDir dir;
@@ -293,7 +293,7 @@ TEST(ImportTest, DeepNodeGraphLoadsWithoutStackOverflow) {
   }
 }
 
-// Review (issue 13): assimp's glTF reader (rapidjson) recurses per JSON nesting level, and its
+// assimp's glTF reader (rapidjson) recurses per JSON nesting level, and its
 // node builder follows cycles forever; both are refused before assimp reads the file.
 TEST(ImportTest, DeepJsonNestingAndNodeCyclesAreRefusedBeforeAssimp) {
   TempDir dir;
@@ -322,7 +322,7 @@ TEST(ImportTest, DeepJsonNestingAndNodeCyclesAreRefusedBeforeAssimp) {
   EXPECT_NE(msg.find("shared.gltf: glTF node graph is not a tree: node 2 has two parents"), std::string::npos) << msg;
 }
 
-// Review (issue 13): only the tested and fuzzed importers (OBJ, PLY, glTF 2.0) are used; a
+// Only the tested and fuzzed importers (OBJ, PLY, glTF 2.0) are used; a
 // Collada file is refused by its extension, and by content when it hides behind `.obj`.
 TEST(ImportTest, UntestedFormatsAreRefused) {
   TempDir dir;
@@ -335,8 +335,8 @@ TEST(ImportTest, UntestedFormatsAreRefused) {
   EXPECT_NE(msg.find("disguised.obj: "), std::string::npos) << msg;
 }
 
-// Regression (ply_fuzz, issue 13): assimp looped forever on a PLY header whose
-// `end_header` line is misspelled, or with NUL bytes in a line.
+// assimp loops forever on a PLY header whose `end_header` line is misspelled, or with NUL
+// bytes in a line.
 TEST(ImportTest, MalformedPlyHeaderIsAnErrorNotAHang) {
   TempDir dir;
   write_file(dir.path / "open.ply",
@@ -361,11 +361,11 @@ TEST(ImportTest, MalformedPlyHeaderIsAnErrorNotAHang) {
   EXPECT_EQ(import_mesh_file(dir.path / "crlf.ply").triangles.size(), 1u);
 }
 
-// Regression (ply_fuzz, issue 13): a garbled face list tripped an internal assertion in
-// assimp's triangulation, which called abort() — proxima crashed with exit 134. The
-// interposed aiAssertViolation made it an error; the cause (a face the PLY reader left
-// without indices, as in PlyFacesWithoutIndicesAreAnErrorNotAPostProcessingCrash) is now
-// refused before any post-processing step runs (robust3).
+// A garbled face list trips an internal assertion in assimp's triangulation, which calls
+// abort(); the interposed aiAssertViolation turns it into an error, and the cause (a face
+// the PLY reader leaves without indices, as in
+// PlyFacesWithoutIndicesAreAnErrorNotAPostProcessingCrash) is refused before any
+// post-processing step runs.
 TEST(ImportTest, PlyTrippingAnAssimpAssertionIsAnError) {
   TempDir dir;
   write_file(dir.path / "garbled.ply",
@@ -373,12 +373,12 @@ TEST(ImportTest, PlyTrippingAnAssimpAssertionIsAnError) {
              "element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
              "3 0 1 2\nat x\nproperty float y\np3 0 2 3\n");
   const std::string msg = error_of([&] { import_mesh_file(dir.path / "garbled.ply"); });
-  // robust4: the body is now checked against the header before assimp reads it.
+  // The body is checked against the header before assimp reads it.
   EXPECT_NE(msg.find("garbled.ply: PLY body line 6 has 'at' where an integer"), std::string::npos) << msg;
 }
 
-// Regression (ply_fuzz, issue 13, robust2): assimp's PLY reader looped forever (fread in a
-// loop) on a `.ply` starting with an empty line and naming a garbled format.
+// assimp's PLY reader loops forever (fread in a loop) on a `.ply` starting with an empty
+// line and naming a garbled format.
 TEST(ImportTest, PlyWithoutLeadingMagicOrWithUnknownFormatIsAnErrorNotAHang) {
   TempDir dir;
   write_file(dir.path / "lead.ply",
@@ -397,8 +397,8 @@ TEST(ImportTest, PlyWithoutLeadingMagicOrWithUnknownFormatIsAnErrorNotAHang) {
   EXPECT_NE(msg.find("noformat.ply: PLY header has no valid format line"), std::string::npos) << msg;
 }
 
-// Regression (ply_fuzz, issue 13, robust2): `end_headeR` passed proxima's case-blind header
-// check but not assimp's exact match, which then parsed the binary body as header: SEGV.
+// `end_headeR` fails assimp's exact keyword match, so assimp would parse the binary body as
+// header (SEGV): keywords are matched exactly, in one case.
 TEST(ImportTest, PlyHeaderKeywordInAnotherCaseIsAnErrorNotACrash) {
   TempDir dir;
   std::string ply =
@@ -410,9 +410,7 @@ TEST(ImportTest, PlyHeaderKeywordInAnotherCaseIsAnErrorNotACrash) {
   EXPECT_NE(msg.find("case.ply: PLY header has an unknown line 'end_headeR'"), std::string::npos) << msg;
 }
 
-// Review (ply_fuzz, issue 13, robust2): a malformed property line `property float(y` is
-// refused before assimp reads the file. (The input ply_fuzz found it in also crashes
-// assimp's post-processing through its garbled face list, which stays open.)
+// A malformed property line `property float(y` is refused before assimp reads the file.
 TEST(ImportTest, PlyMalformedPropertyLineIsAnError) {
   TempDir dir;
   write_file(dir.path / "prop.ply",
@@ -423,9 +421,9 @@ TEST(ImportTest, PlyMalformedPropertyLineIsAnError) {
 }
 
 
-// Regression (ply_fuzz, issue 13, robust3): assimp's PLY reader reserves what the file
-// declares before reading it. An ASCII face list counting 3111…1 entries (wrapped to
-// 3,340,530,119 entries of 8 bytes) made it request 26.7 GB (ASan: out of memory; a bad_alloc or worse without
+// assimp's PLY reader reserves what the file declares before reading it. An ASCII face
+// list counting 3111…1 entries (wrapped to 3,340,530,119 entries of 8 bytes) makes it
+// request 26.7 GB (ASan: out of memory; a bad_alloc or worse without
 // it). Declared element counts must fit in the bytes after end_header, and ASCII list
 // counts in their line.
 TEST(ImportTest, PlyCountsLargerThanTheFileAreRefusedBeforeAllocating) {
@@ -434,7 +432,7 @@ TEST(ImportTest, PlyCountsLargerThanTheFileAreRefusedBeforeAllocating) {
   write_file(dir.path / "list.ply",
              header + "0 0 0\n1 0 0\n1  10\n0 1 0\n3" + std::string(67, '1') + " 0 1 2\n3 0 1 2\n");
   std::string msg = error_of([&] { import_mesh_file(dir.path / "list.ply"); });
-  // robust4: the body walk stops at the first line that does not match the header.
+  // The body walk stops at the first line that does not match the header.
   EXPECT_NE(msg.find("list.ply: PLY body line 3 has fewer values than its 'vertex' element declares"), std::string::npos)
       << msg;
   write_file(dir.path / "list5.ply", header + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3" + std::string(67, '1') + " 0 1 2\n3 0 1 2\n");
@@ -476,24 +474,24 @@ TEST(ImportTest, PlyCountsLargerThanTheFileAreRefusedBeforeAllocating) {
   EXPECT_EQ(import_mesh_file(dir.path / "no_newline.ply").triangles.size(), 2u);
 }
 
-// Regression (ply_fuzz, issue 13, robust3): BUS crash inside assimp 5.2.5's SortByPType step.
-// The PLY reader allocates the declared `element face N` faces up front and, on this garbled
-// body (a face line running into the next, then a second header), fills only two of them;
-// the rest keep zero indices. ValidateDataStructure skips face checks while the mesh's
-// primitive types are unset (the PLY reader leaves them 0), the preprocessor then counts
-// the empty faces as polygons, and SortByPType (the only step that crashes on its own on
-// this input) reads through a garbage pointer. proxima now reads without post-processing,
-// checks every face, and only then runs the steps.
+// A BUS crash inside assimp 5.2.5's SortByPType step. The PLY reader allocates the declared
+// `element face N` faces up front and, on this garbled body (a face line running into the
+// next, then a second header), fills only two of them; the rest keep zero indices.
+// ValidateDataStructure skips face checks while the mesh's primitive types are unset (the
+// PLY reader leaves them 0), the preprocessor then counts the empty faces as polygons, and
+// SortByPType (the only step that crashes on its own on this input) reads through a garbage
+// pointer. proxima reads without post-processing, checks every face, and only then runs the
+// steps.
 TEST(ImportTest, PlyFacesWithoutIndicesAreAnErrorNotAPostProcessingCrash) {
   TempDir dir;
-  // The input as found: a garbled body, then the header's last lines and a body again.
+  // A garbled body, then the header's last lines and a body again.
   write_file(dir.path / "empty_faces.ply",
              quad_ply_header(4) + "0 0 0\n1 0 0\n1 1 0\n0 1 01 0\n3 02\n2z\n" +
                  quad_ply_header(4).substr(quad_ply_header(4).find("element face")) +
                  "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n2 0 0 2 3\n");
   const std::string msg = error_of([&] { import_mesh_file(dir.path / "empty_faces.ply"); });
-  // robust4: now refused by the body walk, before assimp reads the file; the check after
-  // assimp's read stays as a net.
+  // Refused by the body walk, before assimp reads the file; the check after assimp's read
+  // is a second net.
   EXPECT_NE(msg.find("empty_faces.ply: PLY body line 4 has more values than its 'vertex' element declares"),
             std::string::npos)
       << msg;
@@ -522,17 +520,16 @@ std::string le32(int32_t v) {
   return s;
 }
 
-// Regression (ply_fuzz, issue 13, robust3 → robust4: fuzz/open/ply-oom-8250f791.ply): out
-// of memory in assimp's PLY reader (1.3 GB, then 2.6 GB). assimp parses the count of an
-// element it does not know (`element ~ertex 4`) from the name itself, i.e. 0, so the
-// first vertex line `777…770 0 0` became the first face and its first number the face's
-// list count, 164,043,882 after wrapping; assimp reserved that many 8-byte values, then
-// doubled them. proxima's count walk had read the lines as the header declares them.
-// Now elements assimp does not read must come after the ones it reads, and the body is
+// Out of memory in assimp's PLY reader (1.3 GB, then 2.6 GB; the input is
+// fuzz/regressions/ply/ply-oom-8250f791.ply). assimp parses the count of an element it does
+// not know (`element ~ertex 4`) from the name itself, i.e. 0, so the first vertex line
+// `777…770 0 0` becomes the first face and its first number the face's list count,
+// 164,043,882 after wrapping; assimp reserves that many 8-byte values, then doubles them.
+// So elements assimp does not read must come after the ones it reads, and the body is
 // checked value by value against the header before assimp opens the file.
 TEST(ImportTest, PlyUnknownElementBeforeTheGeometryIsRefusedNotMisreadAsAHugeList) {
   TempDir dir;
-  // The input as found (294 bytes).
+  // The input (294 bytes).
   const std::string found =
       std::string("ply\nformat ascii 1.0\nelement ~ertex 4\nproperty float x\nproperty float y\nproperty float z\n"
                   "element face 8\nproperty list uchar int vertex_indice:\nend_header\n777777777777777777777777770 0 0\n"
@@ -564,7 +561,7 @@ TEST(ImportTest, PlyUnknownElementBeforeTheGeometryIsRefusedNotMisreadAsAHugeLis
   EXPECT_NE(msg.find("digits.ply: PLY header has an element name starting with a digit"), std::string::npos) << msg;
 }
 
-// Review (issue 13, robust4): the ASCII body is read value by value as the header declares
+// The ASCII body is read value by value as the header declares
 // it, so what assimp reads is what proxima checked (counts, list lengths, indices).
 TEST(ImportTest, PlyAsciiBodyNotMatchingItsHeaderIsRefused) {
   TempDir dir;
@@ -593,10 +590,9 @@ TEST(ImportTest, PlyAsciiBodyNotMatchingItsHeaderIsRefused) {
   EXPECT_EQ(import_mesh_file(dir.path / "good.ply").triangles.size(), 2u);
 }
 
-// Review (issue 13, robust4): binary list counts were read by assimp unchecked (a face
-// count of 2·10^9 int entries would reserve 16 GB). Each count is now read before assimp
-// runs: non-negative, within the bytes left, a face at most kMaxFaceVertices long, and
-// its indices in range.
+// assimp reads binary list counts unchecked (a face count of 2·10^9 int entries would
+// reserve 16 GB), so proxima reads each count before assimp runs: non-negative, within the
+// bytes left, a face at most kMaxFaceVertices long, and its indices in range.
 TEST(ImportTest, PlyBinaryListCountsAreCheckedBeforeAssimpReads) {
   TempDir dir;
   auto face = [](int n, std::vector<int> indices) {
@@ -637,9 +633,9 @@ TEST(ImportTest, PlyBinaryListCountsAreCheckedBeforeAssimpReads) {
   EXPECT_EQ(import_mesh_file(dir.path / "be.ply").triangles.size(), 2u);
 }
 
-// Review (issue 13, robust4): assimp triangulates an n-gon by ear clipping, superlinear in
-// n (a 4096-gon took 1.4 s), so a few huge faces would hang an import. Faces above
-// kMaxFaceVertices are refused before triangulation, for every format.
+// assimp triangulates an n-gon by ear clipping, superlinear in n (a 4096-gon takes 1.4 s),
+// so a few huge faces would hang an import. Faces above kMaxFaceVertices are refused before
+// triangulation, for every format.
 TEST(ImportTest, FaceWithMoreThanMaxFaceVerticesIsRefusedBeforeTriangulation) {
   TempDir dir;
   const int n = kMaxFaceVertices + 1;
@@ -674,11 +670,10 @@ TEST(ImportTest, WriteObjIntoMissingDirectoryLeavesNothing) {
 
 }  // namespace
 
-// obj_fuzz finding obj-leak-01497ee4 (input in fuzz/regressions/obj/): `f 07` refers to
-// vertex 7 where assimp reads 6 (it drops `v 0 1\x1f0`, two components). assimp checks
-// face indices only while building the mesh, and its "OBJ: vertex index out of range"
-// exception leaked that mesh (1,392 bytes). proxima now checks OBJ indices before assimp
-// opens the file.
+// Input obj-leak-01497ee4 (fuzz/regressions/obj/): `f 07` refers to vertex 7 where assimp
+// reads 6 (it drops `v 0 1\x1f0`, two components). assimp checks face indices only while
+// building the mesh, and its "OBJ: vertex index out of range" exception leaks that mesh
+// (1,392 bytes). proxima checks OBJ indices before assimp opens the file.
 TEST(ImportTest, ObjFaceIndexOutOfRangeIsRefusedBeforeAssimpCanLeakItsMesh) {
   TempDir dir;
   static const char kFound[] =

@@ -72,8 +72,8 @@ TEST(LoadTest, DegenerateTrianglesAreDroppedAndCounted) {
   EXPECT_EQ(s.objects[0].triangle_count, 2u);
 }
 
-// Regression (issue 13): non-finite texture coordinates survived sanitize_scene and
-// reached the texture lookup's float → int conversion.
+// Non-finite texture coordinates are replaced by sanitize_scene, so they never reach the
+// texture lookup's float → int conversion.
 TEST(LoadTest, NonFiniteUvsAreReplaced) {
   TempDir dir;
   const fs::path obj = dir.path / "uv.obj";

@@ -25,8 +25,8 @@ TEST(Material, SampleTextureRepeatsAndInterpolates) {
   EXPECT_EQ(sample_texture(t, {-0.25f, 0.5f}), vec3(0, 0, 1));
 }
 
-// Regression (review for issue 13): uvs of 1e10 or NaN (from files, or interpolation that
-// overflows) were converted to int out of range — UB (float-cast-overflow under UBSan).
+// uvs of 1e10 or NaN (from files, or interpolation that overflows) must not reach an
+// out-of-range float → int conversion — UB (float-cast-overflow under UBSan).
 TEST(Material, SampleTextureWithHugeOrNonFiniteUvStaysInRange) {
   const Texture t = two_texels();
   const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();

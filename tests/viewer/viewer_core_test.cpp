@@ -1,4 +1,4 @@
-// The viewer's platform-independent parts (issue 12): fly camera, bitmap font, input
+// The viewer's platform-independent parts: fly camera, bitmap font, input
 // scripts, camera recording, the reference's row bands.
 #include <gtest/gtest.h>
 

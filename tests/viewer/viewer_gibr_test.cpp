@@ -1,4 +1,4 @@
-// The viewer's GIBR technique (issue 12): built once when first selected (a "building…"
+// The viewer's GIBR technique: built once when first selected (a "building…"
 // placeholder frame first), then novel views of the photographed model from the viewer's
 // camera; unavailable, with the reason, in scenes that are not visibility models.
 #include <gtest/gtest.h>

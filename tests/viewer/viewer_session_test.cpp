@@ -1,4 +1,4 @@
-// ViewerSession headless (issue 12): resolution scaling while moving, refinement when
+// ViewerSession headless: resolution scaling while moving, refinement when
 // still, the progressive reference's error, technique switches, bad keys and resizes.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Degenerate input for the BSP and the beam tracer (issue 9, robustness): duplicate,
+// Degenerate input for the BSP and the beam tracer (robustness): duplicate,
 // coplanar overlapping, zero-area, sliver and T-junction polygons, and viewpoints lying on
 // a polygon's plane (a BSP face). Nothing may crash or loop, every cell stays closed
 // (V − E + F = 2), and inside a closed room every pixel of the map shows a polygon that

@@ -3,9 +3,9 @@
 // slivers — agreement with Embree ≥ 99.9 % (but on the listed known misses), interior
 // agreement ≥ 99.99 % (coplanar ties counting as agreement: either polygon is right there),
 // no occluded label, no unplaced fragment, and every map passing its self-check (no holes:
-// the regions tile the image). The old BSP failed each level: cracks on small and medium
-// (regions covering 99.994–99.998 % of the image, caught by the self-check's area test),
-// unplaced fragments and views down to 89.6 % on huge.
+// the regions tile the image). The failures these bounds catch: cracks (regions covering
+// less than the image, found by the self-check's area test), unplaced fragments, views far
+// below the agreement bound.
 #include <gtest/gtest.h>
 
 #include <cstdio>

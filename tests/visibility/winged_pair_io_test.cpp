@@ -111,18 +111,18 @@ size_t section_start(const std::vector<std::string>& lines, const std::string& n
   return 0;
 }
 
-// Review (issue 13, winged_pair_fuzz): a count the file cannot hold ("vertices 2000000000"
-// in a 60-byte file) made the reader allocate 64 GB before failing on the first record.
+// A count the file cannot hold ("vertices 2000000000" in a 60-byte file) is rejected
+// before the reader allocates 64 GB for it.
 TEST(WingedPairIo, CountLargerThanTheFileIsRejectedBeforeAllocating) {
   expect_rejected("count.wp", "proxima-winged-pair 1\nscale 1 polygons 0\nvertices 2000000000\n0 0 0 -1\n");
   expect_rejected("pairs.wp",
                   "proxima-winged-pair 1\nscale 1 polygons 0\nvertices 0\nedges 0\nfaces 0\ncells 0\npairs 1000000\n");
 }
 
-// Review (issue 13, winged_pair_fuzz): links that are in range but do not close — a spin
-// cycle that never returns to its edge's pair made the silhouette test loop forever; a
-// clock walk meeting itself made finalize() quadratic. Non-finite or huge coordinates and
-// non-unit normals reached the tracer.
+// Links that are in range but do not close — a spin cycle that never returns to its
+// edge's pair would make the silhouette test loop forever; a clock walk meeting itself
+// would make finalize() quadratic — and non-finite or huge coordinates and non-unit
+// normals are rejected before they reach the tracer.
 TEST(WingedPairIo, LinksThatDoNotCloseAndBadNumbersAreRejected) {
   const std::vector<std::string> good = split_lines(rooms_text());
   auto edit = [&](const std::string& section, size_t row, size_t field, const std::string& value) {
@@ -149,9 +149,9 @@ TEST(WingedPairIo, LinksThatDoNotCloseAndBadNumbersAreRejected) {
   fs::remove(path);
 }
 
-// Review (issue 13, winged_pair_fuzz): a structurally valid file whose cells overlap made
-// beam tracing loop forever. Here the faces through which a neighbor n of the camera's
-// cell is left are glued to n on both sides: a beam goes n → n → n → …
+// A structurally valid file whose cells overlap would make beam tracing loop forever. Here
+// the faces through which a neighbor n of the camera's cell is left are glued to n on both
+// sides: a beam goes n → n → n → …
 TEST(WingedPairIo, OverlappingCellsFromAFileAreAnErrorNotAHang) {
   const Scene rooms = make_vis_rooms();
   const CameraPath& p = rooms.camera_paths.front();

@@ -1,4 +1,4 @@
-// Winged-pair invariants (issue 9) on the test models and on degenerate input: closed
+// Winged-pair invariants on the test models and on degenerate input: closed
 // convex cells with V − E + F = 2, faces with ≥ 3 edges shared by 2 cells (1 on the outer
 // box), clock walks that close, spin walks that visit every face of an edge, and opaque
 // faces that tile every input polygon exactly.

@@ -1,4 +1,5 @@
-// Image<T>: an owning, row-major, interleaved-channel pixel array.
+// Image<T>: an owning, row-major, interleaved-channel pixel array. Its pixels are a
+// LargeBuffer: whole images of 2 MiB and more sit on huge pages (core/large_buffer.h).
 // Conventions (DESIGN.md): row 0 is the top row; pixel (x, y) has its center at (x + 0.5, y + 0.5).
 #pragma once
 
@@ -6,7 +7,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
-#include <vector>
+
+#include "proxima/core/large_buffer.h"
 
 namespace proxima {
 
@@ -48,7 +50,7 @@ class Image {
   int width_ = 0;
   int height_ = 0;
   int channels_ = 0;
-  std::vector<T> data_;
+  LargeBuffer<T> data_;
 };
 
 using ImageF = Image<float>;

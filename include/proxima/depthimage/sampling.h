@@ -20,6 +20,8 @@ enum class Redundancy {
   Visibility,  // Algorithm 2: the segment V_j → sample point is unoccluded (within ε)
 };
 const char* redundancy_name(Redundancy r);  // "pixel" | "visibility"
+// Throws InputError naming `flag` and the valid names for anything else.
+Redundancy parse_redundancy(const std::string& name, const char* flag);
 
 // Default ε of the visibility test, relative to the scene's bounding-box diagonal (the
 // ray offset of docs/shading.md).

@@ -1,5 +1,5 @@
 // The rasterizer checked against Embree on every camera of every built-in scene: rasterized
-// triangle ids vs the ray-cast item buffer at pixel centers (issue 3's acceptance figure).
+// triangle ids vs the ray-cast item buffer at pixel centers (the rasterizer's acceptance figure).
 #pragma once
 
 #include <string>

@@ -39,7 +39,7 @@ namespace proxima::gibr {
 
 struct NovelViewOptions {
   int k = 3;             // photographs blended per pixel, ≥ 1
-  int hole_radius = 32;  // texels searched around a hole (was 8 before 2026-12-02: RESULTS, issue 10)
+  int hole_radius = 32;  // texels searched around a hole
   int supersample = 1;   // s×s samples per pixel (antialiasing), 1..8 (InputError otherwise)
   // false: the plain path — a pass over the layers per sample kind, every hole searched
   // afresh ring by ring over whole squares; the same bits, for tests and benchmarks of the

@@ -1,6 +1,7 @@
-// Rasterizer benchmark and agreement figures for `proxima bench raster` (docs/RESULTS.md).
-// Timing is wall-clock, median of repetitions after a warm-up frame; agreement compares a
-// rasterized triangle-id buffer with a ray-cast item buffer of the same camera.
+// Rasterizer benchmark and agreement figures for `proxima bench raster` (docs/RESULTS.md,
+// docs/journal/raster.md). Timing is wall-clock, median of repetitions after a warm-up
+// frame; agreement compares a rasterized triangle-id buffer with a ray-cast item buffer of
+// the same camera.
 #pragma once
 
 #include <cstddef>

@@ -1,4 +1,4 @@
-// Environment-map lookups for the reflection rays of a ReflectionFrame (cluster_reflection.h):
+// Environment-map lookups for the reflection rays of a ReflectionFrame (reflection_frame.h):
 // per reflective sample the mean over its rays of a plain or rectified lookup (Wang et al.
 // 2012) from the ray origin, so env mapping composes like the cluster and temporal methods
 // (compose_reflections). Used by `reflect --method cluster --compare` and the viewer.
@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "proxima/reflect/cluster_reflection.h"
+#include "proxima/reflect/reflection_frame.h"
 #include "proxima/reflect/envmap_lookup.h"
 #include "proxima/reflect/envmap_reflection.h"
 

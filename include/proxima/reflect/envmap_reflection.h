@@ -25,7 +25,10 @@ enum class EnvmapMethod {
 };
 
 // "envmap", "rectified", "average", "layered" (the CLI's --method names).
-const char* method_name(EnvmapMethod method);
+const char* envmap_method_name(EnvmapMethod method);
+// The method whose envmap_method_name is `name`; InputError naming `flag` and listing the
+// valid names for anything else.
+EnvmapMethod parse_envmap_method(const std::string& name, const char* flag = "--method");
 
 // Objects with a reflective material (specular > 0) on any triangle, in id order.
 std::vector<uint32_t> reflective_objects(const Scene& scene);

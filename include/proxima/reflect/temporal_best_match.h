@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "proxima/core/large_buffer.h"
 #include "proxima/core/math.h"
 #include "proxima/reflect/temporal_depth_image.h"
 
@@ -19,8 +20,8 @@ namespace proxima {
 // reflective pixel keeps where its search ended, to warm-start the next frame's.
 struct OffsetBuffer {
   int width = 0, height = 0;
-  std::vector<vec2> offset;
-  std::vector<uint8_t> valid;
+  LargeBuffer<vec2> offset;  // whole-image buffers: on huge pages (core/large_buffer.h)
+  LargeBuffer<uint8_t> valid;
 };
 
 struct BestMatchOptions {

@@ -11,7 +11,7 @@
 
 #include "proxima/core/camera.h"
 #include "proxima/core/image.h"
-#include "proxima/reflect/cluster_reflection.h"
+#include "proxima/reflect/reflection_frame.h"
 
 namespace proxima {
 

@@ -12,9 +12,11 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "proxima/core/image.h"
+#include "proxima/core/large_buffer.h"
 #include "proxima/reflect/temporal_best_match.h"
 #include "proxima/reflect/temporal_depth_image.h"
 
@@ -31,6 +33,9 @@ enum class ReflectedEdgeRule : uint8_t {
   kNearest,    // take the Lr of the triangle's corner nearest the pixel (largest barycentric)
   kRecompute,  // mark the triangle's pixels kWarpEdge: recomputed by the ray tracer
 };
+const char* reflected_edge_rule_name(ReflectedEdgeRule rule);  // "nearest" | "recompute"
+// Throws InputError "<flag>: must be nearest or recompute" for any other name.
+ReflectedEdgeRule parse_reflected_edge_rule(const std::string& name, const char* flag);
 
 struct WarpOptions {
   float stretch_limit = 16.0f;        // warped / original triangle area above this → unreliable
@@ -115,7 +120,7 @@ struct IntermediateReflection {
   uint32_t key_options[4] = {};   // bits of depth_discontinuity, spread_limit, curved_contrast, edge_contrast
   std::vector<WarpSample> sample;   // per reflective key pixel: z and Lr of its vertex
   std::vector<uint8_t> flat;        // likewise: not on a strongly curved reflector
-  std::vector<uint32_t> index;      // per key pixel (row-major): its index in key.pixels, set
+  LargeBuffer<uint32_t> index;      // per key pixel (row-major): its index in key.pixels, set
                                     // on reflective pixels only
   std::vector<WarpCandidate> candidates;  // in the warp's triangle order
   uint64_t triangles = 0, stretched = 0, curved = 0, discontinuous = 0, edges = 0;

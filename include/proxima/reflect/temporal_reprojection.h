@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "proxima/core/image.h"
-#include "proxima/reflect/cluster_reflection.h"
+#include "proxima/reflect/reflection_frame.h"
 #include "proxima/reflect/temporal_depth_image.h"
 #include "proxima/reflect/temporal_offset_warp.h"
 

@@ -13,7 +13,7 @@
 #include <span>
 #include <vector>
 
-#include "proxima/reflect/cluster_reflection.h"
+#include "proxima/reflect/reflection_frame.h"
 #include "proxima/reflect/temporal_best_match.h"
 #include "proxima/reflect/temporal_depth_image.h"
 #include "proxima/reflect/temporal_offset_warp.h"

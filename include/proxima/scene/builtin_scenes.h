@@ -24,7 +24,7 @@ struct BuiltinSceneInfo {
 //   "table"; paths "walk", "orbit".
 // - bathroom: ~93k triangles, ~50k on 26 reflectors; cameras "door", "mirror"; paths
 //   "walk", "pan".
-// Appended for environment maps with distance (issue 6):
+// For environment maps with distance:
 // - room-teapot: room-reflector with a 39,800-triangle mirror teapot instead of the cylinder.
 // - room-car: room-reflector with a 39,936-triangle car-like mirror body (two
 //   superellipsoids) instead of the cylinder.

@@ -21,6 +21,9 @@ struct CameraChoice {
 // the scene has no such path.
 int find_camera_path(const Scene& scene, const std::string& key);
 
+// The camera path find_camera_path finds; throws InputError naming --path when there is none.
+const CameraPath& camera_path(const Scene& scene, const std::string& key);
+
 // Far clip distance for cameras inside or near the scene: 4 diagonals of its bounds, at
 // least 10 m.
 float scene_far_plane(const Scene& scene);

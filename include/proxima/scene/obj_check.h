@@ -1,7 +1,7 @@
-// Validation of a Wavefront OBJ file's face indices before assimp reads it (issue 13).
+// Validation of a Wavefront OBJ file's face indices before assimp reads it.
 // assimp 5.2's OBJ importer checks face / line / point indices only while it builds a
 // mesh, and throws "OBJ: vertex index out of range" after allocating that mesh, which it
-// then never frees (found by obj_fuzz: fuzz/regressions/obj/). So proxima checks the
+// then never frees (input: fuzz/regressions/obj/). So proxima checks the
 // indices first and refuses the file before assimp allocates anything.
 #pragma once
 

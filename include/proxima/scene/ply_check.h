@@ -1,8 +1,8 @@
-// Validation of a PLY file before assimp reads it (issue 13). assimp 5.2's PLY reader
+// Validation of a PLY file before assimp reads it. assimp 5.2's PLY reader
 // trusts what the file says: it reserves declared element and list counts before reading
 // them (out of memory on a 300-byte file), reads elements it does not know as 0 instances
 // (so the lines after them feed the wrong element), and loops or crashes on malformed
-// headers (all found by ply_fuzz). So proxima reads the whole file first, to the PLY
+// headers (inputs in fuzz/regressions/ply/). So proxima reads the whole file first, to the PLY
 // spec, and hands it to assimp only when assimp would read the same thing.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The viewer's fly camera (issue 12): WASD moves in the view plane, Q/E (or Space/C) down
+// The viewer's fly camera: WASD moves in the view plane, Q/E (or Space/C) down
 // and up, the mouse turns (yaw about world +Y, pitch clamped short of the poles), the
 // scroll wheel scales the speed. Platform independent: front ends fill FlyInput.
 #pragma once

@@ -1,4 +1,4 @@
-// The viewer's technique registry (issue 12): every rendering technique the viewer can
+// The viewer's technique registry: every rendering technique the viewer can
 // switch to, each a thin wrapper around the library code its `proxima` command runs
 // (reference ray tracing, env maps, cluster and temporal reflections, soft shadows from
 // reconstructed depth images, GIBR novel views), with a frame time per step. Platform

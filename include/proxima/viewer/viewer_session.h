@@ -1,4 +1,4 @@
-// The viewer's platform-independent core (issue 12): input → fly camera → the current
+// The viewer's platform-independent core: input → fly camera → the current
 // technique at a resolution that scales down while the camera moves and refines when it
 // stops → the window's RGBA8 pixels with an overlay (technique panel, frame time per step,
 // the error vs the reference once the camera has stopped and the reference — rendered a

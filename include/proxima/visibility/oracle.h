@@ -1,4 +1,4 @@
-// The Embree oracle for visibility maps (issue 9): the map's polygon at each pixel center
+// The Embree oracle for visibility maps: the map's polygon at each pixel center
 // against the polygon of the ray-traced item buffer's triangle.
 #pragma once
 

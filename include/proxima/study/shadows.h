@@ -1,0 +1,56 @@
+// The soft-shadow study (thesis ch. 3, Algorithms 4 and 5; docs/shadows.md): a rectangular
+// area light, the scene sampled with depth images from the light and reconstructed into
+// occluder meshes, the receivers' light visibility through shadow maps of those meshes,
+// measured against shadow maps of the original geometry (the thesis' ground truth) and
+// against exact Embree shadow rays.
+#pragma once
+
+#include <vector>
+
+#include "proxima/core/progress.h"
+#include "proxima/depthimage/sampling.h"
+#include "proxima/eval/results.h"
+#include "proxima/scene/camera_select.h"
+#include "proxima/scene/scene.h"
+#include "proxima/shadows/occluders.h"
+#include "proxima/study/study.h"
+
+namespace proxima::study {
+
+// The options of `proxima shadows`, one field per flag, with the flag's default.
+struct ShadowsOptions {
+  CameraChoice camera;  // --camera, --path, --frame: the output camera
+  // --sampling; several share the ground truths (their metrics then carry a prefix).
+  std::vector<ShadowSampling> samplings{ShadowSampling::Nrr};
+  float light_size = 1.0f;  // --light-size: light diagonal / scene bounding-box diagonal, (0, 100]
+  int light_samples = 16;   // --light-samples n: the light is sampled n × n, 1..64
+  int ref_res = 1024;       // --ref-res, pixels (square), of the reference depth images
+  int out_res = 512;        // --out-res, pixels (square), of the output image
+  int shadow_res = 1024;    // --shadow-res, pixels (square), of the shadow maps
+  Redundancy redundancy = Redundancy::Pixel;                          // --redundancy: NRR's test
+  ReconstructionMethod reconstruction = ReconstructionMethod::Hybrid;  // --reconstruction
+  bool no_rays = false;     // --no-rays: skip the Embree shadow-ray ground truth
+};
+
+// Throws InputError naming the flag (--sampling, --light-size, --light-samples, --ref-res,
+// --out-res, --shadow-res) for a value out of range; image sides are 8..kMaxImageSide.
+void validate(const ShadowsOptions& options);
+// The options on `scene`: validate(options), and the camera choice resolves (errors name
+// --camera, --path or --frame).
+void validate(const ShadowsOptions& options, const Scene& scene);
+
+// Runs the study. Metrics per sampling (prefixed "<sampling>_" when several run):
+// intensity_error_mean/_max, visibility_error_mean/_max (0..255, vs the geometry's shadow
+// maps), with rays also intensity_error_rays_mean/_max, visibility_error_rays_mean/_max;
+// time_reference_ms, time_reconstruct_ms, time_shadow_ms, occluder_triangles,
+// reference_samples. Also light_size, light_samples (n²), receivers, triangles,
+// light_fov_deg and, with rays, geometry_vs_rays_intensity_error_mean,
+// geometry_vs_rays_visibility_error_mean, time_rays_ms. Tables: errors vs the geometry's
+// shadow maps (thesis Table 8 shape), vs rays, time per step (Table 11 shape). Images:
+// geometry_shadow, rays_shadow, <sampling>_shadow, <sampling>_error (green too bright, red
+// too dark). Deterministic for any thread count but for the times; `progress` is not used
+// (the study is one step of a caller's bar). Throws InputError for invalid options.
+Results run_shadows(const Scene& scene, const ShadowsOptions& options, const StudyOutput& out,
+                    Progress* progress = nullptr);
+
+}  // namespace proxima::study

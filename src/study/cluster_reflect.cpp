@@ -1,0 +1,458 @@
+// Study: reflections from screen-space clustered depth images (thesis ch. 4) on one camera
+// or along a camera path, optionally compared with Embree tracing the same rays and with
+// rectified environment mapping on the same rays.
+#include "proxima/study/cluster_reflect.h"
+
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "proxima/core/error.h"
+#include "proxima/core/rng.h"
+#include "proxima/core/timer.h"
+#include "proxima/eval/image_error.h"
+#include "proxima/eval/series.h"
+#include "proxima/raster/rasterizer.h"
+#include "proxima/reflect/envmap_frame_reflections.h"
+#include "proxima/reflect/envmap_lookup.h"
+#include "proxima/reflect/envmap_reflection.h"
+#include "proxima/scene/camera_path.h"
+#include "proxima/scene/shading.h"
+#include "proxima/trace/ray_scene.h"
+#include "proxima/trace/reference_renderer.h"
+
+namespace proxima::study {
+
+namespace {
+
+const char* const kCauseNames[kOcclusionCauses] = {"none", "behind_near_plane", "outside_image",
+                                                   "own_curved_reflector", "hidden_in_image"};
+
+// Output-resolution image of the samples: clusters in hashed colors, flagged samples red
+// (environment fallback) and yellow (occlusion error), over a dimmed `color`.
+ImageF cluster_image(const ReflectionFrame& frame, const ClusterReflections& cr, const ImageF& color) {
+  ImageF out = color;
+  for (float& v : out.data()) v *= 0.3f;
+  const int sw = frame.sample_camera.width, k = frame.supersample;
+  const float share = 1.0f / float(k * k);
+  for (size_t i = 0; i < frame.sample_count(); ++i) {
+    uint64_t h = mix64(cr.cluster[i]);
+    vec3 c(float(h & 255) / 255.0f, float((h >> 8) & 255) / 255.0f, float((h >> 16) & 255) / 255.0f);
+    if (cr.flags[i] & kEnvFallback) c = vec3(1, 0, 0);
+    if (cr.flags[i] & kOcclusionError) c = vec3(1, 1, 0);
+    const int x = int(frame.pixel[i] % uint32_t(sw)) / k, y = int(frame.pixel[i] / uint32_t(sw)) / k;
+    for (int ch = 0; ch < 3; ++ch) out.at(x, y, ch) += share * (c[ch] - 0.3f * color.at(x, y, ch));
+  }
+  return out;
+}
+
+// The frames to render: one (the scene camera --camera, or --path with --frame), or the
+// path divided into --frames frames, every --frame-step-th rendered.
+struct Schedule {
+  const CameraPath* path = nullptr;
+  int frames = 1;
+  bool sequence = false;  // frames of the path, posed by time
+  std::vector<int> indices;
+
+  float time_of(int index) const {
+    if (!path) return 0.0f;
+    if (!sequence) return frame_time(*path, index);
+    const float t0 = path->keys.front().time, t1 = path->keys.back().time;
+    return frames > 1 ? t0 + float(index) * (t1 - t0) / float(frames - 1) : t0;
+  }
+};
+
+Schedule schedule(const Scene& scene, const ClusterReflectOptions& o) {
+  Schedule s;
+  if (!o.camera.path.empty()) {
+    s.path = &camera_path(scene, o.camera.path);
+    s.frames = o.frames > 0 ? o.frames : s.path->frames;
+  }
+  s.sequence = s.path && !o.frame_given;
+  if (s.sequence) {
+    for (int i = 0; i < s.frames; i += o.frame_step) s.indices.push_back(i);
+  } else {
+    s.indices.push_back(o.frame_given ? o.camera.frame : 0);
+  }
+  return s;
+}
+
+// Per-frame figures of the run, reduced in the tables.
+struct ClusterSeries {
+  Series reflective_pct, cluster_ms, reference_ms, reference_dynamic_ms, envmap_ms, envmap_build_ms, step1_ms,
+      cameras_ms, images_ms, intersection_ms, clusters, samples_per_cluster, occlusion_pct, fallback_pct,
+      planar_pct, mae_r, mae_g, mae_b, env_r, env_g, env_b, texels, fill_pct, occlusion_ray_pct,
+      occlusion_mirror_pct, occlusion_glossy_pct, full_r, full_g, full_b, traced_full, second_texels,
+      second_ray_pct;
+  Series cause_pct[kOcclusionCauses], cause_mirror_pct[kOcclusionCauses];
+};
+
+// One frame of both methods (and the comparison's), with the median times of its reps.
+struct FrameRun {
+  ReflectionFrame frame;
+  ClusterReflections cluster;
+  TracedReflections traced;
+  std::unique_ptr<RayScene> rays;
+  std::vector<vec3> env_radiance;
+  double cluster_ms = 0.0, step1_ms = 0.0, cameras_ms = 0.0, images_ms = 0.0, intersection_ms = 0.0;
+  double reference_ms = 0.0, build_ms = 0.0, envmap_ms = 0.0, envmap_build_ms = 0.0;
+};
+
+// The env map of the reflectors' environment from their common centre, texels shaded as the
+// cluster images' (unshadowed); built once per frame (the scene moves).
+DistanceCubeMap environment_map(const Scene& scene, const RayScene& rays, const ClusterReflectOptions& o,
+                                const ReflectionOptions& ro) {
+  const std::vector<uint32_t> reflectors = reflective_objects(scene);
+  DistanceCubeMapOptions mo;
+  mo.resolution = o.cube_size;
+  mo.area_light_samples = ro.area_light_samples;
+  mo.seed = ro.seed;
+  mo.exclude = reflectors;
+  mo.shade = [&](uint32_t tri, float u, float v, vec3 toward) {
+    return shade_reflected_point(scene, tri, u, v, toward, ro.area_light_samples);
+  };
+  return render_distance_cube_map(scene, rays, projection_center(scene, reflectors), mo);
+}
+
+// Side by side, `reps` times; medians per frame.
+FrameRun run_frame(const Scene& scene, const Camera& camera, const ClusterReflectOptions& o,
+                   const ReflectionOptions& ro) {
+  FrameRun f;
+  std::vector<double> c_ms, r_ms, b_ms, e_ms, s1, s2, s3, s4;
+  DistanceCubeMap map;
+  RectifyOptions rectify;
+  rectify.D = o.distance > 0.0f ? o.distance : scene_bounds(scene).diagonal();
+  rectify.d_e = o.d_e;
+  rectify.edge = o.edge_fallback ? EdgeRule::PlainFallback : EdgeRule::Black;
+  for (int rep = 0; rep < o.reps; ++rep) {
+    Stopwatch watch;
+    const std::vector<Bounds3> bounds = raster_object_bounds(scene);
+    f.frame = prepare_reflection_frame(scene, camera, ro, bounds);
+    const double step1 = watch.elapsed_ms();
+    if (o.compare) {
+      f.rays = std::make_unique<RayScene>(scene);
+      b_ms.push_back(f.rays->build_ms());
+      f.traced = trace_reflections(scene, *f.rays, f.frame);
+      r_ms.push_back(step1 + f.traced.ms);
+      if (rep == 0) {
+        Stopwatch w;
+        map = environment_map(scene, *f.rays, o, ro);
+        f.envmap_build_ms = w.elapsed_ms();
+      }
+      Stopwatch w;
+      f.env_radiance = envmap_frame_reflections(scene, f.frame, map, EnvmapMethod::Rectified, rectify);
+      e_ms.push_back(step1 + w.elapsed_ms());
+    }
+    f.cluster =
+        render_cluster_reflections(scene, f.frame, o.cluster, bounds, o.compare ? &f.traced : nullptr);
+    const ClusterFrameStats& st = f.cluster.stats;
+    s1.push_back(step1 + st.clustering_ms);
+    s2.push_back(st.cameras_ms);
+    s3.push_back(st.depth_images_ms);
+    s4.push_back(st.intersection_ms);
+    c_ms.push_back(s1.back() + s2.back() + s3.back() + s4.back());
+  }
+  f.cluster_ms = median(c_ms);
+  f.step1_ms = median(s1);
+  f.cameras_ms = median(s2);
+  f.images_ms = median(s3);
+  f.intersection_ms = median(s4);
+  if (o.compare) {
+    f.reference_ms = median(r_ms);
+    f.build_ms = median(b_ms);
+    f.envmap_ms = median(e_ms);
+  }
+  return f;
+}
+
+// Occlusion-error figures of a compared frame with reflective pixels: totals, and causes
+// over all reflective samples and over the mirror samples (one ray each).
+void add_occlusion_errors(const FrameRun& f, double samples, ClusterSeries& s) {
+  const ClusterFrameStats& st = f.cluster.stats;
+  s.occlusion_pct.add(100.0 * double(st.occlusion_error_samples) / samples);
+  s.occlusion_ray_pct.add(100.0 * double(st.occlusion_error_rays) / std::max<double>(1.0, double(st.rays)));
+  uint64_t mirror_cause[kOcclusionCauses] = {}, glossy_errors = 0;
+  for (size_t i = 0; i < f.frame.sample_count(); ++i) {
+    const bool mirror = glossy_lobe_half_angle(f.frame.gloss[i]) <= 0.0f;
+    if (mirror)
+      ++mirror_cause[f.cluster.occlusion_cause[i]];
+    else
+      glossy_errors += f.cluster.occlusion_cause[i] != uint8_t(OcclusionCause::None);
+  }
+  for (int c = 1; c < kOcclusionCauses; ++c) {
+    s.cause_pct[c].add(100.0 * double(st.occlusion_cause_samples[c]) / samples);
+    if (st.mirror_samples > 0)
+      s.cause_mirror_pct[c].add(100.0 * double(mirror_cause[c]) / double(st.mirror_samples));
+  }
+  if (st.mirror_samples > 0)
+    s.occlusion_mirror_pct.add(100.0 * double(st.mirror_occlusion_error_samples) / double(st.mirror_samples));
+  if (st.mirror_samples < st.reflective_samples)
+    s.occlusion_glossy_pct.add(100.0 * double(glossy_errors) /
+                               double(st.reflective_samples - st.mirror_samples));
+}
+
+// Ground truth with shadows and jittered area-light samples; the Embree pass on the same
+// rays against it isolates what the shared unshadowed shading costs.
+void add_full_reference_errors(const Scene& scene, const FrameRun& f, const Camera& camera,
+                               const ReflectionOptions& ro, const ImageF& color, const ImageF& reference,
+                               const ImageU8& mask, ClusterSeries& s) {
+  ReferenceOptions full_opts;
+  full_opts.supersample = ro.supersample;
+  full_opts.area_light_samples = ro.area_light_samples;
+  full_opts.glossy_rays = ro.glossy_rays;
+  full_opts.max_bounces = 1;
+  full_opts.seed = ro.seed;
+  const ImageF full = render_reference(scene, *f.rays, camera, full_opts);
+  const ImageError cluster_err = compare_images(color, full, &mask);
+  s.full_r.add(cluster_err.mae[0]);
+  s.full_g.add(cluster_err.mae[1]);
+  s.full_b.add(cluster_err.mae[2]);
+  s.traced_full.add(compare_images(reference, full, &mask).mae_avg);
+}
+
+// The frame's figures into the series. Cluster figures average over the frames that show
+// reflective pixels, and so do the error figures.
+void add_frame(const FrameRun& f, size_t reflective, size_t pixels, bool compare, ClusterSeries& s) {
+  const ClusterFrameStats& st = f.cluster.stats;
+  const double samples = std::max<double>(1.0, double(st.reflective_samples));
+  s.reflective_pct.add(100.0 * double(reflective) / double(pixels));
+  s.cluster_ms.add(f.cluster_ms);
+  s.step1_ms.add(f.step1_ms);
+  s.cameras_ms.add(f.cameras_ms);
+  s.images_ms.add(f.images_ms);
+  s.intersection_ms.add(f.intersection_ms);
+  if (reflective > 0) {
+    s.clusters.add(double(st.clusters));
+    s.texels.add(double(st.texels));
+    s.second_texels.add(double(st.second_layer_texels));
+    s.second_ray_pct.add(100.0 * double(st.second_layer_rays) / std::max<double>(1.0, double(st.rays)));
+    s.samples_per_cluster.add(double(st.reflective_samples) / double(st.clusters));
+    s.planar_pct.add(100.0 * double(st.planar_samples) / samples);
+  }
+  s.fallback_pct.add(100.0 * double(st.env_fallback_samples) / samples);
+  s.fill_pct.add(100.0 * double(st.behind_fill_samples) / samples);
+  if (compare) {
+    s.reference_ms.add(f.reference_ms);
+    s.reference_dynamic_ms.add(f.reference_ms + f.build_ms);
+    s.envmap_ms.add(f.envmap_ms);
+    s.envmap_build_ms.add(f.envmap_build_ms);
+  }
+}
+
+void add_mae(const ImageError& e, Series& r, Series& g, Series& b) {
+  r.add(e.mae[0]);
+  g.add(e.mae[1]);
+  b.add(e.mae[2]);
+}
+
+void add_metrics(const ClusterReflectOptions& o, const ClusterSeries& s, Results& results) {
+  auto& m = results.metrics;
+  m["frames"] = double(s.cluster_ms.values.size());
+  m["frames_with_reflections"] = double(std::count_if(
+      s.reflective_pct.values.begin(), s.reflective_pct.values.end(), [](double v) { return v > 0.0; }));
+  m["reflective_pct_avg"] = s.reflective_pct.avg();
+  m["reflective_pct_max"] = s.reflective_pct.max();
+  m["clusters_avg"] = s.clusters.avg();
+  m["clusters_max"] = s.clusters.max();
+  m["samples_per_cluster_avg"] = s.samples_per_cluster.avg();
+  m["cluster_ms_avg"] = s.cluster_ms.avg();
+  m["cluster_ms_max"] = s.cluster_ms.max();
+  m["gbuffer_clustering_ms_avg"] = s.step1_ms.avg();
+  m["cluster_cameras_ms_avg"] = s.cameras_ms.avg();
+  m["depth_images_ms_avg"] = s.images_ms.avg();
+  m["intersection_ms_avg"] = s.intersection_ms.avg();
+  m["env_fallback_pct_avg"] = s.fallback_pct.avg();
+  m["texels_avg"] = s.texels.avg();
+  m["second_layer_texels_avg"] = s.second_texels.avg();
+  m["second_layer_rays_pct_avg"] = s.second_ray_pct.avg();
+  m["behind_fill_pct_avg"] = s.fill_pct.avg();
+  m["planar_samples_pct_avg"] = s.planar_pct.avg();
+  m["planar_samples_pct_max"] = s.planar_pct.max();
+  if (!o.compare) return;
+  m["cluster_mae_r"] = s.mae_r.avg();
+  m["cluster_mae_g"] = s.mae_g.avg();
+  m["cluster_mae_b"] = s.mae_b.avg();
+  m["envmap_mae_r"] = s.env_r.avg();
+  m["envmap_mae_g"] = s.env_g.avg();
+  m["envmap_mae_b"] = s.env_b.avg();
+  m["occlusion_error_pct_avg"] = s.occlusion_pct.avg();
+  m["occlusion_error_pct_max"] = s.occlusion_pct.max();
+  m["occlusion_error_rays_pct_avg"] = s.occlusion_ray_pct.avg();
+  m["occlusion_error_mirror_pct_avg"] = s.occlusion_mirror_pct.avg();
+  m["occlusion_error_mirror_pct_max"] = s.occlusion_mirror_pct.max();
+  m["occlusion_error_glossy_pct_avg"] = s.occlusion_glossy_pct.avg();
+  for (int c = 1; c < kOcclusionCauses; ++c) {
+    m[std::string("occlusion_") + kCauseNames[c] + "_pct_avg"] = s.cause_pct[c].avg();
+    m[std::string("occlusion_") + kCauseNames[c] + "_mirror_pct_avg"] = s.cause_mirror_pct[c].avg();
+  }
+  m["reference_ms_avg"] = s.reference_ms.avg();
+  m["reference_dynamic_ms_avg"] = s.reference_dynamic_ms.avg();
+  m["envmap_ms_avg"] = s.envmap_ms.avg();
+  m["envmap_build_ms_avg"] = s.envmap_build_ms.avg();
+  m["speedup_static"] = s.reference_ms.avg() / s.cluster_ms.avg();
+  m["speedup_dynamic"] = s.reference_dynamic_ms.avg() / s.cluster_ms.avg();
+  if (o.full_reference) {
+    m["full_mae_r"] = s.full_r.avg();
+    m["full_mae_g"] = s.full_g.avg();
+    m["full_mae_b"] = s.full_b.avg();
+    m["traced_vs_full_mae"] = s.traced_full.avg();
+  }
+}
+
+// The tables of the thesis' §4.7 (Tables 13–21) and, with compare, the error tables.
+void add_tables(const ClusterReflectOptions& o, const ClusterSeries& s, const std::string& where,
+                Results& results) {
+  const std::string size = std::to_string(o.width) + "x" + std::to_string(o.height) + ", " +
+                           std::to_string(o.reflection.supersample) + "x" +
+                           std::to_string(o.reflection.supersample) + " ss";
+  auto& t = results.tables;
+  t.push_back(
+      {"Frame rate (thesis Table 13), " + where + ", " + size,
+       {"reflective_pct_max", "reflective_pct_avg", "embree_fps_max", "embree_fps_min", "embree_fps_avg",
+        "embree_dynamic_fps_avg", "cluster_fps_max", "cluster_fps_min", "cluster_fps_avg"},
+       {{s.reflective_pct.max(), s.reflective_pct.avg(), fps(s.reference_ms.min()), fps(s.reference_ms.max()),
+         fps(s.reference_ms.avg()), fps(s.reference_dynamic_ms.avg()), fps(s.cluster_ms.min()),
+         fps(s.cluster_ms.max()), fps(s.cluster_ms.avg())}}});
+  t.push_back({"Step times in ms (thesis Table 14), " + where,
+               {"gbuffer_clustering_max", "gbuffer_clustering_avg", "cameras_max", "cameras_avg",
+                "depth_images_max", "depth_images_avg", "intersection_max", "intersection_avg"},
+               {{s.step1_ms.max(), s.step1_ms.avg(), s.cameras_ms.max(), s.cameras_ms.avg(),
+                 s.images_ms.max(), s.images_ms.avg(), s.intersection_ms.max(), s.intersection_ms.avg()}}});
+  // One row per run: runs at other bin counts, output sizes and image scales make Tables 15–17.
+  t.push_back({"Parameters vs frame rate (thesis Tables 15–17), " + where,
+               {"clusters_avg", "width", "height", "resolution_scale", "texels_avg", "cluster_fps_avg"},
+               {{s.clusters.avg(), double(o.width), double(o.height), double(o.cluster.resolution_scale),
+                 s.texels.avg(), fps(s.cluster_ms.avg())}}});
+  t.push_back({"Clusters (thesis Table 19), " + where,
+               {"clusters_avg", "clusters_max", "samples_per_cluster_avg"},
+               {{s.clusters.avg(), s.clusters.max(), s.samples_per_cluster.avg()}}});
+  t.push_back({"Glossy cost (thesis Table 20), " + where,
+               {"gloss_rays", "intersection_ms_avg", "embree_fps_avg", "cluster_fps_avg"},
+               {{double(o.reflection.glossy_rays), s.intersection_ms.avg(), fps(s.reference_ms.avg()),
+                 fps(s.cluster_ms.avg())}}});
+  t.push_back({"Samples in planar clusters, % of reflective samples (thesis Table 21), " + where,
+               {"avg", "max"},
+               {{s.planar_pct.avg(), s.planar_pct.max()}}});
+}
+
+void add_compare_tables(const ClusterReflectOptions& o, const ClusterSeries& s, const std::string& where,
+                        Results& results) {
+  auto& t = results.tables;
+  if (o.full_reference)
+    t.push_back({"Error vs render_reference (shadows, area-light jitter, 1 bounce), " + where,
+                 {"cluster_mae_r", "cluster_mae_g", "cluster_mae_b", "same_rays_embree_mae_avg"},
+                 {{s.full_r.avg(), s.full_g.avg(), s.full_b.avg(), s.traced_full.avg()}}});
+  t.push_back({"Error vs Embree on the same rays (thesis §4.7.1), " + where,
+               {"method", "mae_r", "mae_g", "mae_b", "mae_max_channel_max_frame", "ms_avg"},
+               {{std::string("cluster"), s.mae_r.avg(), s.mae_g.avg(), s.mae_b.avg(),
+                 std::max({s.mae_r.max(), s.mae_g.max(), s.mae_b.max()}), s.cluster_ms.avg()},
+                {std::string("envmap (rectified)"), s.env_r.avg(), s.env_g.avg(), s.env_b.avg(),
+                 std::max({s.env_r.max(), s.env_g.max(), s.env_b.max()}), s.envmap_ms.avg()},
+                {std::string("embree (static BVH)"), 0.0, 0.0, 0.0, 0.0, s.reference_ms.avg()},
+                {std::string("embree (BVH rebuilt)"), 0.0, 0.0, 0.0, 0.0, s.reference_dynamic_ms.avg()}}});
+  Table causes{"Occlusion errors, % of reflective samples (all / mirror only), " + where,
+               {"cause", "all_samples_pct_avg", "mirror_samples_pct_avg"},
+               {{std::string("total"), s.occlusion_pct.avg(), s.occlusion_mirror_pct.avg()}}};
+  for (int c = 1; c < kOcclusionCauses; ++c)
+    causes.rows.push_back({std::string(kCauseNames[c]), s.cause_pct[c].avg(), s.cause_mirror_pct[c].avg()});
+  t.push_back(std::move(causes));
+  t.push_back(
+      {"Fallbacks, % of reflective samples, " + where,
+       {"occlusion_error_rays_pct_avg", "occlusion_error_glossy_pct_avg", "env_fallback_pct_avg",
+        "behind_fill_pct_avg"},
+       {{s.occlusion_ray_pct.avg(), s.occlusion_glossy_pct.avg(), s.fallback_pct.avg(), s.fill_pct.avg()}}});
+}
+
+}  // namespace
+
+void validate(const ClusterReflectOptions& o) {
+  const std::string sides = "must be in 1.." + std::to_string(kMaxImageSide);
+  if (o.width < 1 || o.width > kMaxImageSide) fail_input("--width: " + sides);
+  if (o.height < 1 || o.height > kMaxImageSide) fail_input("--height: " + sides);
+  if (o.reflection.supersample < 1 || o.reflection.supersample > 8) fail_input("--ss: must be in 1..8");
+  if (o.reflection.glossy_rays < 1 || o.reflection.glossy_rays > 1024)
+    fail_input("--gloss-rays: must be in 1..1024 for --method cluster");
+  if (o.reflection.area_light_samples < 1 || o.reflection.area_light_samples > 64)
+    fail_input("--light-samples: must be in 1..64");
+  if (o.frames < 0 || o.frames > 100000) fail_input("--frames: must be in 0..100000");
+  if (o.frame_step < 1) fail_input("--frame-step: must be ≥ 1");
+  if (o.reps < 1 || o.reps > 100) fail_input("--reps: must be in 1..100");
+  if (o.image_frame < -1) fail_input("--image-frame: must be ≥ -1");
+  if (o.full_reference && !o.compare) fail_input("--full-reference: needs --compare");
+  const ClusteringOptions& c = o.cluster.clustering;
+  if (c.max_theta_bins < 1 || c.max_theta_bins > 1000) fail_input("--theta-bins: must be in 1..1000");
+  if (c.max_phi_bins < 1 || c.max_phi_bins > 1000) fail_input("--phi-bins: must be in 1..1000");
+  if (!(c.min_bin_scale >= 0.0f && c.min_bin_scale <= 1.0f)) fail_input("--min-bin-scale: must be in [0, 1]");
+  if (!(o.cluster.resolution_scale > 0.0f && o.cluster.resolution_scale <= 8.0f))
+    fail_input("--resolution-scale: must be in (0, 8]");
+  if (o.cube_size < 1 || o.cube_size > kMaxImageSide) fail_input("--cube-size: " + sides);
+  if (o.cluster.march_block < 0 || o.cluster.march_block > 256)
+    fail_input("--march-block: must be in 0..256");
+}
+
+void validate(const ClusterReflectOptions& o, const Scene& scene) {
+  const Schedule s = schedule(scene, o);
+  if (!s.sequence) pick_camera(scene, o.camera, o.width, o.height);
+  if (reflective_objects(scene).empty()) fail_input("--scene: '" + scene.name + "' has no reflective object");
+}
+
+Results run_cluster_reflect(const Scene& rest, const ClusterReflectOptions& o, const StudyOutput& out,
+                            Progress* progress) {
+  validate(o);
+  validate(o, rest);
+  const Schedule sched = schedule(rest, o);
+  const float far = scene_far_plane(rest);
+  const ReflectionOptions& ro = o.reflection;
+  ClusterSeries s;
+  Results results;
+  bool wrote_images = false;
+  if (progress) progress->begin("reflect cluster", int(sched.indices.size()));
+  for (const int frame_index : sched.indices) {
+    if (progress) progress->step("frame " + std::to_string(frame_index) + "/" + std::to_string(sched.frames));
+    const float t = sched.time_of(frame_index);
+    const Scene posed = has_animation(rest) ? pose_scene(rest, t) : Scene{};
+    const Scene& scene = has_animation(rest) ? posed : rest;
+    const Camera camera = sched.sequence ? camera_at_time(*sched.path, t, o.width, o.height, 0.01f, far)
+                                         : pick_camera(rest, o.camera, o.width, o.height);
+    const FrameRun f = run_frame(scene, camera, o, ro);
+    const ImageU8 mask = reflective_pixel_mask(f.frame);
+    size_t reflective = 0;
+    for (uint8_t m : mask.data()) reflective += m;
+    add_frame(f, reflective, mask.pixel_count(), o.compare, s);
+    const ImageF color = compose_reflections(f.frame, f.cluster.radiance);
+    const ImageF reference = o.compare ? compose_reflections(f.frame, f.traced.radiance) : ImageF();
+    const ImageF envmap = o.compare ? compose_reflections(f.frame, f.env_radiance) : ImageF();
+    if (o.compare && reflective > 0) {
+      add_occlusion_errors(f, std::max<double>(1.0, double(f.cluster.stats.reflective_samples)), s);
+      add_mae(compare_images(color, reference, &mask), s.mae_r, s.mae_g, s.mae_b);
+      add_mae(compare_images(envmap, reference, &mask), s.env_r, s.env_g, s.env_b);
+      if (o.full_reference) add_full_reference_errors(scene, f, camera, ro, color, reference, mask, s);
+    }
+    if (!wrote_images && (o.image_frame < 0 || o.image_frame == frame_index)) {
+      write_image(out, results, "cluster", "cluster.png", color);
+      write_image(out, results, "clusters", "clusters.png", cluster_image(f.frame, f.cluster, color));
+      if (o.compare) {
+        write_image(out, results, "reference", "reference.png", reference);
+        write_image(out, results, "envmap", "envmap.png", envmap);
+        // Error heat maps over the reflective pixels.
+        write_image(out, results, "error_cluster", "error_cluster.png",
+                    error_heatmap(error_image(color, reference, &mask), kErrorHeatmapMax, &mask));
+        write_image(out, results, "error_envmap", "error_envmap.png",
+                    error_heatmap(error_image(envmap, reference, &mask), kErrorHeatmapMax, &mask));
+      }
+      wrote_images = true;
+    }
+  }
+  if (progress) progress->end();
+  add_metrics(o, s, results);
+  const std::string where =
+      rest.name + " / " +
+      (sched.path ? sched.path->name + (sched.sequence ? "" : " frame " + std::to_string(sched.indices[0]))
+                  : "camera");
+  add_tables(o, s, where, results);
+  if (o.compare) add_compare_tables(o, s, where, results);
+  return results;
+}
+
+}  // namespace proxima::study

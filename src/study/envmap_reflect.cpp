@@ -1,0 +1,288 @@
+// `proxima reflect` as a library call: env-map reflections (Wang et al. 2012, docs/envmap.md)
+// beside the Embree reference with one mirror bounce, on the same camera and pixels.
+#include "proxima/study/envmap_reflect.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "proxima/core/camera.h"
+#include "proxima/core/error.h"
+#include "proxima/core/limits.h"
+#include "proxima/core/timer.h"
+#include "proxima/eval/image_error.h"
+#include "proxima/reflect/distance_cube_map.h"
+#include "proxima/reflect/envmap_reflection.h"
+#include "proxima/reflect/reflection_comparison.h"
+#include "proxima/scene/camera_path.h"
+#include "proxima/trace/ray_scene.h"
+#include "proxima/trace/reference_renderer.h"
+
+namespace proxima::study {
+
+namespace {
+
+bool is_method(const std::string& name) {
+  return std::find(std::begin(kEnvmapReflectMethods), std::end(kEnvmapReflectMethods), name) !=
+         std::end(kEnvmapReflectMethods);
+}
+
+std::vector<std::string> methods_of(const EnvmapReflectOptions& o) {
+  if (o.compare) return {std::begin(kEnvmapReflectMethods), std::end(kEnvmapReflectMethods)};
+  return {o.method};
+}
+
+// Animated objects at the time of the chosen path frame (as `proxima render`), else at 0.
+std::optional<Scene> posed_scene(const Scene& scene, const CameraChoice& choice) {
+  if (!has_animation(scene)) return std::nullopt;
+  float t = 0.0f;
+  const int p = choice.path.empty() ? -1 : find_camera_path(scene, choice.path);
+  if (p >= 0) t = frame_time(scene.camera_paths[size_t(p)], choice.frame);
+  return pose_scene(scene, t);
+}
+
+double pct(size_t part, size_t whole) { return whole ? 100.0 * double(part) / double(whole) : 0.0; }
+
+// The maps the methods read: one distance cube map for plain / rectified / average (with d̄),
+// K depth layers for layered. Built once (a static environment), timed apart from the
+// per-frame work.
+struct Maps {
+  DistanceCubeMap map;
+  float average_distance = kDistanceInf;
+  std::vector<DistanceCubeMap> layers;
+};
+
+Maps build_maps(const Scene& scene, const RayScene& rays, const std::vector<uint32_t>& reflectors, vec3 center,
+                const EnvmapReflectOptions& o, const std::vector<std::string>& methods, Results& results) {
+  auto wants = [&](const char* m) { return std::find(methods.begin(), methods.end(), m) != methods.end(); };
+  DistanceCubeMapOptions mo;
+  mo.resolution = o.cube_size;
+  mo.area_light_samples = o.light_samples;
+  mo.seed = o.seed;
+  mo.exclude = reflectors;
+  Maps maps;
+  if (wants("envmap") || wants("rectified") || wants("average")) {
+    Stopwatch w;
+    maps.map = render_distance_cube_map(scene, rays, center, mo);
+    results.metrics["envmap_build_ms"] = w.elapsed_ms();
+    w.restart();
+    maps.average_distance = average_distance(maps.map, glm::radians(o.angle_step_deg));
+    results.metrics["average_distance_ms"] = w.elapsed_ms();
+    results.metrics["average_distance_m"] = maps.average_distance;
+  }
+  if (wants("layered")) {
+    DistanceCubeLayerOptions lo;
+    lo.layers = o.layers;
+    lo.viewer_radius = viewer_radius(scene, reflectors, center);
+    Stopwatch w;
+    maps.layers = render_distance_cube_layers(scene, rays, center, mo, lo);
+    results.metrics["layered_build_ms"] = w.elapsed_ms();
+    results.metrics["layers"] = double(maps.layers.size());
+    results.metrics["viewer_radius_m"] = lo.viewer_radius;
+    for (size_t k = 0; k < maps.layers.size(); ++k) {
+      results.metrics["layer" + std::to_string(k) + "_shaded_texels"] = double(maps.layers[k].shaded_texels);
+      results.metrics["layer" + std::to_string(k) + "_hidden_texels"] = double(maps.layers[k].hidden_texels);
+    }
+  }
+  return maps;
+}
+
+EnvmapInputs inputs_of(const Scene& scene, const Maps& maps, const EnvmapReflectOptions& o) {
+  EnvmapInputs in;
+  in.map = &maps.map;
+  in.average_distance = maps.average_distance;
+  in.layers = maps.layers;
+  in.rectify.D = o.distance > 0.0f ? o.distance : scene_bounds(scene).diagonal();
+  in.rectify.d_e = o.d_e;
+  in.rectify.edge = o.edge == "fallback" ? EdgeRule::PlainFallback : EdgeRule::Black;
+  in.rectify.max_march_steps = o.march_steps;
+  in.area_light_samples = o.light_samples;
+  in.glossy_rays = o.glossy_rays;
+  in.seed = o.seed;
+  return in;
+}
+
+// The pixels a method is judged on: where both its rasterized reflector and the reference
+// see a reflector (`mask`), and of those the ones whose mirror ray meets the environment,
+// not a reflector (`env_mask`), with the object the reference's mirror ray meets.
+struct Judged {
+  ReflectorPixels pixels;
+  PixelMask mask, env_mask;
+  ImageU32 reference_objects;
+};
+
+Judged judged_pixels(const Scene& scene, const RayScene& rays, const Camera& camera, const ItemBuffer& item,
+                     const std::vector<uint32_t>& reflectors, Results& results) {
+  Judged j;
+  j.pixels = rasterize_reflector_pixels(scene, camera, reflectors);
+  j.mask = comparison_mask(j.pixels.triangle, item, scene, reflectors);
+  results.metrics["reflector_pixels"] = double(j.mask.pixels);
+  j.reference_objects = reference_reflected_objects(scene, rays, camera, item, j.mask.mask);
+  j.env_mask = environment_mask(j.mask, j.reference_objects, reflectors);
+  results.metrics["self_reflection_pct"] = pct(j.mask.pixels - j.env_mask.pixels, j.mask.pixels);
+  return j;
+}
+
+// Each method's outputs (and warm-up) first, then the timed frames round-robin over the
+// methods, so load changes on a shared machine hit every method alike. A method's frame is
+// the reflector's visibility (rasterized) and its shading; the reference's is a full render.
+struct Frames {
+  std::vector<EnvmapFrame> frames;
+  std::vector<double> median_ms;
+};
+
+Frames render_frames(const Scene& scene, const RayScene& rays, const Camera& camera,
+                     const std::vector<uint32_t>& reflectors, EnvmapInputs in, const ReferenceOptions& ro,
+                     const std::vector<std::string>& methods, int reps, Progress* progress) {
+  auto frame_of = [&](const std::string& m) {
+    in.method = parse_envmap_method(m);
+    return shade_reflector_pixels(scene, rays, camera, rasterize_reflector_pixels(scene, camera, reflectors), in);
+  };
+  Frames out;
+  out.frames.resize(methods.size());
+  for (size_t i = 0; i < methods.size(); ++i)
+    if (methods[i] != "reference") out.frames[i] = frame_of(methods[i]);
+  std::vector<std::vector<double>> times(methods.size());
+  for (int r = 0; r < reps; ++r) {
+    if (progress) progress->step("timing " + std::to_string(r + 1) + "/" + std::to_string(reps));
+    for (size_t i = 0; i < methods.size(); ++i) {
+      Stopwatch w;
+      if (methods[i] == "reference")
+        render_reference(scene, rays, camera, ro);
+      else
+        frame_of(methods[i]);
+      times[i].push_back(w.elapsed_ms());
+    }
+  }
+  for (const auto& t : times) out.median_ms.push_back(median(t));
+  return out;
+}
+
+// The frame's image: the reference outside the reflector, the method's shading on it (only
+// the reflection differs).
+ImageF composite(const ImageF& reference, const ReflectorPixels& pixels, const EnvmapFrame& frame) {
+  ImageF color = reference;
+  for (int y = 0; y < color.height(); ++y)
+    for (int x = 0; x < color.width(); ++x)
+      if (pixels.triangle.at(x, y) != kNoTriangle)
+        for (int c = 0; c < 3; ++c) color.at(x, y, c) = frame.color.at(x, y, c);
+  return color;
+}
+
+std::string table_title(const Scene& scene, const Camera& camera, const EnvmapReflectOptions& o) {
+  return "reflect " + scene.name + " (" + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
+         ", cube " + std::to_string(o.cube_size) + "², d_e " + std::to_string(o.d_e).substr(0, 5) + ")";
+}
+
+// One method's metrics, images and table row.
+void report_method(const std::string& m, const EnvmapFrame& frame, double ms, const ImageF& reference,
+                   const Judged& j, const StudyOutput& out, Results& results, Table& table) {
+  double with_build = ms, edge_pct = 0.0, match_pct = 100.0;
+  ImageF color = reference;
+  if (m != "reference") {
+    with_build += results.metrics[m == "layered" ? "layered_build_ms" : "envmap_build_ms"];
+    const EnvmapStats& st = frame.stats;
+    edge_pct = pct(st.edge_lookups, st.lookups);
+    results.metrics[m + "_edge_pct"] = edge_pct;
+    if (m == "layered") results.metrics["layered_fallback_pct"] = pct(st.fallback_lookups, st.lookups);
+    match_pct = object_match_pct(frame.object, j.reference_objects, j.mask);
+    results.metrics[m + "_samples_per_lookup"] = st.lookups ? double(st.map_samples) / double(st.lookups) : 0.0;
+    color = composite(reference, j.pixels, frame);
+  }
+  // eval/image_error.h: 0–255 on the displayed sRGB scale, channels averaged.
+  const double mae = compare_images(color, reference, &j.mask.mask).mae_avg;
+  const double env_mae = compare_images(color, reference, &j.env_mask.mask).mae_avg;
+  results.metrics[m + "_mae"] = mae;
+  results.metrics[m + "_env_mae"] = env_mae;
+  results.metrics[m + "_ms"] = ms;
+  results.metrics[m + "_with_build_ms"] = with_build;
+  results.metrics[m + "_object_match_pct"] = match_pct;
+  write_image(out, results, m, m + ".png", color);
+  if (m != "reference")
+    write_image(out, results, "error_" + m, "error_" + m + ".png",
+                error_heatmap(error_image(color, reference, &j.mask.mask), kErrorHeatmapMax, &j.mask.mask));
+  table.rows.push_back({m, ms, 1000.0 / ms, with_build, mae, env_mae, match_pct, edge_pct});
+}
+
+}  // namespace
+
+void validate(const EnvmapReflectOptions& o) {
+  if (!is_method(o.method))
+    fail_input("--method: '" + o.method + "' is not one of envmap, rectified, average, layered, reference");
+  if (!(o.d_e > 0.0f) || !std::isfinite(o.d_e)) fail_input("--d-e: must be a positive number");
+  if (!(o.distance >= 0.0f) || !std::isfinite(o.distance))
+    fail_input("--distance: must be ≥ 0 (0 = scene diagonal)");
+  if (o.cube_size < 1 || o.cube_size > kMaxImageSide)
+    fail_input("--cube-size: must be in 1.." + std::to_string(kMaxImageSide));
+  if (!(o.angle_step_deg > 0.0f && o.angle_step_deg <= 90.0f))
+    fail_input("--angle-step: must be in (0, 90] degrees");
+  if (o.edge != "black" && o.edge != "fallback") fail_input("--edge: must be black or fallback");
+  if (o.light_samples < 1 || o.light_samples > 64) fail_input("--light-samples: must be in 1..64");
+  if (o.glossy_rays < 1 || o.glossy_rays > 4096) fail_input("--glossy-rays: must be in 1..4096");
+  if (o.reps < 1 || o.reps > 100) fail_input("--reps: must be in 1..100");
+  if (o.layers < 1 || o.layers > kMaxDistanceCubeLayers)
+    fail_input("--layers: must be in 1.." + std::to_string(kMaxDistanceCubeLayers));
+  if (o.march_steps < 1 || o.march_steps > 4096) fail_input("--march-steps: must be in 1..4096");
+  // The maps' memory: per face texel 4 floats (color, distance), 1 float (distance again),
+  // 1 object id; 6 faces per map.
+  const std::vector<std::string> methods = methods_of(o);
+  const bool single = std::any_of(methods.begin(), methods.end(),
+                                  [](const std::string& m) { return m != "layered" && m != "reference"; });
+  const bool layered = std::find(methods.begin(), methods.end(), "layered") != methods.end();
+  const uint64_t maps = uint64_t(single) + (layered ? uint64_t(o.layers) : 0);
+  check_image_budget("--cube-size", uint64_t(o.cube_size), uint64_t(o.cube_size), 36 * maps);
+}
+
+void validate(const Scene& scene, const EnvmapReflectOptions& o) {
+  validate(o);
+  pick_camera(scene, o.camera, o.width, o.height);
+  // Posing moves objects, it never changes their materials.
+  if (reflective_objects(scene).empty()) fail_input("--scene: '" + scene.name + "' has no reflective object");
+}
+
+Results run_envmap_reflect(const Scene& input, const EnvmapReflectOptions& o, const StudyOutput& out,
+                           Progress* progress) {
+  validate(input, o);
+  const Camera camera = pick_camera(input, o.camera, o.width, o.height);
+  const std::optional<Scene> posed = posed_scene(input, o.camera);
+  const Scene& scene = posed ? *posed : input;
+  const std::vector<uint32_t> reflectors = reflective_objects(scene);
+  const std::vector<std::string> methods = methods_of(o);
+  if (progress) progress->begin("reflect", 3 + o.reps);
+
+  Results results;
+  if (progress) progress->step("reference");
+  RayScene rays(scene);
+  const vec3 center = projection_center(scene, reflectors);
+  // The reference: the same camera and pixels, mirror rays one bounce deep.
+  ReferenceOptions ro;
+  ro.area_light_samples = o.light_samples;
+  ro.glossy_rays = o.glossy_rays;
+  ro.max_bounces = 1;
+  ro.seed = o.seed;
+  const ImageF reference = render_reference(scene, rays, camera, ro);
+  const ItemBuffer item = trace_item_buffer(scene, rays, camera);
+
+  if (progress) progress->step("maps");
+  const Maps maps = build_maps(scene, rays, reflectors, center, o, methods, results);
+  const EnvmapInputs in = inputs_of(scene, maps, o);
+  results.metrics["D_m"] = in.rectify.D;
+  results.metrics["d_e_m"] = o.d_e;
+  results.metrics["N"] = rectify_step_limit(in.rectify.D, o.d_e);
+  const Judged judged = judged_pixels(scene, rays, camera, item, reflectors, results);
+
+  if (progress) progress->step("frames");
+  const Frames frames = render_frames(scene, rays, camera, reflectors, in, ro, methods, o.reps, progress);
+  Table table{table_title(scene, camera, o),
+              {"method", "ms_per_frame", "fps", "ms_with_map_build", "mae_0_255", "env_mae_0_255",
+               "object_match_pct", "edge_pct"},
+              {}};
+  for (size_t i = 0; i < methods.size(); ++i)
+    report_method(methods[i], frames.frames[i], frames.median_ms[i], reference, judged, out, results, table);
+  results.tables.push_back(std::move(table));
+  if (progress) progress->end();
+  return results;
+}
+
+}  // namespace proxima::study
