@@ -10,6 +10,7 @@ set(PROXIMA_APP_SOURCES
   apps/proxima/cmd_reflect_cluster.cpp
   apps/proxima/cmd_reflect_temporal.cpp
   apps/proxima/cmd_render.cpp
+  apps/proxima/cmd_results.cpp
   apps/proxima/cmd_sample.cpp
   apps/proxima/cmd_scenes.cpp
   apps/proxima/cmd_shadows.cpp
@@ -25,8 +26,8 @@ set(PROXIMA_APP_SOURCES
   apps/proxima/demo_temporal.cpp
   apps/proxima/demo_util.cpp
   apps/proxima/demo_visibility.cpp
-  apps/proxima/huge_page_new.cpp
   apps/proxima/main.cpp
+  apps/proxima/study_out_dir.cpp
   apps/proxima/view_flags.cpp
 )
 # The window of `proxima view`: one of the two, by whether SDL2 is found.

@@ -6,6 +6,7 @@ set(PROXIMA_LIB_SOURCES
   src/core/camera.cpp
   src/core/cube_camera.cpp
   src/core/image_io.cpp
+  src/core/large_buffer.cpp
   src/core/limits.cpp
   src/core/parallel.cpp
   src/core/progress.cpp
@@ -21,6 +22,8 @@ set(PROXIMA_LIB_SOURCES
   src/eval/plot.cpp
   src/eval/raster_agreement.cpp
   src/eval/results.cpp
+  src/eval/results_merge.cpp
+  src/eval/results_page.cpp
   src/gibr/gibr_model.cpp
   src/gibr/novel_view.cpp
   src/gibr/photo_set.cpp
@@ -37,6 +40,8 @@ set(PROXIMA_LIB_SOURCES
   src/reflect/envmap_frame_reflections.cpp
   src/reflect/envmap_lookup.cpp
   src/reflect/envmap_reflection.cpp
+  src/reflect/reflection_comparison.cpp
+  src/reflect/reflection_frame.cpp
   src/reflect/temporal_best_match.cpp
   src/reflect/temporal_depth_image.cpp
   src/reflect/temporal_offset_warp.cpp
@@ -64,7 +69,17 @@ set(PROXIMA_LIB_SOURCES
   src/shadows/light_visibility.cpp
   src/shadows/occluders.cpp
   src/shadows/shadow_error.cpp
+  src/study/cluster_reflect.cpp
+  src/study/envmap_reflect.cpp
+  src/study/gibr.cpp
+  src/study/raster_bench.cpp
+  src/study/reference.cpp
+  src/study/sampling.cpp
+  src/study/shadows.cpp
   src/study/study.cpp
+  src/study/temporal_reflect.cpp
+  src/study/trace_bench.cpp
+  src/study/visibility.cpp
   src/trace/direct_light.cpp
   src/trace/ray_scene.cpp
   src/trace/reference_renderer.cpp
@@ -75,6 +90,7 @@ set(PROXIMA_LIB_SOURCES
   src/viewer/shadow_technique.cpp
   src/viewer/techniques.cpp
   src/viewer/view_script.cpp
+  src/viewer/viewer_bench.cpp
   src/viewer/viewer_session.cpp
   src/visibility/bsp_build.cpp
   src/visibility/map_check.cpp
