@@ -1,25 +1,44 @@
 # The two set-up commands: `make demo` and `make test`. Both install missing
-# dependencies first (scripts/install-deps.sh), then build with CMake.
+# dependencies first (scripts/install-deps.sh), then build with CMake: `make demo` only the
+# command line, `make test` and `make bench` everything (tests, benchmarks). docs/build.md.
 JOBS ?= $(shell nproc)
 BUILD ?= build/release
 TYPE ?= Release
 
-.PHONY: all deps build demo test test-real bench asan fuzz clean
+.PHONY: all deps configure cli build demo test example test-real bench asan fuzz clean
 
 all: build
 
 deps:
 	@bash scripts/install-deps.sh
 
-build: deps
+configure: deps
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=$(TYPE) -DPROXIMA_BUILD_TESTS=ON -DPROXIMA_BUILD_BENCH=ON $(CMAKE_EXTRA) >/dev/null
+
+# The command line alone (and the library it links).
+cli: configure
+	cmake --build $(BUILD) -j $(JOBS) --target proxima
+
+build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-demo: build
+demo: cli
 	$(BUILD)/proxima demo --out out/demo
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# The library as another project uses it (examples/cpp, docs/build.md): installs it into
+# EXAMPLE_DIR/prefix, then configures, builds and runs the example against that prefix.
+EXAMPLE_DIR ?= $(BUILD)/example
+example: configure
+	cmake --build $(BUILD) -j $(JOBS) --target proxima_lib
+	rm -rf $(EXAMPLE_DIR)/prefix $(EXAMPLE_DIR)/build
+	cmake --install $(BUILD) --prefix $(abspath $(EXAMPLE_DIR))/prefix --component library >/dev/null
+	cmake -S examples/cpp -B $(EXAMPLE_DIR)/build -DCMAKE_BUILD_TYPE=Release \
+	  -DCMAKE_PREFIX_PATH=$(abspath $(EXAMPLE_DIR))/prefix >/dev/null
+	cmake --build $(EXAMPLE_DIR)/build -j $(JOBS)
+	$(EXAMPLE_DIR)/build/envmap_error
 
 # The real-content tier (docs/real-content.md): scripts/real-content.sh installs the Debian
 # packages that ship real models and builds the corpus in REAL_CONTENT, then every technique

@@ -1,0 +1,35 @@
+# The sources of the `proxima` command line: one file per line, sorted. A .cpp under
+# apps/proxima/ that is not listed here fails the configure step (cmake/check_sources.cmake).
+set(PROXIMA_APP_SOURCES
+  apps/proxima/cmd_bench.cpp
+  apps/proxima/cmd_bench_view.cpp
+  apps/proxima/cmd_demo.cpp
+  apps/proxima/cmd_gibr.cpp
+  apps/proxima/cmd_info.cpp
+  apps/proxima/cmd_reflect.cpp
+  apps/proxima/cmd_reflect_cluster.cpp
+  apps/proxima/cmd_reflect_temporal.cpp
+  apps/proxima/cmd_render.cpp
+  apps/proxima/cmd_results.cpp
+  apps/proxima/cmd_sample.cpp
+  apps/proxima/cmd_scenes.cpp
+  apps/proxima/cmd_shadows.cpp
+  apps/proxima/cmd_view.cpp
+  apps/proxima/cmd_visibility.cpp
+  apps/proxima/command.cpp
+  apps/proxima/demo_cluster.cpp
+  apps/proxima/demo_envmap.cpp
+  apps/proxima/demo_gibr.cpp
+  apps/proxima/demo_reference.cpp
+  apps/proxima/demo_sampling.cpp
+  apps/proxima/demo_shadows.cpp
+  apps/proxima/demo_temporal.cpp
+  apps/proxima/demo_util.cpp
+  apps/proxima/demo_visibility.cpp
+  apps/proxima/main.cpp
+  apps/proxima/study_out_dir.cpp
+  apps/proxima/view_flags.cpp
+)
+# The window of `proxima view`: one of the two, by whether SDL2 is found.
+set(PROXIMA_APP_WINDOW_SDL_SOURCES apps/proxima/sdl/view_window_sdl.cpp)
+set(PROXIMA_APP_WINDOW_NONE_SOURCES apps/proxima/sdl/view_window_none.cpp)
