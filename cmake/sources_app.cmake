@@ -17,15 +17,6 @@ set(PROXIMA_APP_SOURCES
   apps/proxima/cmd_view.cpp
   apps/proxima/cmd_visibility.cpp
   apps/proxima/command.cpp
-  apps/proxima/demo_cluster.cpp
-  apps/proxima/demo_envmap.cpp
-  apps/proxima/demo_gibr.cpp
-  apps/proxima/demo_reference.cpp
-  apps/proxima/demo_sampling.cpp
-  apps/proxima/demo_shadows.cpp
-  apps/proxima/demo_temporal.cpp
-  apps/proxima/demo_util.cpp
-  apps/proxima/demo_visibility.cpp
   apps/proxima/main.cpp
   apps/proxima/study_out_dir.cpp
   apps/proxima/view_flags.cpp

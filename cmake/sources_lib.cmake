@@ -70,6 +70,16 @@ set(PROXIMA_LIB_SOURCES
   src/shadows/occluders.cpp
   src/shadows/shadow_error.cpp
   src/study/cluster_reflect.cpp
+  src/study/demo.cpp
+  src/study/demo_cluster.cpp
+  src/study/demo_envmap.cpp
+  src/study/demo_gibr.cpp
+  src/study/demo_reference.cpp
+  src/study/demo_sampling.cpp
+  src/study/demo_shadows.cpp
+  src/study/demo_temporal.cpp
+  src/study/demo_util.cpp
+  src/study/demo_visibility.cpp
   src/study/envmap_reflect.cpp
   src/study/gibr.cpp
   src/study/raster_bench.cpp

@@ -33,7 +33,7 @@ int main() {
     const EnvmapFrame frame = shade_reflector_pixels(scene, rays, camera, pixels, inputs);
     const ImageError error = compare_images(frame.color, reference, &mask);
     mae[int(method)] = error.mae_avg;
-    std::printf("%-9s mean error %.2f / 255 over %zu mirror pixels, PSNR %.1f dB\n", method_name(method),
+    std::printf("%-9s mean error %.2f / 255 over %zu mirror pixels, PSNR %.1f dB\n", envmap_method_name(method),
                 error.mae_avg, error.pixels, error.psnr_db);
   }
   return pixels.count > 0 && mae[1] < mae[0] ? 0 : 1;
