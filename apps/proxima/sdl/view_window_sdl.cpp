@@ -64,6 +64,45 @@ void show(SDL_Window* window, const ImageU8& frame) {
   SDL_UpdateWindowSurface(window);
 }
 
+// The pending window events: keys, mouse (left button held turns the camera), resize, close.
+void handle_input(ViewerSession& session, bool& looking) {
+  SDL_Event e;
+  while (SDL_PollEvent(&e)) {
+    switch (e.type) {
+      case SDL_QUIT: session.key_down("escape"); break;
+      case SDL_WINDOWEVENT:
+        if (e.window.event == SDL_WINDOWEVENT_SIZE_CHANGED) session.resize(e.window.data1, e.window.data2);
+        break;
+      case SDL_KEYDOWN:
+        if (!e.key.repeat) session.key_down(key_name(e.key.keysym.sym));
+        break;
+      case SDL_KEYUP: session.key_up(key_name(e.key.keysym.sym)); break;
+      case SDL_MOUSEBUTTONDOWN: looking = looking || e.button.button == SDL_BUTTON_LEFT; break;
+      case SDL_MOUSEBUTTONUP: looking = looking && e.button.button != SDL_BUTTON_LEFT; break;
+      case SDL_MOUSEMOTION:
+        if (looking) session.mouse_motion(vec2(float(e.motion.xrel), float(e.motion.yrel)));
+        break;
+      case SDL_MOUSEWHEEL: session.scroll(float(e.wheel.y)); break;
+      default: break;
+    }
+  }
+}
+
+// A script frame's events before the frame renders; resize and close go through the window.
+void apply_script_before(SDL_Window* window, ViewerSession& session, const ScriptFrame& step) {
+  for (const ViewEvent& ev : step.before) {
+    if (ev.type == ViewEvent::Type::Resize) SDL_SetWindowSize(window, int(ev.value.x), int(ev.value.y));
+    if (ev.type == ViewEvent::Type::Quit) {
+      // The window manager's close button: an SDL_QUIT the event loop handles next.
+      SDL_Event q{};
+      q.type = SDL_QUIT;
+      SDL_PushEvent(&q);
+      continue;
+    }
+    apply_event(session, ev);
+  }
+}
+
 }  // namespace
 
 bool view_window_available() { return true; }
@@ -95,42 +134,12 @@ int run_view_window(ViewerSession& session, const ViewWindowOptions& o) {
   size_t frame = 0;
   std::string last_message;
   for (;; ++frame) {
-    SDL_Event e;
-    while (SDL_PollEvent(&e)) {
-      switch (e.type) {
-        case SDL_QUIT: session.key_down("escape"); break;
-        case SDL_WINDOWEVENT:
-          if (e.window.event == SDL_WINDOWEVENT_SIZE_CHANGED) session.resize(e.window.data1, e.window.data2);
-          break;
-        case SDL_KEYDOWN:
-          if (!e.key.repeat) session.key_down(key_name(e.key.keysym.sym));
-          break;
-        case SDL_KEYUP: session.key_up(key_name(e.key.keysym.sym)); break;
-        case SDL_MOUSEBUTTONDOWN: looking = looking || e.button.button == SDL_BUTTON_LEFT; break;
-        case SDL_MOUSEBUTTONUP: looking = looking && e.button.button != SDL_BUTTON_LEFT; break;
-        case SDL_MOUSEMOTION:
-          if (looking) session.mouse_motion(vec2(float(e.motion.xrel), float(e.motion.yrel)));
-          break;
-        case SDL_MOUSEWHEEL: session.scroll(float(e.wheel.y)); break;
-        default: break;
-      }
-    }
+    handle_input(session, looking);
     if (session.quit_requested()) break;
     if (o.frames > 0 && frame >= size_t(o.frames)) break;
     if (ends && o.frames == 0 && frame >= script_frames) break;
     const ScriptFrame* step = frame < o.script.size() ? &o.script[frame] : nullptr;
-    if (step)
-      for (const ViewEvent& ev : step->before) {
-        if (ev.type == ViewEvent::Type::Resize) SDL_SetWindowSize(window.get(), int(ev.value.x), int(ev.value.y));
-        if (ev.type == ViewEvent::Type::Quit) {
-          // The window manager's close button: an SDL_QUIT the event loop handles next.
-          SDL_Event q{};
-          q.type = SDL_QUIT;
-          SDL_PushEvent(&q);
-          continue;
-        }
-        apply_event(session, ev);
-      }
+    if (step) apply_script_before(window.get(), session, *step);
     if (o.play && frame < size_t(o.play->frames)) {
       const Camera c = camera_at_time(*o.play, frame_time(*o.play, int(frame)), start.width, start.height);
       session.set_camera(c);
