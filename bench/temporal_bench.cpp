@@ -1,10 +1,10 @@
 // Google Benchmark micro-benchmarks of the fixed per-frame steps of temporal reflection
-// reuse (issue 8): best match (Algorithm 9), grid-mesh offset warp and depth reprojection,
+// reuse: best match (Algorithm 9), grid-mesh offset warp and depth reprojection,
 // on living-room / walk as `proxima reflect --method temporal` renders it (500 frames, 8
 // lobe rays): key frame 100, warm-started through frames 101–104, timed on frame 105 (10% reflective pixels).
 // Arg: image side; `rules`: 1 = --spread-limit 8 --curved-contrast 0.05 --edge-contrast
 // 0.05 --edge-rule recompute --recompute-splats; reprojection's `blend`: the mesh's
-// blend_error (0 = off; 8 = the CLI's default --blend-error, which times the risk test). 1 thread. The figures in docs/RESULTS.md
+// blend_error (0 = off; 8 = the CLI's default --blend-error, which times the risk test). 1 thread. The figures in docs/journal/temporal.md
 // come from `proxima reflect --compare`; these are for profiling.
 // BM_TemporalWalk is the whole method through the library: the walk at side², every frame
 // temporal reuse beside full reflection ray tracing (as `proxima reflect --method temporal

@@ -1,4 +1,4 @@
-// `proxima view`: the interactive viewer (issue 12). Flags and checks here; the core is
+// `proxima view`: the interactive viewer. Flags and checks here; the core is
 // proxima/viewer/ (platform independent), the window apps/proxima/sdl/ (SDL2, optional).
 #include <filesystem>
 #include <iostream>

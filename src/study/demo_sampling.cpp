@@ -16,7 +16,7 @@ struct Settings {
 };
 Settings settings(const Context& c) { return c.full ? Settings{1024, 1000, 3} : Settings{256, 100, 1}; }
 
-// The thesis' Tables 2 and 4 (pixel redundancy, 1024², K = 1000), as quoted in docs/RESULTS.md:
+// The thesis' Tables 2 and 4 (pixel redundancy, 1024², K = 1000), as quoted in docs/journal/sampling.md:
 // conventional redundant %, NRR occluded (useful) %, peeling occluded (useful) % for V0..V2,
 // then available avg / min for conventional, NRR, peeling.
 struct ThesisRow {
@@ -49,7 +49,7 @@ Section intro(const Settings& s) {
           "This run: " + size + " images, K = " + std::to_string(s.frames) + " output frames, " +
               std::to_string(s.reps) + " timed repetition(s); the thesis used 1024², K = 1000. Our scenes are "
               "procedural stand-ins near the thesis' triangle counts, not its models, so the rows differ "
-              "in what they show (see docs/RESULTS.md).",
+              "in what they show (see docs/journal/sampling.md).",
           {}, {}, {}};
 }
 

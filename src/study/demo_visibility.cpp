@@ -123,7 +123,7 @@ void visibility_section(Context& c) {
   section.plots.push_back({"Beams per viewpoint vs floors (building)", floors.title, "line", "floors",
                            {"beams_avg", "regions_avg"}, "floors", "count per viewpoint"});
   section.text += "\n\nThe walk stays on the first floor, so an output-sensitive algorithm's time per viewpoint "
-                  "should barely grow with the floors above it (docs/RESULTS.md: it grows, because the BSP lets "
+                  "should barely grow with the floors above it (docs/journal/visibility.md: it grows, because the BSP lets "
                   "other floors' planes fragment first-floor cells).";
   c.results->sections.push_back(section);
 }

@@ -1,4 +1,4 @@
-// The command line on hostile and degenerate input (issue 13): every case exits 0, or 2
+// The command line on hostile and degenerate input: every case exits 0, or 2
 // with one line naming the file — never a crash. docs/formats.md says what happens to each.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -1,4 +1,4 @@
-// Same image bits for --threads 1 and --threads 2 (issue 13; DESIGN.md determinism) from
+// Same image bits for --threads 1 and --threads 2 (DESIGN.md determinism) from
 // every command that writes images, on every built-in scene the command accepts (sample: all but the
 // two big interiors), at small
 // sizes. `render` is covered by ReferenceStudy.SameBitsForOneAndTwoThreadsOnEveryBuiltinScene.

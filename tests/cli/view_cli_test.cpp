@@ -1,4 +1,4 @@
-// `proxima view` end to end (issue 12): under Xvfb, scripted input (a camera move, a
+// `proxima view` end to end: under Xvfb, scripted input (a camera move, a
 // technique switch, a resize) with screenshots read back from the window; skipped when
 // Xvfb or the SDL2 window is not available. The failure paths run everywhere.
 #include <gtest/gtest.h>

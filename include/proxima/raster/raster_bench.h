@@ -1,4 +1,4 @@
-// Rasterizer benchmark and agreement figures for `proxima bench raster` (docs/RESULTS.md,
+// Rasterizer benchmark and agreement figures for `proxima bench raster` (docs/journal/raster.md,
 // docs/journal/raster.md). Timing is wall-clock, median of repetitions after a warm-up
 // frame; agreement compares a rasterized triangle-id buffer with a ray-cast item buffer of
 // the same camera.
