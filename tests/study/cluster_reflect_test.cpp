@@ -13,6 +13,7 @@
 #include "proxima/core/parallel.h"
 #include "proxima/scene/load.h"
 #include "test_util.h"
+#include "study_test_util.h"
 
 namespace proxima {
 
@@ -39,11 +40,6 @@ double cell(const Results& r, const std::string& title_start, size_t row, const 
   }
   ADD_FAILURE() << "no column " << column << " in a table '" << title_start << "...'";
   return 0.0;
-}
-
-std::string bytes(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
 }
 
 }  // namespace
@@ -86,18 +82,9 @@ TEST(ClusterReflectStudy, SameMetricsAndImagesForOneAndTwoThreads) {
     runs[threads - 1] =
         study::run_cluster_reflect(scene, tiny_options(), {dir.path / std::to_string(threads)});
   }
-  const std::regex timing("_ms|fps|speedup");
-  size_t compared = 0;
-  for (const auto& [name, value] : runs[0].metrics) {
-    if (std::regex_search(name, timing)) continue;
-    EXPECT_EQ(value, runs[1].metrics.at(name)) << name;
-    ++compared;
-  }
-  EXPECT_GT(compared, 30u);
-  ASSERT_EQ(runs[0].images, runs[1].images);
+  EXPECT_GT(expect_same_metrics(runs[0], runs[1]), 30u);
   EXPECT_EQ(runs[0].images.size(), 6u);
-  for (const auto& [role, file] : runs[0].images)
-    EXPECT_EQ(bytes(dir.path / "1" / file), bytes(dir.path / "2" / file)) << role;
+  expect_same_images(runs[0], runs[1], dir.path / "1", dir.path / "2");
 }
 
 TEST(ClusterReflectStudy, BadOptionsNameTheFlag) {

@@ -14,6 +14,7 @@
 #include "proxima/core/parallel.h"
 #include "proxima/scene/load.h"
 #include "test_util.h"
+#include "study_test_util.h"
 
 namespace proxima {
 
@@ -45,11 +46,6 @@ double column(const Table& t, size_t row, const std::string& name) {
   for (size_t c = 0; c < t.columns.size(); ++c)
     if (t.columns[c] == name) return std::get<double>(t.rows.at(row).at(c));
   throw std::runtime_error("no column " + name);
-}
-
-std::string bytes(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
 }
 
 }  // namespace
@@ -133,18 +129,9 @@ TEST(TemporalReflectStudy, SameMetricsAndImagesForOneAndTwoThreads) {
     runs[threads - 1] =
         study::run_temporal_reflect(room(), tiny_options(), {dir.path / std::to_string(threads)});
   }
-  const std::regex timing("_ms|fps|speedup");
-  size_t compared = 0;
-  for (const auto& [name, value] : runs[0].metrics) {
-    if (std::regex_search(name, timing)) continue;
-    EXPECT_EQ(value, runs[1].metrics.at(name)) << name;
-    ++compared;
-  }
-  EXPECT_GT(compared, 20u);
-  ASSERT_EQ(runs[0].images, runs[1].images);
+  EXPECT_GT(expect_same_metrics(runs[0], runs[1]), 20u);
   EXPECT_EQ(runs[0].images.size(), 6u);
-  for (const auto& [role, file] : runs[0].images)
-    EXPECT_EQ(bytes(dir.path / "1" / file), bytes(dir.path / "2" / file)) << role;
+  expect_same_images(runs[0], runs[1], dir.path / "1", dir.path / "2");
 }
 
 TEST(TemporalReflectStudy, BadOptionsNameTheFlag) {
