@@ -207,6 +207,7 @@ BENCHMARK(BM_TemporalDepthImage)->ArgsProduct({{256, 512, 1024}, {0}})->ArgNames
 BENCHMARK(BM_TemporalTrace)->ArgsProduct({{256, 512, 1024}, {0}})->ArgNames({"side", "rules"})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TemporalWalk)
     ->Args({1024, 100})
+    ->Args({1024, 500})
     ->ArgNames({"side", "frames"})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);
