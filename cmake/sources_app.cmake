@@ -17,8 +17,9 @@ set(PROXIMA_APP_SOURCES
   apps/proxima/cmd_view.cpp
   apps/proxima/cmd_visibility.cpp
   apps/proxima/command.cpp
+  apps/proxima/llvmpipe_columns.cpp
   apps/proxima/main.cpp
-  apps/proxima/study_out_dir.cpp
+  apps/proxima/scene_study.cpp
   apps/proxima/view_flags.cpp
 )
 # The window of `proxima view`: one of the two, by whether SDL2 is found.

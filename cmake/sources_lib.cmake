@@ -10,6 +10,7 @@ set(PROXIMA_LIB_SOURCES
   src/core/limits.cpp
   src/core/parallel.cpp
   src/core/progress.cpp
+  src/core/range_check.cpp
   src/core/timer.cpp
   src/core/worker_threads.cpp
   src/depthimage/depth_image.cpp

@@ -1,15 +1,13 @@
 // `proxima bench trace`: the Embree reference's BVH build time and rays per second
 // (proxima/study/trace_bench.h). `proxima bench raster`: the software rasterizer's agreement
-// with Embree and its frame time beside Mesa's llvmpipe (proxima/study/raster_bench.h; the
-// optional harness proxima_llvmpipe_bench next to this binary). `proxima bench view`:
-// cmd_bench_view.cpp.
-#include <filesystem>
-
+// with Embree and its frame time (proxima/study/raster_bench.h) beside Mesa's llvmpipe
+// (llvmpipe_columns.h: the optional harness proxima_llvmpipe_bench next to this binary).
+// `proxima bench view`: cmd_bench_view.cpp.
 #include "command.h"
-#include "proxima/core/parallel.h"
-#include "proxima/scene/load.h"
+#include "llvmpipe_columns.h"
 #include "proxima/study/raster_bench.h"
 #include "proxima/study/trace_bench.h"
+#include "scene_study.h"
 
 namespace proxima::cli {
 
@@ -27,42 +25,17 @@ struct RasterFlags {
 
 // --scene (living-room), --camera/--path/--frame, --width/--height (1024), --threads, --out.
 void add_bench_flags(CLI::App* app, CommonOptions& common, CameraChoice& camera, const char* out) {
-  add_scene_flag(app, common, "living-room");
-  add_camera_flags(app, camera);
   common.width = 1024;
   common.height = 1024;
-  add_size_flags(app, common);
-  add_threads_flag(app, common);
-  add_out_flag(app, common, false);
   common.out = out;
-}
-
-int run_trace(TraceFlags& f) {
-  study::TraceBenchOptions& o = f.options;
-  o.width = f.common.width;
-  o.height = f.common.height;
-  o.threads = f.common.threads;
-  study::validate(o);
-  ThreadLimit limit(f.common.threads);
-  const Scene scene = load_scene(f.common.scene);
-  pick_camera(scene, o.camera, o.width, o.height);  // a bad camera choice fails before --out exists
-  const auto out = prepare_out_dir(f.common.out);
-  return publish_study(out, study::run_trace_bench(scene, o, {}));
+  add_common_flags(app, common, {.scene = "living-room", .camera = &camera, .seed = false});
 }
 
 int run_raster(RasterFlags& f) {
-  study::RasterBenchStudyOptions& o = f.options;
-  o.width = f.common.width;
-  o.height = f.common.height;
-  o.threads = f.common.threads;
-  o.llvmpipe_scene = f.common.scene;
-  o.llvmpipe_harness = std::filesystem::read_symlink("/proc/self/exe").parent_path() / "proxima_llvmpipe_bench";
-  study::validate(o);
-  ThreadLimit limit(f.common.threads);
-  const Scene scene = load_scene(f.common.scene);
-  pick_camera(scene, o.camera, o.width, o.height);
-  const auto out = prepare_out_dir(f.common.out);
-  return publish_study(out, study::run_raster_bench(scene, o, {}));
+  set_common_options(f.common, f.options);
+  SceneStudyRun run = run_scene_study(f.common, f.options, study::run_raster_bench, {.images = false});
+  add_llvmpipe_columns(run.results, llvmpipe_run(f.common.scene, f.options, run.results));
+  return publish_study(std::move(run));
 }
 
 }  // namespace
@@ -83,7 +56,10 @@ Command register_bench(CLI::App& root) {
   raster->add_flag("--skip-agreement", r.options.skip_agreement, "time only; skip the Embree agreement pass");
   const Command view = register_bench_view(*app);
   return {app, [trace, raster, view] {
-            if (trace->parsed()) return run_trace(t);
+            if (trace->parsed()) {
+              set_common_options(t.common, t.options);
+              return publish_study(run_scene_study(t.common, t.options, study::run_trace_bench, {.images = false}));
+            }
             if (raster->parsed()) return run_raster(r);
             if (view.app->parsed()) return view.run();
             return 2;

@@ -2,11 +2,9 @@
 // headless, plus the refine frame and optionally the error vs the reference
 // (proxima/viewer/viewer_bench.h).
 #include "command.h"
-#include "view_flags.h"
-#include "proxima/core/error.h"
-#include "proxima/core/parallel.h"
-#include "proxima/scene/load.h"
 #include "proxima/viewer/viewer_bench.h"
+#include "scene_study.h"
+#include "view_flags.h"
 
 namespace proxima::cli {
 
@@ -14,12 +12,12 @@ namespace {
 
 struct BenchViewFlags {
   ViewSetup setup;
-  std::string out = "out/bench-view";
   ViewerBenchOptions options;
 };
 
 void add_bench_flags(CLI::App* app, BenchViewFlags& f) {
-  app->add_option("--out", f.out, "output directory (created if missing)")->capture_default_str();
+  f.setup.common.out = "out/bench-view";
+  add_out_flag(app, f.setup.common);
   app->add_option("--frames", f.options.frames, "moving frames per block")->capture_default_str();
   app->add_option("--rounds", f.options.rounds, "blocks per technique, round-robin")->capture_default_str();
   app->add_option("--techniques", f.options.techniques, "comma-separated subset (default: every available one)")
@@ -30,17 +28,10 @@ void add_bench_flags(CLI::App* app, BenchViewFlags& f) {
 int run_bench_view(BenchViewFlags& f) {
   ViewerBenchOptions& o = f.options;
   o.camera = f.setup.camera;
-  o.width = f.setup.common.width;
-  o.height = f.setup.common.height;
-  o.seed = f.setup.common.seed;
+  set_common_options(f.setup.common, o);
   o.move_scale = f.setup.move_scale;
-  validate_view_flags(f.setup);
-  validate(o);
-  ThreadLimit limit(f.setup.common.threads);
-  const Scene scene = load_scene(f.setup.common.scene);
-  pick_camera(scene, o.camera, o.width, o.height);  // a bad camera choice fails before --out exists
-  const auto out = prepare_out_dir(f.out);
-  return publish_study(out, run_viewer_bench(scene, o, {}));
+  // validate(o) checks the window size and move scale as validate_view_flags does.
+  return publish_study(run_scene_study(f.setup.common, o, run_viewer_bench, {.images = false}));
 }
 
 }  // namespace

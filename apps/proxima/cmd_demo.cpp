@@ -13,19 +13,13 @@ Command register_demo(CLI::App& root) {
   static CommonOptions common;
   static study::DemoOptions o;
   auto* app = root.add_subcommand("demo", "run the main job on the built-in scenes → results.json + index.html");
-  add_size_flags(app, common);
-  add_threads_flag(app, common);
-  add_seed_flag(app, common);
-  add_out_flag(app, common, false);
   common.out = "out/demo";
+  add_common_flags(app, common, {});
   app->add_flag("--full", o.full, "the papers' settings (hours) instead of the ≤ 10-minute ones");
   app->add_option("--only", o.only, "run only these sections (comma-separated ids)")->delimiter(',');
 
   return {app, [] {
-            o.threads = common.threads;
-            o.seed = common.seed;
-            o.width = common.width;
-            o.height = common.height;
+            set_common_options(common, o);
             o.out_arg = common.out;
             study::validate(o);
             const auto out = prepare_out_dir(common.out);

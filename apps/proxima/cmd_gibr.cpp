@@ -1,14 +1,8 @@
 // `proxima gibr`: hybrid geometry- and image-based rendering, visibility-map mapping against
 // the item-buffer mapping (study/gibr.h, docs/gibr.md).
-#include <unistd.h>
-
 #include "command.h"
-#include "proxima/core/error.h"
-#include "proxima/core/parallel.h"
-#include "proxima/core/progress.h"
-#include "proxima/scene/load.h"
 #include "proxima/study/gibr.h"
-#include "study_out_dir.h"
+#include "scene_study.h"
 
 namespace proxima::cli {
 
@@ -19,16 +13,6 @@ struct GibrFlags {
   study::GibrOptions options;
   std::string views = "path";  // parsed into options.views
 };
-
-void add_common_flags(CLI::App* app, GibrFlags& f) {
-  add_scene_flag(app, f.common, "rooms");
-  f.common.width = f.options.width;
-  f.common.height = f.options.height;
-  add_size_flags(app, f.common);
-  add_threads_flag(app, f.common);
-  add_seed_flag(app, f.common);
-  add_out_flag(app, f.common, true);
-}
 
 // Phases 1–3: the photographs and the radiance maps.
 void add_model_flags(CLI::App* app, gibr::GibrModelOptions& m) {
@@ -75,20 +59,10 @@ void add_view_flags(CLI::App* app, GibrFlags& f) {
 }
 
 int run(GibrFlags& f) {
-  if (f.common.threads < 0) fail_input("--threads: must be ≥ 0");
-  study::GibrOptions& o = f.options;
-  o.views = study::parse_gibr_views(f.views, "--views");
-  o.width = f.common.width;
-  o.height = f.common.height;
-  o.seed = f.common.seed;
-  study::validate(o);
-  ThreadLimit limit(f.common.threads);
-  const Scene scene = load_scene(f.common.scene);
-  Progress progress;  // a bar on a terminal; logs and pipes get none
-  Progress* bar = isatty(fileno(stderr)) ? &progress : nullptr;
-  Results results =
-      run_study_into(f.common.out, [&](const study::StudyOutput& out) { return study::run_gibr(scene, o, out, bar); });
-  return publish_study(f.common.out, std::move(results));
+  f.options.views = study::parse_gibr_views(f.views, "--views");
+  set_common_options(f.common, f.options);
+  // A bar on a terminal; logs and pipes get none.
+  return publish_study(run_scene_study(f.common, f.options, study::run_gibr, {.log_progress = false}));
 }
 
 }  // namespace
@@ -97,7 +71,9 @@ Command register_gibr(CLI::App& root) {
   static GibrFlags f;
   auto* app = root.add_subcommand(
       "gibr", "hybrid geometry- and image-based rendering: photos → visibility maps → radiance maps → novel views");
-  add_common_flags(app, f);
+  f.common.width = f.options.width;
+  f.common.height = f.options.height;
+  add_common_flags(app, f.common, {.scene = "rooms"});
   add_model_flags(app, f.options.model);
   add_view_flags(app, f);
   return {app, [] { return run(f); }};

@@ -8,9 +8,8 @@
 #include "cmd_reflect_temporal.h"
 #include "command.h"
 #include "proxima/core/error.h"
-#include "proxima/core/parallel.h"
-#include "proxima/scene/load.h"
 #include "proxima/study/envmap_reflect.h"
+#include "scene_study.h"
 
 namespace proxima::cli {
 
@@ -101,17 +100,9 @@ int run_temporal(const ReflectFlags& f) {
 int run_reflect(ReflectFlags& f, const CLI::App& app) {
   check_method(f.envmap.method);
   if (f.envmap.method == "temporal") return run_temporal(f);
-  if (f.common.threads < 0) fail_input("--threads: must be ≥ 0");
   if (f.envmap.method == "cluster") return run_cluster(f, app);
-  f.envmap.width = f.common.width;
-  f.envmap.height = f.common.height;
-  f.envmap.seed = f.common.seed;
-  study::validate(f.envmap);
-  ThreadLimit limit(f.common.threads);
-  const Scene scene = load_scene(f.common.scene);
-  study::validate(scene, f.envmap);
-  const auto out = prepare_out_dir(f.common.out);
-  return publish_study(out, study::run_envmap_reflect(scene, f.envmap, study::StudyOutput{out}));
+  set_common_options(f.common, f.envmap);
+  return publish_study(run_scene_study(f.common, f.envmap, study::run_envmap_reflect));
 }
 
 }  // namespace
@@ -122,14 +113,9 @@ Command register_reflect(CLI::App& root) {
       "reflect",
       "reflections through environment maps with distance (plain, rectified, average, layered) or clustered "
       "depth images (cluster) vs Embree");
-  add_scene_flag(app, f.common, "room-reflector");
-  add_camera_flags(app, f.envmap.camera);
   f.common.width = 1024;
   f.common.height = 768;
-  add_size_flags(app, f.common);
-  add_threads_flag(app, f.common);
-  add_seed_flag(app, f.common);
-  add_out_flag(app, f.common, true);
+  add_common_flags(app, f.common, {.scene = "room-reflector", .camera = &f.envmap.camera});
   add_envmap_flags(app, f.envmap);
   // --frames, --frame-step and --image-frame are the cluster group's; temporal reads them too.
   add_cluster_reflect_flags(app, f.cluster);

@@ -2,7 +2,6 @@
 // (study/cluster_reflect.h) → results.json.
 #include "cmd_reflect_cluster.h"
 
-#include "proxima/core/error.h"
 #include "scene_study.h"
 
 namespace proxima::cli {
@@ -78,11 +77,9 @@ void add_cluster_reflect_flags(CLI::App* app, ClusterReflectFlags& f) {
 
 int run_cluster_reflect(const ClusterReflectFlags& f) {
   study::ClusterReflectOptions o = f;
-  o.width = f.common.width;
-  o.height = f.common.height;
+  set_common_options(f.common, o);
   o.reflection.seed = f.common.seed;
-  SceneStudyRun run = run_scene_study(f.common, o, true, study::run_cluster_reflect);
-  return publish_study(run.out, std::move(run.results));
+  return publish_study(run_scene_study(f.common, o, study::run_cluster_reflect));
 }
 
 }  // namespace proxima::cli

@@ -4,7 +4,6 @@
 
 #include <iostream>
 
-#include "proxima/core/error.h"
 #include "scene_study.h"
 
 namespace proxima::cli {
@@ -86,24 +85,22 @@ void add_temporal_reflect_flags(CLI::App* app, TemporalReflectFlags& f) {
   add_method_flags(app, f);
 }
 
-int run_temporal_reflect(const TemporalReflectRun& run) {
-  study::TemporalReflectOptions o = run.temporal;
-  o.width = run.common.width;
-  o.height = run.common.height;
-  o.seed = run.common.seed;
-  o.path = run.path;
-  o.compare = run.compare;
-  o.light_samples = run.light_samples;
-  o.glossy_rays = run.glossy_rays;
-  auto [out, results] = run_scene_study(run.common, o, true, study::run_temporal_reflect);
+int run_temporal_reflect(const TemporalReflectRun& r) {
+  study::TemporalReflectOptions o = r.temporal;
+  set_common_options(r.common, o);
+  o.path = r.path;
+  o.compare = r.compare;
+  o.light_samples = r.light_samples;
+  o.glossy_rays = r.glossy_rays;
+  SceneStudyRun run = run_scene_study(r.common, o, study::run_temporal_reflect);
   // Everything into results.json; the per-frame table (one row per frame) is not printed.
-  Results printed = results;
+  Results printed = run.results;
   std::erase_if(printed.tables, [](const Table& t) { return t.title == "Per frame"; });
-  results.command = command_line();
-  results.threads = active_threads();
-  write_results_json(out / "results.json", results);
+  run.results.command = command_line();
+  run.results.threads = active_threads();
+  write_results_json(run.out / "results.json", run.results);
   for (const Table& t : printed.tables) std::cout << markdown_table(t) << "\n";
-  std::cout << "results: " << (out / "results.json").string() << "\n";
+  std::cout << "results: " << (run.out / "results.json").string() << "\n";
   return 0;
 }
 

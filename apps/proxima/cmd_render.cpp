@@ -1,10 +1,8 @@
 // `proxima render`: the reference (ray-traced) image of a scene plus its EXR buffers
 // (proxima/study/reference.h).
 #include "command.h"
-#include "proxima/core/error.h"
-#include "proxima/core/parallel.h"
-#include "proxima/scene/load.h"
 #include "proxima/study/reference.h"
+#include "scene_study.h"
 
 namespace proxima::cli {
 
@@ -23,33 +21,17 @@ void add_sampling_flags(CLI::App* app, study::ReferenceStudyOptions& o) {
   app->add_option("--time", o.time, "pose time in seconds for animated scenes");
 }
 
-int run_render(RenderFlags& f) {
-  study::ReferenceStudyOptions& o = f.options;
-  o.width = f.common.width;
-  o.height = f.common.height;
-  o.seed = f.common.seed;
-  study::validate(o);
-  if (f.common.threads < 0) fail_input("--threads: must be ≥ 0");
-  ThreadLimit limit(f.common.threads);
-  const Scene scene = load_scene(f.common.scene);
-  pick_camera(scene, o.camera, o.width, o.height);  // a bad camera choice fails before --out exists
-  const auto out = prepare_out_dir(f.common.out);
-  return publish_study(out, study::run_reference(scene, o, {out}));
-}
-
 }  // namespace
 
 Command register_render(CLI::App& root) {
   static RenderFlags f;
   auto* app = root.add_subcommand("render", "render the ray-traced reference image of a scene");
-  add_scene_flag(app, f.common, "cornell");
-  add_camera_flags(app, f.options.camera);
-  add_size_flags(app, f.common);
-  add_threads_flag(app, f.common);
-  add_seed_flag(app, f.common);
-  add_out_flag(app, f.common, true);
+  add_common_flags(app, f.common, {.scene = "cornell", .camera = &f.options.camera});
   add_sampling_flags(app, f.options);
-  return {app, [] { return run_render(f); }};
+  return {app, [] {
+            set_common_options(f.common, f.options);
+            return publish_study(run_scene_study(f.common, f.options, study::run_reference));
+          }};
 }
 
 }  // namespace proxima::cli

@@ -4,11 +4,8 @@
 #include <vector>
 
 #include "command.h"
-#include "scene_study.h"
-#include "proxima/core/error.h"
-#include "proxima/core/parallel.h"
-#include "proxima/scene/load.h"
 #include "proxima/study/sampling.h"
+#include "scene_study.h"
 
 namespace proxima::cli {
 
@@ -48,9 +45,8 @@ void add_metric_flags(CLI::App* app, SampleFlags& f) {
 // The options the study runs with: the shared flags copied, the enum names parsed.
 const study::SamplingOptions& finish_options(CLI::App* app, SampleFlags& f) {
   study::SamplingOptions& o = f.options;
-  o.width = f.common.width;
-  o.height = app->count("--height") == 0 ? f.common.width : f.common.height;
-  o.seed = f.common.seed;
+  set_common_options(f.common, o);
+  if (app->count("--height") == 0) o.height = f.common.width;
   o.methods.clear();
   for (const std::string& m : f.methods) o.methods.push_back(study::parse_sampling_method(m, "--method"));
   o.views = parse_view_shape(f.views, "--views");
@@ -64,20 +60,14 @@ Command register_sample(CLI::App& root) {
   static SampleFlags f;
   auto* app = root.add_subcommand("sample", "sample a scene with depth images (conventional, peeling, NRR) and "
                                             "measure redundant / occluded / useful / available samples");
-  add_scene_flag(app, f.common, "nest");
-  add_camera_flags(app, f.options.camera);
-  f.common.width = f.common.height = f.options.width;
-  add_size_flags(app, f.common);  // --height defaults to --width (the thesis' images are square)
-  add_threads_flag(app, f.common);
-  add_seed_flag(app, f.common);
-  add_out_flag(app, f.common, true);
+  f.common.width = f.common.height = f.options.width;  // --height defaults to --width (the thesis' images are square)
+  add_common_flags(app, f.common, {.scene = "nest", .camera = &f.options.camera});
   add_method_flags(app, f);
   add_metric_flags(app, f);
 
   return {app, [app] {
             const study::SamplingOptions& options = finish_options(app, f);
-            SceneStudyRun run = run_scene_study(f.common, options, !f.no_images, study::run_sampling);
-            return publish_study(run.out, std::move(run.results));
+            return publish_study(run_scene_study(f.common, options, study::run_sampling, {.images = !f.no_images}));
           }};
 }
 

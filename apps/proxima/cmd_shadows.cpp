@@ -4,11 +4,8 @@
 #include <vector>
 
 #include "command.h"
-#include "scene_study.h"
-#include "proxima/core/error.h"
-#include "proxima/core/parallel.h"
-#include "proxima/scene/load.h"
 #include "proxima/study/shadows.h"
+#include "scene_study.h"
 
 namespace proxima::cli {
 
@@ -62,18 +59,14 @@ Command register_shadows(CLI::App& root) {
   auto* app = root.add_subcommand("shadows", "soft shadows from an area light through depth images reconstructed into "
                                              "meshes (NRR, conventional, peeling), vs shadow maps of the geometry and "
                                              "Embree shadow rays");
-  add_scene_flag(app, f.common, "nest");
-  add_camera_flags(app, f.options.camera);
-  add_threads_flag(app, f.common);
-  add_out_flag(app, f.common, true);
+  add_common_flags(app, f.common, {.scene = "nest", .camera = &f.options.camera, .size = false, .seed = false});
   add_method_flags(app, f);
   add_light_flags(app, f.options);
   app->add_flag("--no-images", f.no_images, "write results.json only");
 
   return {app, [] {
             const study::ShadowsOptions& options = finish_options(f);
-            SceneStudyRun run = run_scene_study(f.common, options, !f.no_images, study::run_shadows);
-            return publish_study(run.out, std::move(run.results));
+            return publish_study(run_scene_study(f.common, options, study::run_shadows, {.images = !f.no_images}));
           }};
 }
 

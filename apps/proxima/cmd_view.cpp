@@ -6,6 +6,7 @@
 #include "command.h"
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
+#include "proxima/core/range_check.h"
 #include "proxima/scene/builtin_scenes.h"
 #include "proxima/scene/load.h"
 #include "proxima/viewer/camera_recording.h"
@@ -31,7 +32,7 @@ int run_view(const ViewFlags& f) {
   // Every flag checked, then the window availability, then the scene: nothing opens for bad input.
   const CommonOptions& common = f.setup.common;
   validate_view_flags(f.setup);
-  if (f.frames < 0) fail_input("--frames: must be ≥ 0");
+  require_at_least(f.frames, 0, "--frames");
   if (!f.record.empty() && !is_builtin_scene(common.scene))
     fail_input("--record: needs a built-in --scene (the file names it as \"builtin\")");
   ViewWindowOptions wo;

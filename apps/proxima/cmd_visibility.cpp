@@ -1,17 +1,12 @@
 // `proxima visibility`: exact visibility maps along a camera path, checked against Embree
 // (study/visibility.h, docs/visibility.md).
-#include <unistd.h>
-
 #include <cstdio>
 
 #include "command.h"
 #include "proxima/core/error.h"
-#include "proxima/core/parallel.h"
-#include "proxima/core/progress.h"
-#include "proxima/scene/load.h"
 #include "proxima/scene/visibility_models.h"
 #include "proxima/study/visibility.h"
-#include "study_out_dir.h"
+#include "scene_study.h"
 
 namespace proxima::cli {
 
@@ -28,12 +23,9 @@ struct VisibilityFlags {
 };
 
 void add_scene_flags(CLI::App* app, VisibilityFlags& f) {
-  add_scene_flag(app, f.common, "rooms");
   f.common.width = f.options.width;
   f.common.height = f.options.height;
-  add_size_flags(app, f.common);
-  add_threads_flag(app, f.common);
-  add_out_flag(app, f.common, true);
+  add_common_flags(app, f.common, {.scene = "rooms", .seed = false});
   app->add_option("--path", f.options.path, "camera path, by index or name (default: the first)");
   app->add_option("--floors", f.floors, "floors of the `building` scene (default 5)");
   app->add_option("--frames", f.options.frames, "viewpoints: the first N frames of the path (default: all)");
@@ -50,21 +42,17 @@ void add_map_flags(CLI::App* app, VisibilityFlags& f) {
 }
 
 int run(VisibilityFlags& f) {
-  if (f.common.threads < 0) fail_input("--threads: must be ≥ 0");
   if (f.floors != 0 && f.common.scene != "building") fail_input("--floors: only the `building` scene has floors");
-  f.options.width = f.common.width;
-  f.options.height = f.common.height;
-  study::validate(f.options);
-  ThreadLimit limit(f.common.threads);
-  const Scene scene = f.floors != 0 ? make_vis_building(f.floors) : load_scene(f.common.scene);
-  Progress progress;  // a bar on a terminal; logs and pipes get none
-  Progress* bar = isatty(fileno(stderr)) ? &progress : nullptr;
-  Results results = run_study_into(
-      f.common.out, [&](const study::StudyOutput& out) { return study::run_visibility(scene, f.options, out, bar); });
-  const int failed = int(results.metrics.at("maps_failed_selfcheck")), maps = int(results.metrics.at("viewpoints"));
-  publish_study(f.common.out, std::move(results));
+  set_common_options(f.common, f.options);
+  StudyRunOptions how{.log_progress = false};  // a bar on a terminal; logs and pipes get none
+  if (f.floors != 0) how.scene = [&f] { return make_vis_building(f.floors); };
+  SceneStudyRun run = run_scene_study(f.common, f.options, study::run_visibility, how);
+  const int failed = int(run.results.metrics.at("maps_failed_selfcheck"));
+  const int maps = int(run.results.metrics.at("viewpoints"));
+  const std::string scene = run.scene;
+  publish_study(std::move(run));
   if (failed > 0)
-    std::fprintf(stderr, "warning: %s: %d of %d visibility maps failed their self-check%s\n", scene.name.c_str(),
+    std::fprintf(stderr, "warning: %s: %d of %d visibility maps failed their self-check%s\n", scene.c_str(),
                  failed, maps, f.strict ? "" : " (--strict makes this exit 3)");
   return f.strict && failed > 0 ? kExitSelfCheck : 0;
 }

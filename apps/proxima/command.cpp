@@ -33,38 +33,35 @@ void add_limit_flags(CLI::App* app) {
                                      "PROXIMA_MAX_MEMORY_MB)");
 }
 
-void add_scene_flag(CLI::App* app, CommonOptions& o, const std::string& default_scene) {
-  o.scene = default_scene;
-  app->add_option("--scene", o.scene, "built-in scene name (see `proxima scenes`), .json scene file, or mesh file")
-      ->capture_default_str();
-  add_limit_flags(app);
-}
-
-void add_size_flags(CLI::App* app, CommonOptions& o) {
-  app->add_option("--width", o.width, "image width in pixels")->capture_default_str();
-  app->add_option("--height", o.height, "image height in pixels")->capture_default_str();
-}
-
-void add_threads_flag(CLI::App* app, CommonOptions& o) {
-  app->add_option("--threads", o.threads, "worker threads (0 = all cores); results do not depend on it")
-      ->capture_default_str();
-}
-
-void add_seed_flag(CLI::App* app, CommonOptions& o) {
-  app->add_option("--seed", o.seed, "random seed for every sampled quantity")->capture_default_str();
-}
-
-void add_out_flag(CLI::App* app, CommonOptions& o, bool required) {
+void add_out_flag(CLI::App* app, CommonOptions& o) {
   auto* opt = app->add_option("--out", o.out, "output directory (created if missing)");
-  if (required) opt->required();
+  if (o.out.empty()) opt->required();
   else opt->capture_default_str();
 }
 
-void add_camera_flags(CLI::App* app, CameraChoice& choice) {
-  auto* cam = app->add_option("--camera", choice.camera, "scene camera, by index or name (default: the first)");
-  auto* path = app->add_option("--path", choice.path, "camera path, by index or name");
-  app->add_option("--frame", choice.frame, "frame on the camera path (0-based)")->needs(path);
-  cam->excludes(path);
+void add_common_flags(CLI::App* app, CommonOptions& o, const CommonFlagSet& flags) {
+  if (flags.scene) {
+    o.scene = flags.scene;
+    app->add_option("--scene", o.scene, "built-in scene name (see `proxima scenes`), .json scene file, or mesh file")
+        ->capture_default_str();
+    add_limit_flags(app);
+  }
+  if (flags.camera) {
+    CameraChoice& choice = *flags.camera;
+    auto* cam = app->add_option("--camera", choice.camera, "scene camera, by index or name (default: the first)");
+    auto* path = app->add_option("--path", choice.path, "camera path, by index or name");
+    app->add_option("--frame", choice.frame, "frame on the camera path (0-based)")->needs(path);
+    cam->excludes(path);
+  }
+  if (flags.size) {
+    app->add_option("--width", o.width, "image width in pixels")->capture_default_str();
+    app->add_option("--height", o.height, "image height in pixels")->capture_default_str();
+  }
+  app->add_option("--threads", o.threads, "worker threads (0 = all cores); results do not depend on it")
+      ->capture_default_str();
+  if (flags.seed)
+    app->add_option("--seed", o.seed, "random seed for every sampled quantity")->capture_default_str();
+  if (flags.out) add_out_flag(app, o);
 }
 
 std::filesystem::path prepare_out_dir(const std::string& out) {

@@ -32,17 +32,31 @@ struct CommonOptions {
   std::string out;
 };
 
-// --scene, with the resource-limit flags below.
-void add_scene_flag(CLI::App* app, CommonOptions& o, const std::string& default_scene);
+// Which of the common flags a command takes; add_common_flags adds them in this order. Their
+// defaults are the values `CommonOptions` holds when they are added.
+struct CommonFlagSet {
+  const char* scene = nullptr;     // --scene with this default, and the limit flags; nullptr = none
+  CameraChoice* camera = nullptr;  // --camera N|NAME, or --path P --frame F, into this choice
+  bool size = true;                // --width, --height
+  bool seed = true;                // --seed
+  bool out = true;                 // --out: required unless CommonOptions::out holds a default
+};
+void add_common_flags(CLI::App* app, CommonOptions& o, const CommonFlagSet& flags);
+
 // --max-triangles, --max-memory-mb (proxima/core/limits.h), applied while parsing.
 void add_limit_flags(CLI::App* app);
-void add_size_flags(CLI::App* app, CommonOptions& o);
-void add_threads_flag(CLI::App* app, CommonOptions& o);
-void add_seed_flag(CLI::App* app, CommonOptions& o);
-void add_out_flag(CLI::App* app, CommonOptions& o, bool required);
+// --out alone (required unless `o.out` holds a default).
+void add_out_flag(CLI::App* app, CommonOptions& o);
 
-// --camera N|NAME, or --path P --frame F (proxima/scene/camera_select.h resolves them).
-void add_camera_flags(CLI::App* app, CameraChoice& choice);
+// --width, --height into a study's options, and --seed and --threads where the options have
+// such a field.
+template <typename Options>
+void set_common_options(const CommonOptions& common, Options& o) {
+  o.width = common.width;
+  o.height = common.height;
+  if constexpr (requires { o.seed; }) o.seed = common.seed;
+  if constexpr (requires { o.threads; }) o.threads = common.threads;
+}
 
 // Creates the output directory (InputError naming --out if impossible).
 std::filesystem::path prepare_out_dir(const std::string& out);

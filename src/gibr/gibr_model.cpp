@@ -6,6 +6,7 @@
 #include "proxima/core/error.h"
 #include "proxima/core/image_io.h"
 #include "proxima/core/parallel.h"
+#include "proxima/core/range_check.h"
 #include "proxima/core/rng.h"
 #include "proxima/core/timer.h"
 #include "proxima/gibr/photo_set.h"
@@ -34,8 +35,8 @@ GibrSceneDefaults resolved(const Scene& scene, const ModelPolygons& model, const
 }
 
 void check_options(const Scene& scene, const GibrModelOptions& o) {
-  if (o.photos < 1 || o.photos > 10000) fail_input("--photos: must be in 1..10000");
-  if (o.supersample < 1 || o.supersample > 8) fail_input("--supersample: must be in 1..8");
+  require_in_range(o.photos, 1, 10000, "--photos");
+  require_in_range(o.supersample, 1, 8, "--supersample");
   if (o.texel < 0.0 || !std::isfinite(o.texel)) fail_input("--texel: must be a positive size in meters");
   if (o.period < 0.0 || !std::isfinite(o.period)) fail_input("--period: must be a positive length in meters");
   if (scene.camera_paths.empty()) fail_input("--scene: '" + scene.name + "' has no camera path");

@@ -11,6 +11,7 @@
 
 #include "proxima/core/atomic_file.h"
 #include "proxima/core/error.h"
+#include "proxima/core/range_check.h"
 #include "proxima/core/rng.h"
 #include "proxima/trace/reference_renderer.h"
 
@@ -61,7 +62,7 @@ Scene make_photo_scene(const Scene& model, const PhotoSceneOptions& options) {
 
 std::vector<Camera> photo_poses(const RayScene& rays, const CameraPath& path, const PhotoPoseOptions& o, float near,
                                 float far) {
-  if (o.count < 1) fail_input("--photos: must be ≥ 1");
+  require_at_least(o.count, 1, "--photos");
   std::vector<Camera> out;
   const float t0 = path.keys.front().time, t1 = path.keys.back().time;
   for (int i = 0; i < o.count; ++i) {

@@ -127,27 +127,28 @@ CameraPath orbit_path(const std::string& name, vec3 center, float radius, float 
   const int keys = int(seconds);
   for (int k = 0; k <= keys; ++k) {
     float phi = 2.0f * kPi * float(k) / float(keys);
-    CameraKey key;
-    key.time = float(k);
-    key.position = center + vec3(radius * std::sin(phi), height, radius * std::cos(phi));
-    key.target = center + vec3(0.0f, target_height, 0.0f);
-    key.vfov_deg = vfov_deg;
-    path.keys.push_back(key);
+    path.keys.push_back({float(k), center + vec3(radius * std::sin(phi), height, radius * std::cos(phi)),
+                         center + vec3(0.0f, target_height, 0.0f), vfov_deg});
   }
   return path;
 }
 
-CameraKey key_at(float time, vec3 position, vec3 target, float vfov_deg) {
-  CameraKey k;
-  k.time = time;
-  k.position = position;
-  k.target = target;
-  k.vfov_deg = vfov_deg;
-  return k;
-}
-
 NamedCamera camera(const std::string& name, vec3 eye, vec3 target, float vfov_deg) {
   return {name, look_at(eye, target, vec3(0.0f, 1.0f, 0.0f), vfov_deg, 512, 512)};
+}
+
+// A square ceiling lamp of side `side` over x, z ∈ [corner, corner + side]: the emitting
+// quad (object `name`) at height `quad_y` and the area light that samples it just below,
+// at corner.y.
+void put_ceiling_lamp(Scene& s, const std::string& name, uint32_t emitter, vec3 corner, float quad_y, float side,
+                      vec3 radiance) {
+  put(s, make_quad({corner.x, quad_y, corner.z}, {side, 0, 0}, {0, 0, side}, 1, 1), name, emitter);
+  AreaLight light;
+  light.corner = corner;
+  light.edge_u = {side, 0.0f, 0.0f};
+  light.edge_v = {0.0f, 0.0f, side};
+  light.radiance = radiance;
+  s.area_lights.push_back(light);
 }
 
 // ---- cornell ---------------------------------------------------------------------------
@@ -169,36 +170,50 @@ Scene make_cornell() {
   put(s, make_quad({1, 0, -1}, {0, 0, 2}, {0, 2, 0}, 8, 8), "right_wall", green);
   put(s, make_sphere(0.4f, 64, 32), "mirror_sphere", mirror, place({-0.4f, 0.4f, -0.2f}));
   put(s, make_box({0.5f, 1.0f, 0.5f}), "glossy_block", glossy, place({0.45f, 0.5f, -0.35f}, 20.0f));
-  put(s, make_quad({-0.25f, 1.985f, -0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f}, 1, 1), "light", emitter);
-
-  AreaLight light;
-  light.corner = {-0.25f, 1.98f, -0.25f};
-  light.edge_u = {0.5f, 0.0f, 0.0f};
-  light.edge_v = {0.0f, 0.0f, 0.5f};
-  light.radiance = vec3(12.0f);
-  s.area_lights.push_back(light);
+  put_ceiling_lamp(s, "light", emitter, {-0.25f, 1.98f, -0.25f}, 1.985f, 0.5f, vec3(12.0f));
   s.ambient = vec3(0.03f);
   s.environment.color = vec3(0.0f);
   s.cameras.push_back(camera("front", {0, 1, 3.5f}, {0, 1, 0}, 40.0f));
   return s;
 }
 
-// ---- room-reflector --------------------------------------------------------------------
-Scene make_room_reflector() {
-  Scene s;
-  s.name = "room-reflector";
-  Material floor_mat = material("floor_checker", vec3(1.0f));
-  floor_mat.diffuse_texture = int(add_checker(s, "checker", vec3(0.8f), {0.15f, 0.15f, 0.2f}, 2));
+// ---- the env-map test room (room-reflector, room-parallax) -----------------------------
+// The floor of 1 m checks; its checker texture is added to `s`.
+Material checker_floor(Scene& s) {
+  Material floor = material("floor_checker", vec3(1.0f));
+  floor.diffuse_texture = int(add_checker(s, "checker", vec3(0.8f), {0.15f, 0.15f, 0.2f}, 2));
+  return floor;
+}
+
+// The 8 × 8 × 4 m room (x, z ∈ [−4, 4]): `floor`, a ceiling and four colored walls, the
+// second of them `front`.
+void put_test_room(Scene& s, const Material& floor, const Material& front) {
   const uint32_t walls[6] = {
-      add_material(s, floor_mat),
+      add_material(s, floor),
       add_material(s, material("ceiling", vec3(0.85f))),
       add_material(s, material("wall_blue", {0.35f, 0.45f, 0.75f})),
-      add_material(s, material("wall_beige", {0.8f, 0.7f, 0.5f})),
+      add_material(s, front),
       add_material(s, material("wall_red", {0.7f, 0.25f, 0.2f})),
       add_material(s, material("wall_green", {0.3f, 0.65f, 0.3f})),
   };
   // Floor uvs 0..4 with 2 × 2 checks per texture tile: 1 m squares.
   put_room(s, {-4, 0, -4}, {4, 4, 4}, 0.25f, walls, 4.0f);
+}
+
+// The room's centre piece: the mirror cylinder (64 segments × 16 bands + caps = 2,176
+// triangles, as in the paper) and the 1 m² ceiling lamp above it, an area light.
+void put_reflector_and_lamp(Scene& s) {
+  const uint32_t mirror = add_material(s, material("mirror", vec3(0.9f), 1.0f, 0.0f));
+  const uint32_t lamp = add_material(s, material("lamp", vec3(0.0f), 0, 0, vec3(5.0f)));
+  put(s, make_cylinder(0.5f, 2.0f, 64, 16, true), "reflector", mirror);
+  put_ceiling_lamp(s, "light", lamp, {-0.5f, 3.98f, -0.5f}, 3.99f, 1.0f, vec3(5.0f));
+}
+
+// ---- room-reflector --------------------------------------------------------------------
+Scene make_room_reflector() {
+  Scene s;
+  s.name = "room-reflector";
+  put_test_room(s, checker_floor(s), material("wall_beige", {0.8f, 0.7f, 0.5f}));
 
   const uint32_t wood = add_material(s, material("wood", {0.55f, 0.35f, 0.2f}));
   const uint32_t dark = add_material(s, material("dark_wood", {0.3f, 0.18f, 0.1f}));
@@ -207,8 +222,6 @@ Scene make_room_reflector() {
   const uint32_t blue = add_material(s, material("blue", {0.1f, 0.2f, 0.85f}));
   const uint32_t orange = add_material(s, material("orange", {0.95f, 0.5f, 0.1f}));
   const uint32_t white = add_material(s, material("white", vec3(0.9f)));
-  const uint32_t mirror = add_material(s, material("mirror", vec3(0.9f), 1.0f, 0.0f));
-  const uint32_t lamp = add_material(s, material("lamp", vec3(0.0f), 0, 0, vec3(5.0f)));
 
   // Furniture against the walls, so the cylinder reflects something in every direction.
   put_box(s, "table_top", wood, {1.6f, 0.06f, 0.9f}, {-2.2f, 0.74f, -2.4f}, 0, 4);
@@ -224,16 +237,8 @@ Scene make_room_reflector() {
   put(s, make_torus(0.3f, 0.1f, 48, 24), "blue_ring", blue, place({-1.8f, 0.1f, 0.6f}));
   put(s, make_teapot(6), "teapot", yellow, place({-2.2f, 0.8f, -2.4f}, 30.0f, vec3(0.35f)));
   put(s, make_cylinder(0.2f, 1.2f, 32, 4, true), "column", white, place({2.4f, 0, -2.6f}));
-  // The reflector: 64 segments × 16 bands + caps = 2,176 triangles, as in the paper.
-  put(s, make_cylinder(0.5f, 2.0f, 64, 16, true), "reflector", mirror);
-  put(s, make_quad({-0.5f, 3.99f, -0.5f}, {1, 0, 0}, {0, 0, 1}, 1, 1), "light", lamp);
+  put_reflector_and_lamp(s);
 
-  AreaLight area;
-  area.corner = {-0.5f, 3.98f, -0.5f};
-  area.edge_u = {1.0f, 0.0f, 0.0f};
-  area.edge_v = {0.0f, 0.0f, 1.0f};
-  area.radiance = vec3(5.0f);
-  s.area_lights.push_back(area);
   s.point_lights.push_back({{2.5f, 3.5f, 2.5f}, vec3(8.0f)});
   s.ambient = vec3(0.05f);
   s.cameras.push_back(camera("main", {0, 1.7f, 3.2f}, {0, 1.0f, 0}, 60.0f));
@@ -405,14 +410,7 @@ Scene make_living_room() {
     }
   }
   // Ceiling light panel (emissive geometry for the area light below it).
-  put(s, make_quad({-0.6f, 2.995f, -1.2f}, {1.2f, 0, 0}, {0, 0, 1.2f}, 1, 1), "ceiling_light", panel);
-
-  AreaLight area;
-  area.corner = {-0.6f, 2.99f, -1.2f};
-  area.edge_u = {1.2f, 0.0f, 0.0f};
-  area.edge_v = {0.0f, 0.0f, 1.2f};
-  area.radiance = vec3(6.0f);
-  s.area_lights.push_back(area);
+  put_ceiling_lamp(s, "ceiling_light", panel, {-0.6f, 2.99f, -1.2f}, 2.995f, 1.2f, vec3(6.0f));
   s.point_lights.push_back({{3.3f, 1.65f, -2.4f}, vec3(3.0f)});  // inside the lamp shade
   s.point_lights.push_back({{-2.0f, 2.6f, 1.5f}, vec3(4.0f)});
   s.ambient = vec3(0.04f);
@@ -424,11 +422,11 @@ Scene make_living_room() {
   walk.name = "walk";
   walk.frames = 100;
   walk.keys = {
-      key_at(0.0f, {3.2f, 1.6f, 2.4f}, {0.0f, 0.8f, -1.0f}, 60.0f),
-      key_at(2.5f, {1.5f, 1.5f, 1.6f}, {-1.0f, 0.7f, -1.2f}, 60.0f),
-      key_at(5.0f, {-0.5f, 1.4f, 1.2f}, {-3.0f, 1.0f, 0.0f}, 60.0f),
-      key_at(7.5f, {-1.8f, 1.5f, 0.8f}, {0.0f, 0.5f, -0.9f}, 55.0f),
-      key_at(10.0f, {-2.6f, 1.7f, -1.6f}, {2.0f, 0.8f, 1.0f}, 60.0f),
+      CameraKey{0.0f, {3.2f, 1.6f, 2.4f}, {0.0f, 0.8f, -1.0f}, 60.0f},
+      CameraKey{2.5f, {1.5f, 1.5f, 1.6f}, {-1.0f, 0.7f, -1.2f}, 60.0f},
+      CameraKey{5.0f, {-0.5f, 1.4f, 1.2f}, {-3.0f, 1.0f, 0.0f}, 60.0f},
+      CameraKey{7.5f, {-1.8f, 1.5f, 0.8f}, {0.0f, 0.5f, -0.9f}, 55.0f},
+      CameraKey{10.0f, {-2.6f, 1.7f, -1.6f}, {2.0f, 0.8f, 1.0f}, 60.0f},
   };
   s.camera_paths.push_back(walk);
   s.camera_paths.push_back(orbit_path("orbit", {0.0f, 0.0f, -0.9f}, 1.6f, 1.3f, 0.5f, 10.0f, 55.0f));
@@ -523,14 +521,7 @@ Scene make_bathroom() {
         place({1.75f + 0.08f * std::cos(a), 0.45f + 0.1f * float(b), 0.2f + 0.08f * std::sin(a)}));
   }
   put(s, make_cylinder(0.2f, 0.5f, 64, 8, true), "laundry_basket", wicker, place({1.6f, 0, 0.9f}));
-  put(s, make_quad({-0.4f, 2.495f, -0.4f}, {0.8f, 0, 0}, {0, 0, 0.8f}, 1, 1), "ceiling_light", lamp);
-
-  AreaLight area;
-  area.corner = {-0.4f, 2.49f, -0.4f};
-  area.edge_u = {0.8f, 0.0f, 0.0f};
-  area.edge_v = {0.0f, 0.0f, 0.8f};
-  area.radiance = vec3(8.0f);
-  s.area_lights.push_back(area);
+  put_ceiling_lamp(s, "ceiling_light", lamp, {-0.4f, 2.49f, -0.4f}, 2.495f, 0.8f, vec3(8.0f));
   s.point_lights.push_back({{0.4f, 2.0f, -1.0f}, vec3(2.0f)});  // above the mirror
   s.ambient = vec3(0.05f);
 
@@ -540,10 +531,10 @@ Scene make_bathroom() {
   walk.name = "walk";
   walk.frames = 100;
   walk.keys = {
-      key_at(0.0f, {0.5f, 1.6f, 1.3f}, {0.4f, 1.0f, -1.5f}, 65.0f),
-      key_at(3.0f, {0.2f, 1.6f, 0.4f}, {-1.6f, 0.6f, -0.6f}, 60.0f),
-      key_at(6.0f, {-0.4f, 1.5f, 0.0f}, {1.5f, 0.5f, -1.0f}, 60.0f),
-      key_at(10.0f, {0.6f, 1.5f, -0.4f}, {0.4f, 1.4f, -1.5f}, 55.0f),
+      CameraKey{0.0f, {0.5f, 1.6f, 1.3f}, {0.4f, 1.0f, -1.5f}, 65.0f},
+      CameraKey{3.0f, {0.2f, 1.6f, 0.4f}, {-1.6f, 0.6f, -0.6f}, 60.0f},
+      CameraKey{6.0f, {-0.4f, 1.5f, 0.0f}, {1.5f, 0.5f, -1.0f}, 60.0f},
+      CameraKey{10.0f, {0.6f, 1.5f, -0.4f}, {0.4f, 1.4f, -1.5f}, 55.0f},
   };
   s.camera_paths.push_back(walk);
   // Standing by the door and turning from the tub over the mirror to the toilet and rail.
@@ -551,10 +542,10 @@ Scene make_bathroom() {
   pan.name = "pan";
   pan.frames = 100;
   pan.keys = {
-      key_at(0.0f, {0.2f, 1.6f, 1.1f}, {-1.6f, 0.6f, -0.6f}, 60.0f),
-      key_at(4.0f, {0.3f, 1.6f, 1.0f}, {0.4f, 1.4f, -1.5f}, 60.0f),
-      key_at(7.0f, {0.4f, 1.6f, 0.9f}, {1.5f, 0.4f, -0.9f}, 60.0f),
-      key_at(10.0f, {0.3f, 1.6f, 0.6f}, {1.6f, 1.0f, 1.4f}, 60.0f),
+      CameraKey{0.0f, {0.2f, 1.6f, 1.1f}, {-1.6f, 0.6f, -0.6f}, 60.0f},
+      CameraKey{4.0f, {0.3f, 1.6f, 1.0f}, {0.4f, 1.4f, -1.5f}, 60.0f},
+      CameraKey{7.0f, {0.4f, 1.6f, 0.9f}, {1.5f, 0.4f, -0.9f}, 60.0f},
+      CameraKey{10.0f, {0.3f, 1.6f, 0.6f}, {1.6f, 1.0f, 1.4f}, 60.0f},
   };
   s.camera_paths.push_back(pan);
   return s;
@@ -620,31 +611,13 @@ Scene make_room_car() {
 Scene make_room_parallax() {
   Scene s;
   s.name = "room-parallax";
-  Material floor_mat = material("floor_checker", vec3(1.0f));
-  floor_mat.diffuse_texture = int(add_checker(s, "checker", vec3(0.8f), {0.15f, 0.15f, 0.2f}, 2));
-  Material front_mat = material("front_checker", vec3(1.0f));
-  front_mat.diffuse_texture = int(add_checker(s, "front_checker", {0.85f, 0.8f, 0.6f}, {0.3f, 0.3f, 0.6f}, 8));
-  const uint32_t walls[6] = {
-      add_material(s, floor_mat),
-      add_material(s, material("ceiling", vec3(0.85f))),
-      add_material(s, material("wall_blue", {0.35f, 0.45f, 0.75f})),
-      add_material(s, front_mat),
-      add_material(s, material("wall_red", {0.7f, 0.25f, 0.2f})),
-      add_material(s, material("wall_green", {0.3f, 0.65f, 0.3f})),
-  };
-  put_room(s, {-4, 0, -4}, {4, 4, 4}, 0.25f, walls, 4.0f);
+  const Material floor = checker_floor(s);
+  Material front = material("front_checker", vec3(1.0f));
+  front.diffuse_texture = int(add_checker(s, "front_checker", {0.85f, 0.8f, 0.6f}, {0.3f, 0.3f, 0.6f}, 8));
+  put_test_room(s, floor, front);
   const uint32_t red = add_material(s, material("red", {0.85f, 0.1f, 0.1f}));
-  const uint32_t mirror = add_material(s, material("mirror", vec3(0.9f), 1.0f, 0.0f));
-  const uint32_t lamp = add_material(s, material("lamp", vec3(0.0f), 0, 0, vec3(5.0f)));
   put(s, make_sphere(0.4f, 48, 24), "sphere", red, place({0.5f, 0.9f, 2.0f}));
-  put(s, make_cylinder(0.5f, 2.0f, 64, 16, true), "reflector", mirror);
-  put(s, make_quad({-0.5f, 3.99f, -0.5f}, {1, 0, 0}, {0, 0, 1}, 1, 1), "light", lamp);
-  AreaLight area;
-  area.corner = {-0.5f, 3.98f, -0.5f};
-  area.edge_u = {1.0f, 0.0f, 0.0f};
-  area.edge_v = {0.0f, 0.0f, 1.0f};
-  area.radiance = vec3(5.0f);
-  s.area_lights.push_back(area);
+  put_reflector_and_lamp(s);
   s.point_lights.push_back({{2.5f, 3.5f, -2.5f}, vec3(8.0f)});
   s.ambient = vec3(0.05f);
   s.cameras.push_back(camera("left", {-1.8f, 1.6f, 3.4f}, {0, 1.0f, 0}, 45.0f));

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "proxima/core/error.h"
+#include "proxima/core/range_check.h"
 #include "proxima/core/rng.h"
 
 namespace proxima {
@@ -357,11 +358,11 @@ void quadrant(LevelBuilder& B, const Materials& M, int f, Room r, int sx, int sz
 }  // namespace
 
 Scene make_level(const LevelOptions& o) {
-  if (o.rooms_x < 3 || o.rooms_x > 64) fail_input("level: rooms_x must be in 3..64");
-  if (o.rooms_z < 3 || o.rooms_z > 64) fail_input("level: rooms_z must be in 3..64");
-  if (o.floors < 2 || o.floors > 16) fail_input("level: floors must be in 2..16");
-  if (o.detail < 0 || o.detail > 1) fail_input("level: detail must be 0 or 1");
-  if (!(o.seam_jitter >= 0.0f && o.seam_jitter <= 0.01f)) fail_input("level: seam_jitter must be in [0, 0.01] m");
+  require_in_range(o.rooms_x, 3, 64, "level: rooms_x");
+  require_in_range(o.rooms_z, 3, 64, "level: rooms_z");
+  require_in_range(o.floors, 2, 16, "level: floors");
+  require_in_range(o.detail, 0, 1, "level: detail");
+  require_in_range(o.seam_jitter, 0.0f, 0.01f, "level: seam_jitter", "m");
   Scene s;
   s.name = o.name;
   Pcg32 plan_rng(o.seed, 0x91a7);

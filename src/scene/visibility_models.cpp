@@ -12,6 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "proxima/core/error.h"
+#include "proxima/core/range_check.h"
 #include "proxima/core/rng.h"
 #include "proxima/scene/level_scenes.h"
 #include "proxima/scene/procedural.h"
@@ -80,15 +81,6 @@ void box(Scene& s, vec3 base, vec3 size, float yaw_deg, uint32_t mat, const std:
   add_object(s, m, name, mat);
 }
 
-CameraKey key(float time, vec3 position, vec3 target, float fov = 70.0f) {
-  CameraKey k;
-  k.time = time;
-  k.position = position;
-  k.target = target;
-  k.vfov_deg = fov;
-  return k;
-}
-
 // A path through `points` (one key per point, 1 s apart) looking `ahead` points forward.
 // A named camera at the start of the scene's walk, so every built-in scene can be rendered
 // with --camera and checked from a camera (raster agreement, render tests).
@@ -105,7 +97,7 @@ CameraPath walk_through(const std::vector<vec3>& points, int frames, float fov =
   for (size_t i = 0; i < points.size(); ++i) {
     size_t j = std::min(points.size() - 1, i + size_t(ahead));
     vec3 target = j > i ? points[j] : points[i] + (points[i] - points[i - 1]);
-    p.keys.push_back(key(float(i), points[i], target + look_offset, fov));
+    p.keys.push_back({float(i), points[i], target + look_offset, fov});
   }
   return p;
 }
@@ -422,7 +414,7 @@ Scene make_vis_floor() {
 }
 
 Scene make_vis_building(int floors) {
-  if (floors < 1 || floors > 64) fail_input("--floors: must be in 1..64 (got " + std::to_string(floors) + ")");
+  require_in_range(floors, 1, 64, "--floors", "(got " + std::to_string(floors) + ")");
   Scene s;
   s.name = floors == 5 ? "building" : "building:" + std::to_string(floors);
   for (int level = 0; level < floors; ++level)

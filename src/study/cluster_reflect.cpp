@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "proxima/core/error.h"
+#include "proxima/core/range_check.h"
 #include "proxima/core/rng.h"
 #include "proxima/core/timer.h"
 #include "proxima/eval/image_error.h"
@@ -367,28 +368,23 @@ void add_compare_tables(const ClusterReflectOptions& o, const ClusterSeries& s, 
 }  // namespace
 
 void validate(const ClusterReflectOptions& o) {
-  const std::string sides = "must be in 1.." + std::to_string(kMaxImageSide);
-  if (o.width < 1 || o.width > kMaxImageSide) fail_input("--width: " + sides);
-  if (o.height < 1 || o.height > kMaxImageSide) fail_input("--height: " + sides);
-  if (o.reflection.supersample < 1 || o.reflection.supersample > 8) fail_input("--ss: must be in 1..8");
-  if (o.reflection.glossy_rays < 1 || o.reflection.glossy_rays > 1024)
-    fail_input("--gloss-rays: must be in 1..1024 for --method cluster");
-  if (o.reflection.area_light_samples < 1 || o.reflection.area_light_samples > 64)
-    fail_input("--light-samples: must be in 1..64");
-  if (o.frames < 0 || o.frames > 100000) fail_input("--frames: must be in 0..100000");
-  if (o.frame_step < 1) fail_input("--frame-step: must be ≥ 1");
-  if (o.reps < 1 || o.reps > 100) fail_input("--reps: must be in 1..100");
-  if (o.image_frame < -1) fail_input("--image-frame: must be ≥ -1");
+  require_in_range(o.width, 1, kMaxImageSide, "--width");
+  require_in_range(o.height, 1, kMaxImageSide, "--height");
+  require_in_range(o.reflection.supersample, 1, 8, "--ss");
+  require_in_range(o.reflection.glossy_rays, 1, 1024, "--gloss-rays", "for --method cluster");
+  require_in_range(o.reflection.area_light_samples, 1, 64, "--light-samples");
+  require_in_range(o.frames, 0, 100000, "--frames");
+  require_at_least(o.frame_step, 1, "--frame-step");
+  require_in_range(o.reps, 1, 100, "--reps");
+  require_at_least(o.image_frame, -1, "--image-frame");
   if (o.full_reference && !o.compare) fail_input("--full-reference: needs --compare");
   const ClusteringOptions& c = o.cluster.clustering;
-  if (c.max_theta_bins < 1 || c.max_theta_bins > 1000) fail_input("--theta-bins: must be in 1..1000");
-  if (c.max_phi_bins < 1 || c.max_phi_bins > 1000) fail_input("--phi-bins: must be in 1..1000");
-  if (!(c.min_bin_scale >= 0.0f && c.min_bin_scale <= 1.0f)) fail_input("--min-bin-scale: must be in [0, 1]");
-  if (!(o.cluster.resolution_scale > 0.0f && o.cluster.resolution_scale <= 8.0f))
-    fail_input("--resolution-scale: must be in (0, 8]");
-  if (o.cube_size < 1 || o.cube_size > kMaxImageSide) fail_input("--cube-size: " + sides);
-  if (o.cluster.march_block < 0 || o.cluster.march_block > 256)
-    fail_input("--march-block: must be in 0..256");
+  require_in_range(c.max_theta_bins, 1, 1000, "--theta-bins");
+  require_in_range(c.max_phi_bins, 1, 1000, "--phi-bins");
+  require_in_range(c.min_bin_scale, 0.0f, 1.0f, "--min-bin-scale");
+  require_above_at_most(o.cluster.resolution_scale, 0.0f, 8.0f, "--resolution-scale");
+  require_in_range(o.cube_size, 1, kMaxImageSide, "--cube-size");
+  require_in_range(o.cluster.march_block, 0, 256, "--march-block");
 }
 
 void validate(const ClusterReflectOptions& o, const Scene& scene) {

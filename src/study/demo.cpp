@@ -7,6 +7,7 @@
 #include "demo_sections.h"
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
+#include "proxima/core/range_check.h"
 #include "proxima/core/timer.h"
 
 namespace proxima::study {
@@ -44,7 +45,7 @@ void validate(const DemoOptions& o) {
       for (const std::string& s : ids) list += (list.empty() ? "" : ", ") + s;
       fail_input("--only: unknown section '" + id + "' (" + list + ")");
     }
-  if (o.threads < 0) fail_input("--threads: must be ≥ 0");
+  require_at_least(o.threads, 0, "--threads");
 }
 
 namespace {

@@ -10,6 +10,7 @@
 #include "proxima/core/camera.h"
 #include "proxima/core/error.h"
 #include "proxima/core/limits.h"
+#include "proxima/core/range_check.h"
 #include "proxima/core/timer.h"
 #include "proxima/eval/image_error.h"
 #include "proxima/reflect/distance_cube_map.h"
@@ -213,17 +214,14 @@ void validate(const EnvmapReflectOptions& o) {
   if (!(o.d_e > 0.0f) || !std::isfinite(o.d_e)) fail_input("--d-e: must be a positive number");
   if (!(o.distance >= 0.0f) || !std::isfinite(o.distance))
     fail_input("--distance: must be ≥ 0 (0 = scene diagonal)");
-  if (o.cube_size < 1 || o.cube_size > kMaxImageSide)
-    fail_input("--cube-size: must be in 1.." + std::to_string(kMaxImageSide));
-  if (!(o.angle_step_deg > 0.0f && o.angle_step_deg <= 90.0f))
-    fail_input("--angle-step: must be in (0, 90] degrees");
+  require_in_range(o.cube_size, 1, kMaxImageSide, "--cube-size");
+  require_above_at_most(o.angle_step_deg, 0.0f, 90.0f, "--angle-step", "degrees");
   if (o.edge != "black" && o.edge != "fallback") fail_input("--edge: must be black or fallback");
-  if (o.light_samples < 1 || o.light_samples > 64) fail_input("--light-samples: must be in 1..64");
-  if (o.glossy_rays < 1 || o.glossy_rays > 4096) fail_input("--glossy-rays: must be in 1..4096");
-  if (o.reps < 1 || o.reps > 100) fail_input("--reps: must be in 1..100");
-  if (o.layers < 1 || o.layers > kMaxDistanceCubeLayers)
-    fail_input("--layers: must be in 1.." + std::to_string(kMaxDistanceCubeLayers));
-  if (o.march_steps < 1 || o.march_steps > 4096) fail_input("--march-steps: must be in 1..4096");
+  require_in_range(o.light_samples, 1, 64, "--light-samples");
+  require_in_range(o.glossy_rays, 1, 4096, "--glossy-rays");
+  require_in_range(o.reps, 1, 100, "--reps");
+  require_in_range(o.layers, 1, kMaxDistanceCubeLayers, "--layers");
+  require_in_range(o.march_steps, 1, 4096, "--march-steps");
   // The maps' memory: per face texel 4 floats (color, distance), 1 float (distance again),
   // 1 object id; 6 faces per map.
   const std::vector<std::string> methods = methods_of(o);
@@ -234,7 +232,7 @@ void validate(const EnvmapReflectOptions& o) {
   check_image_budget("--cube-size", uint64_t(o.cube_size), uint64_t(o.cube_size), 36 * maps);
 }
 
-void validate(const Scene& scene, const EnvmapReflectOptions& o) {
+void validate(const EnvmapReflectOptions& o, const Scene& scene) {
   validate(o);
   pick_camera(scene, o.camera, o.width, o.height);
   // Posing moves objects, it never changes their materials.
@@ -243,7 +241,7 @@ void validate(const Scene& scene, const EnvmapReflectOptions& o) {
 
 Results run_envmap_reflect(const Scene& input, const EnvmapReflectOptions& o, const StudyOutput& out,
                            Progress* progress) {
-  validate(input, o);
+  validate(o, input);
   const Camera camera = pick_camera(input, o.camera, o.width, o.height);
   const std::optional<Scene> posed = posed_scene(input, o.camera);
   const Scene& scene = posed ? *posed : input;

@@ -7,6 +7,7 @@
 
 #include "proxima/core/error.h"
 #include "proxima/core/image_io.h"
+#include "proxima/core/range_check.h"
 #include "proxima/core/rng.h"
 #include "proxima/core/timer.h"
 #include "proxima/eval/image_error.h"
@@ -316,12 +317,12 @@ GibrViews parse_gibr_views(const std::string& name, const char* flag) {
 }
 
 void validate(const GibrOptions& o) {
-  if (o.frames < 1 || o.frames > 10000) fail_input("--frames: must be in 1..10000");
-  if (o.novel_ss < 0 || o.novel_ss > 8) fail_input("--novel-ss: must be in 0..8");
-  if (o.hole_radius < 0 || o.hole_radius > 4096) fail_input("--hole-radius: must be in 0..4096");
+  require_in_range(o.frames, 1, 10000, "--frames");
+  require_in_range(o.novel_ss, 0, 8, "--novel-ss");
+  require_in_range(o.hole_radius, 0, 4096, "--hole-radius");
   if (!(o.offpath >= 0.0 && o.offpath <= 1e3)) fail_input("--offpath: must be a distance in meters ≥ 0");
-  if (o.fps_repeat < 1 || o.fps_repeat > 1000) fail_input("--fps-repeat: must be in 1..1000");
-  if (o.k < 1 || o.k > 64) fail_input("--k: must be in 1..64");
+  require_in_range(o.fps_repeat, 1, 1000, "--fps-repeat");
+  require_in_range(o.k, 1, 64, "--k");
   validate_camera(look_at({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 60, o.width, o.height), "--width/--height");
 }
 

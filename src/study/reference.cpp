@@ -2,6 +2,7 @@
 
 #include "proxima/core/error.h"
 #include "proxima/core/image_io.h"
+#include "proxima/core/range_check.h"
 #include "proxima/core/timer.h"
 #include "proxima/scene/camera_path.h"
 #include "proxima/trace/ray_scene.h"
@@ -9,14 +10,6 @@
 namespace proxima::study {
 
 namespace {
-
-// Triangle ids as float for EXR (exact up to 2^24; −1 where nothing was hit).
-ImageF ids_as_float(const ImageU32& ids) {
-  ImageF out(ids.width(), ids.height(), 1);
-  for (size_t i = 0; i < ids.data().size(); ++i)
-    out.data()[i] = ids.data()[i] == kNoTriangle ? -1.0f : float(ids.data()[i]);
-  return out;
-}
 
 // The pose time: --time, else the --path frame's time (animated objects move with the
 // path's clock), else 0.
@@ -29,21 +22,13 @@ float pose_time(const Scene& scene, const ReferenceStudyOptions& o) {
   return t;
 }
 
-// An EXR beside the PNGs, recorded in the results under `role`.
-void write_exr_image(const StudyOutput& out, Results& results, const std::string& role, const std::string& file,
-                     const ImageF& image) {
-  if (!out.writes()) return;
-  write_exr(out.dir / file, image);
-  results.images[role] = file;
-}
-
 }  // namespace
 
 void validate(const ReferenceStudyOptions& o) {
-  if (o.supersample < 1 || o.supersample > 64) fail_input("--spp: must be in 1..64");
-  if (o.light_samples < 1 || o.light_samples > 64) fail_input("--light-samples: must be in 1..64");
-  if (o.glossy_rays < 1 || o.glossy_rays > 4096) fail_input("--glossy-rays: must be in 1..4096");
-  if (o.bounces < 0 || o.bounces > 16) fail_input("--bounces: must be in 0..16");
+  require_in_range(o.supersample, 1, 64, "--spp");
+  require_in_range(o.light_samples, 1, 64, "--light-samples");
+  require_in_range(o.glossy_rays, 1, 4096, "--glossy-rays");
+  require_in_range(o.bounces, 0, 16, "--bounces");
 }
 
 ReferenceOptions reference_options(const ReferenceStudyOptions& o) {
@@ -85,7 +70,7 @@ Results run_reference(const Scene& scene, const ReferenceStudyOptions& options, 
   write_exr_image(out, results, "color_linear", "color.exr", r.color);
   write_exr_image(out, results, "depth", "depth.exr", r.item.depth);
   write_exr_image(out, results, "normal", "normal.exr", r.item.normal);
-  write_exr_image(out, results, "triangle_id", "id.exr", ids_as_float(r.item.triangle));
+  write_exr_image(out, results, "triangle_id", "id.exr", triangle_ids_as_float(r.item.triangle));
   size_t hit = 0;
   for (uint32_t id : r.item.triangle.data()) hit += id != kNoTriangle;
   results.metrics["coverage_pct"] = 100.0 * double(hit) / double(r.item.triangle.pixel_count());

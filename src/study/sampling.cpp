@@ -12,6 +12,7 @@
 #include "proxima/core/camera.h"
 #include "proxima/core/error.h"
 #include "proxima/core/image_io.h"
+#include "proxima/core/range_check.h"
 #include "proxima/core/timer.h"
 #include "proxima/depthimage/sampling_metrics.h"
 #include "proxima/trace/ray_scene.h"
@@ -34,14 +35,6 @@ bool uses(const SamplingOptions& o, SamplingMethod m) {
   return std::find(o.methods.begin(), o.methods.end(), m) != o.methods.end();
 }
 
-// Triangle ids as float for EXR (exact up to 2^24; −1 where empty).
-ImageF ids_as_float(const ImageU32& ids) {
-  ImageF out(ids.width(), ids.height(), 1);
-  for (size_t i = 0; i < ids.data().size(); ++i)
-    out.data()[i] = ids.data()[i] == kNoTriangle ? -1.0f : float(ids.data()[i]);
-  return out;
-}
-
 // Thesis Table 3 colours over a dimmed grey copy of the image: occluded green, occluded
 // and useful yellow.
 ImageF classes_image(const DepthImage& image, const ImageU8& classes) {
@@ -55,13 +48,6 @@ ImageF classes_image(const DepthImage& image, const ImageU8& classes) {
     }
   }
   return out;
-}
-
-void write_exr_image(const StudyOutput& out, Results& results, const std::string& role, const std::string& file,
-                     const ImageF& image) {
-  if (!out.writes()) return;
-  write_exr(out.dir / file, image);
-  results.images[role] = file;
 }
 
 std::string pct_text(double v) {
@@ -158,7 +144,7 @@ void write_images(const StudyOutput& out, Results& results, SamplingMethod m, co
     const std::string stem = std::string(sampling_method_name(m)) + "_" + std::to_string(i);
     write_image(out, results, stem + "_color", stem + "_color.png", images[i].color);
     write_exr_image(out, results, stem + "_depth", stem + "_depth.exr", images[i].depth);
-    write_exr_image(out, results, stem + "_id", stem + "_id.exr", ids_as_float(images[i].triangle));
+    write_exr_image(out, results, stem + "_id", stem + "_id.exr", triangle_ids_as_float(images[i].triangle));
     write_image(out, results, stem + "_occluded", stem + "_occluded.png", classes_image(images[i], classes[i]));
   }
 }
@@ -186,8 +172,8 @@ void validate(const SamplingOptions& o) {
   size.width = o.width;
   size.height = o.height;
   validate_camera(size, "--width/--height");
-  if (o.frames < 0 || o.frames > 100000) fail_input("--frames: must be in 0..100000");
-  if (o.reps < 1 || o.reps > 100) fail_input("--reps: must be in 1..100");
+  require_in_range(o.frames, 0, 100000, "--frames");
+  require_in_range(o.reps, 1, 100, "--reps");
   if (!(o.radius >= 0.0f) || o.radius > 1e6f) fail_input("--radius: must be ≥ 0 (and finite)");
   if (o.methods.empty()) fail_input("--method: give at least one method");
 }

@@ -9,6 +9,7 @@
 
 #include "proxima/core/camera.h"
 #include "proxima/core/error.h"
+#include "proxima/core/range_check.h"
 #include "proxima/shadows/light_setup.h"
 #include "proxima/shadows/light_visibility.h"
 #include "proxima/shadows/shadow_error.h"
@@ -25,8 +26,7 @@ std::string pair_text(double mean, double max) {
 }
 
 void check_side(int side, const char* flag) {
-  if (side < 8 || side > kMaxImageSide)
-    fail_input(std::string(flag) + ": must be in 8.." + std::to_string(kMaxImageSide));
+  require_in_range(side, 8, kMaxImageSide, flag);
 }
 
 // What every sampling shares: the light and its samples, the receivers, the light cameras,
@@ -136,8 +136,8 @@ void add_sampling(Results& results, Tables& t, const Scene& scene, const RayScen
 }  // namespace
 
 void validate(const ShadowsOptions& o) {
-  if (!(o.light_size > 0.0f && o.light_size <= 100.0f)) fail_input("--light-size: must be in (0, 100]");
-  if (o.light_samples < 1 || o.light_samples > 64) fail_input("--light-samples: must be in 1..64");
+  require_above_at_most(o.light_size, 0.0f, 100.0f, "--light-size");
+  require_in_range(o.light_samples, 1, 64, "--light-samples");
   check_side(o.ref_res, "--ref-res");
   check_side(o.out_res, "--out-res");
   check_side(o.shadow_res, "--shadow-res");

@@ -10,6 +10,7 @@
 
 #include "proxima/core/camera.h"
 #include "proxima/core/error.h"
+#include "proxima/core/range_check.h"
 #include "proxima/core/timer.h"
 #include "proxima/eval/image_error.h"
 #include "proxima/eval/series.h"
@@ -501,31 +502,28 @@ TemporalFrame render_frame(const Scene& scene, const RayScene& rays, const Camer
 }  // namespace
 
 void validate(const TemporalReflectOptions& o) {
-  const std::string sides = "must be in 1.." + std::to_string(kMaxImageSide);
-  if (o.width < 1 || o.width > kMaxImageSide) fail_input("--width: " + sides);
-  if (o.height < 1 || o.height > kMaxImageSide) fail_input("--height: " + sides);
+  require_in_range(o.width, 1, kMaxImageSide, "--width");
+  require_in_range(o.height, 1, kMaxImageSide, "--height");
   if (o.path.empty()) fail_input("--path: --method temporal needs a camera path (index or name)");
-  if (o.light_samples < 1 || o.light_samples > 64) fail_input("--light-samples: must be in 1..64");
-  if (o.glossy_rays < 1 || o.glossy_rays > 1024)
-    fail_input("--glossy-rays: must be in 1..1024 for --method temporal");
-  if (o.frames < 0 || o.frames > 100000) fail_input("--frames: must be in 0..100000");
-  if (o.frame_step < 1 || o.frame_step > 100000) fail_input("--frame-step: must be in 1..100000");
-  if (!(o.threshold >= 0.0f && o.threshold <= 1.0f)) fail_input("--threshold: must be in [0, 1]");
+  require_in_range(o.light_samples, 1, 64, "--light-samples");
+  require_in_range(o.glossy_rays, 1, 1024, "--glossy-rays", "for --method temporal");
+  require_in_range(o.frames, 0, 100000, "--frames");
+  require_in_range(o.frame_step, 1, 100000, "--frame-step");
+  require_in_range(o.threshold, 0.0f, 1.0f, "--threshold");
   if (!(o.stretch_limit >= 1.0f) || !std::isfinite(o.stretch_limit))
     fail_input("--stretch-limit: must be ≥ 1");
-  if (!(o.spread_limit >= 1.0f)) fail_input("--spread-limit: must be ≥ 1 (inf = off)");
-  if (!(o.curved_contrast >= 0.0f)) fail_input("--curved-contrast: must be ≥ 0");
-  if (!(o.edge_contrast >= 0.0f)) fail_input("--edge-contrast: must be ≥ 0 (inf = off)");
-  if (!(o.blend_error >= 0.0f)) fail_input("--blend-error: must be ≥ 0 (inf = off)");
+  require_at_least(o.spread_limit, 1.0f, "--spread-limit", "(inf = off)");
+  require_at_least(o.curved_contrast, 0.0f, "--curved-contrast");
+  require_at_least(o.edge_contrast, 0.0f, "--edge-contrast", "(inf = off)");
+  require_at_least(o.blend_error, 0.0f, "--blend-error", "(inf = off)");
   if (!(o.keyframe_cost >= 0.0f && o.keyframe_cost < kInf))
     fail_input("--keyframe-cost: must be finite and ≥ 0 (0 = off)");
   parse_reflected_edge_rule(o.edge_rule, "--edge-rule");
-  if (o.image_frame < -1) fail_input("--image-frame: must be ≥ -1");
+  require_at_least(o.image_frame, -1, "--image-frame");
   if (!(o.depth_discontinuity > 0.0f) || !std::isfinite(o.depth_discontinuity))
     fail_input("--depth-discontinuity: must be > 0");
-  if (!(o.lobe_seed_cell >= 0.0f && o.lobe_seed_cell <= 1.0f))
-    fail_input("--lobe-seed-cell: must be in [0, 1]");
-  if (o.reference_rays < 0 || o.reference_rays > 1024) fail_input("--reference-rays: must be in 0..1024");
+  require_in_range(o.lobe_seed_cell, 0.0f, 1.0f, "--lobe-seed-cell");
+  require_in_range(o.reference_rays, 0, 1024, "--reference-rays");
   if ((o.breakdown || o.reference_rays > 0) && !o.compare)
     fail_input("--breakdown / --reference-rays need --compare");
 }

@@ -7,6 +7,7 @@
 
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
+#include "proxima/core/range_check.h"
 #include "proxima/core/timer.h"
 #include "proxima/trace/ray_scene.h"
 
@@ -56,7 +57,7 @@ double median_mrays(const RayScene& rs, std::span<const Ray> rays, int reps) {
 }  // namespace
 
 void validate(const TraceBenchOptions& o) {
-  if (o.reps < 1 || o.reps > 1000) fail_input("--reps: must be in 1..1000");
+  require_in_range(o.reps, 1, 1000, "--reps");
 }
 
 Results run_trace_bench(const Scene& scene, const TraceBenchOptions& options, const StudyOutput& /*out*/,

@@ -7,6 +7,7 @@
 #include "proxima/core/atomic_file.h"
 #include "proxima/core/error.h"
 #include "proxima/core/image_io.h"
+#include "proxima/core/range_check.h"
 #include "proxima/core/rng.h"
 #include "proxima/scene/camera_path.h"
 #include "proxima/scene/camera_select.h"
@@ -208,8 +209,8 @@ VisibilityMap trace_map(const WingedPair& wp, const Camera& cam, const Visibilit
 }  // namespace
 
 void validate(const VisibilityOptions& o) {
-  if (o.frames < 0) fail_input("--frames: must be ≥ 0");
-  if (o.selfcheck_rays < 1 || o.selfcheck_rays > 1000000) fail_input("--selfcheck-rays: must be in 1..1000000");
+  require_at_least(o.frames, 0, "--frames");
+  require_in_range(o.selfcheck_rays, 1, 1000000, "--selfcheck-rays");
   validate_camera(look_at({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 60, o.width, o.height), "--width/--height");
 }
 

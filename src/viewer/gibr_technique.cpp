@@ -56,15 +56,11 @@ Technique gibr_technique(std::shared_ptr<ViewerScene> vs, const TechniqueSetting
     if (!st->model) {
       if (!st->announced) {
         st->announced = true;
-        return placeholder(camera, "building the GIBR model (" + std::to_string(s.gibr_photos) + " photographs " +
-                                       std::to_string(s.gibr_photo_width) + "x" +
-                                       std::to_string(s.gibr_photo_height) + ")...");
+        return placeholder(camera, "building the GIBR model (" + std::to_string(s.gibr_model.photos) +
+                                       " photographs " + std::to_string(s.gibr_model.photo_width) + "x" +
+                                       std::to_string(s.gibr_model.photo_height) + ")...");
       }
-      gibr::GibrModelOptions o;
-      o.photos = s.gibr_photos;
-      o.photo_width = s.gibr_photo_width;
-      o.photo_height = s.gibr_photo_height;
-      o.supersample = s.gibr_supersample;
+      gibr::GibrModelOptions o = s.gibr_model;
       o.seed = s.seed;
       try {
         st->model = gibr::build_gibr_model(vs->scene, o);
@@ -94,7 +90,7 @@ Technique gibr_technique(std::shared_ptr<ViewerScene> vs, const TechniqueSetting
   // gibr` compares against), not the plain scene the other techniques show.
   t.reference = [st](const Camera& camera, int row_begin, int row_end) {
     if (!st->model) return ImageF(camera.width, camera.height, 3, 0.0f);  // no frame was refined yet
-    ReferenceOptions o = gibr::photo_render_options(st->settings.gibr_supersample, st->settings.seed);
+    ReferenceOptions o = gibr::photo_render_options(st->settings.gibr_model.supersample, st->settings.seed);
     o.row_begin = row_begin;
     o.row_end = row_end;
     return render_reference(st->model->scene, *st->model->rays, camera, o);

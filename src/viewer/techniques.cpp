@@ -20,6 +20,13 @@ namespace {
 
 // What the reflection techniques share: the reflectors, object bounds for culling, and
 // the distance cube map (built on first use, as `proxima reflect` builds it once).
+// A technique's options with the viewer's seed.
+template <typename Options>
+Options seeded(Options o, uint64_t seed) {
+  o.seed = seed;
+  return o;
+}
+
 struct ReflectionShared {
   TechniqueSettings settings;  // the live knobs; the parameter keys change them
   std::vector<uint32_t> reflectors;
@@ -28,34 +35,12 @@ struct ReflectionShared {
   RectifyOptions rectify;
 };
 
-ReferenceOptions live_reference(const TechniqueSettings& s) {
-  ReferenceOptions o;
-  o.area_light_samples = s.live_light_samples;
-  o.glossy_rays = s.live_glossy_rays;
-  o.max_bounces = s.live_bounces;
-  o.seed = s.seed;
-  return o;
-}
-
 ImageF shaded_reference(const ViewerScene& vs, const TechniqueSettings& s, const Camera& camera, int row_begin,
                         int row_end) {
-  ReferenceOptions o;
-  o.area_light_samples = s.reference_light_samples;
-  o.glossy_rays = s.reference_glossy_rays;
-  o.max_bounces = s.reference_bounces;
-  o.seed = s.seed;
+  ReferenceOptions o = seeded(s.reference, s.seed);
   o.row_begin = row_begin;
   o.row_end = row_end;
   return render_reference(vs.scene, vs.rays, camera, o);
-}
-
-ReflectionOptions reflection_options(const TechniqueSettings& s) {
-  ReflectionOptions o;
-  o.supersample = 1;
-  o.glossy_rays = s.reflection_glossy_rays;
-  o.area_light_samples = s.live_light_samples;
-  o.seed = s.seed;
-  return o;
 }
 
 // The G-buffer pass every reflection technique starts from (its diffuse shading is the
@@ -63,7 +48,7 @@ ReflectionOptions reflection_options(const TechniqueSettings& s) {
 ReflectionFrame gbuffer(const ViewerScene& vs, const ReflectionShared& shared, const TechniqueSettings& s,
                         const Camera& camera, std::vector<StepTime>& steps) {
   Stopwatch w;
-  ReflectionFrame frame = prepare_reflection_frame(vs.scene, camera, reflection_options(s), shared.bounds);
+  ReflectionFrame frame = prepare_reflection_frame(vs.scene, camera, seeded(s.reflection, s.seed), shared.bounds);
   steps.push_back({"g-buffer + diffuse", w.elapsed_ms()});
   return frame;
 }
@@ -80,7 +65,7 @@ const DistanceCubeMap& cube_map(const ViewerScene& vs, ReflectionShared& shared,
   if (!shared.map) {
     DistanceCubeMapOptions mo;
     mo.resolution = s.cube_size;
-    mo.area_light_samples = s.live_light_samples;
+    mo.area_light_samples = s.reflection.area_light_samples;
     mo.seed = s.seed;
     mo.exclude = shared.reflectors;
     Stopwatch w;
@@ -167,9 +152,10 @@ std::vector<Technique> make_techniques(std::shared_ptr<ViewerScene> vs, const Te
   shared->rectify.D = scene_bounds(vs->scene).diagonal();
 
   // Parameter keys: doubling / halving one knob per technique, within bounds.
-  auto knob = [shared](const char* what, int TechniqueSettings::*field, int lo, int hi, bool drop_map) {
+  // `field` is a knob in shared->settings, which the returned function keeps alive.
+  auto knob = [shared](const char* what, int* field, int lo, int hi, bool drop_map) {
     return [shared, what, field, lo, hi, drop_map](int step) {
-      int& v = shared->settings.*field;
+      int& v = *field;
       v = std::clamp(step > 0 ? v * 2 : v / 2, lo, hi);
       if (drop_map) shared->map.reset();
       return std::string(what) + " " + std::to_string(v);
@@ -177,13 +163,13 @@ std::vector<Technique> make_techniques(std::shared_ptr<ViewerScene> vs, const Te
   };
   std::vector<Technique> list;
   Technique reference;
-  reference.adjust = knob("area-light samples n (n x n)", &TechniqueSettings::live_light_samples, 1, 16, false);
+  reference.adjust = knob("area-light samples n (n x n)", &shared->settings.live.area_light_samples, 1, 16, false);
   reference.name = "reference";
   reference.label = "reference ray tracing";
   reference.render = [vs, shared](const Camera& camera) {
     TechniqueFrame out;
     Stopwatch w;
-    out.color = render_reference(vs->scene, vs->rays, camera, live_reference(shared->settings));
+    out.color = render_reference(vs->scene, vs->rays, camera, seeded(shared->settings.live, shared->settings.seed));
     out.steps.push_back({"trace", w.elapsed_ms()});
     return out;
   };
@@ -193,8 +179,8 @@ std::vector<Technique> make_techniques(std::shared_ptr<ViewerScene> vs, const Te
   list.push_back(cluster_technique(vs, shared));
   list.push_back(temporal_technique(vs, shared));
   for (size_t i = 1; i < list.size(); ++i)
-    list[i].adjust = i <= 2 ? knob("cube map faces", &TechniqueSettings::cube_size, 16, 2048, true)
-                            : knob("glossy lobe rays", &TechniqueSettings::reflection_glossy_rays, 1, 64, false);
+    list[i].adjust = i <= 2 ? knob("cube map faces", &shared->settings.cube_size, 16, 2048, true)
+                            : knob("glossy lobe rays", &shared->settings.reflection.glossy_rays, 1, 64, false);
   if (shared->reflectors.empty())
     for (Technique& t : list)
       if (t.name != "reference") t.unavailable = "the scene has no reflective object";

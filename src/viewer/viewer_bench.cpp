@@ -5,6 +5,7 @@
 
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
+#include "proxima/core/range_check.h"
 #include "proxima/core/timer.h"
 #include "proxima/viewer/viewer_session.h"
 
@@ -101,11 +102,11 @@ std::string steps_text(const std::vector<StepTime>& steps) {
 }  // namespace
 
 void validate(const ViewerBenchOptions& o) {
-  if (o.width < 16 || o.width > 8192) fail_input("--width: must be in 16..8192");
-  if (o.height < 16 || o.height > 8192) fail_input("--height: must be in 16..8192");
-  if (o.move_scale < 0 || o.move_scale > 16) fail_input("--move-scale: must be in 0..16 (0 = adaptive)");
-  if (o.frames < 1 || o.frames > 10000) fail_input("--frames: must be in 1..10000");
-  if (o.rounds < 1 || o.rounds > 100) fail_input("--rounds: must be in 1..100");
+  require_in_range(o.width, 16, 8192, "--width");
+  require_in_range(o.height, 16, 8192, "--height");
+  require_in_range(o.move_scale, 0, 16, "--move-scale", "(0 = adaptive)");
+  require_in_range(o.frames, 1, 10000, "--frames");
+  require_in_range(o.rounds, 1, 100, "--rounds");
 }
 
 Results run_viewer_bench(const Scene& scene, const ViewerBenchOptions& o, const study::StudyOutput& /*out*/,

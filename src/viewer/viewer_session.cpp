@@ -17,6 +17,17 @@ namespace {
 
 constexpr int kMinWindowSide = 16, kMaxWindowSide = 8192;
 
+// The movement a held key drives (W A S D, E/space up, Q/C down); nullptr for other keys.
+bool* movement_of(FlyInput& held, std::string_view key) {
+  if (key == "w") return &held.forward;
+  if (key == "s") return &held.back;
+  if (key == "a") return &held.left;
+  if (key == "d") return &held.right;
+  if (key == "e" || key == "space") return &held.up;
+  if (key == "q" || key == "c") return &held.down;
+  return nullptr;
+}
+
 // Linear [0, 1] → sRGB 8-bit, 4096 steps (the display path runs once per window pixel).
 const std::array<uint8_t, 4096>& srgb_table() {
   static const std::array<uint8_t, 4096> table = [] {
@@ -60,12 +71,7 @@ Camera ViewerSession::camera() const { return fly_to_camera(fly_, width_, height
 
 void ViewerSession::key_down(std::string_view key) {
   status_.message.clear();
-  if (key == "w") held_.forward = true;
-  else if (key == "s") held_.back = true;
-  else if (key == "a") held_.left = true;
-  else if (key == "d") held_.right = true;
-  else if (key == "e" || key == "space") held_.up = true;
-  else if (key == "q" || key == "c") held_.down = true;
+  if (bool* moving = movement_of(held_, key)) *moving = true;
   else if (key == "h") options_.overlay = !options_.overlay;
   else if (key == "-" || key == "=") {
     Technique& t = techniques_[size_t(status_.technique)];
@@ -92,12 +98,7 @@ void ViewerSession::key_down(std::string_view key) {
 }
 
 void ViewerSession::key_up(std::string_view key) {
-  if (key == "w") held_.forward = false;
-  else if (key == "s") held_.back = false;
-  else if (key == "a") held_.left = false;
-  else if (key == "d") held_.right = false;
-  else if (key == "e" || key == "space") held_.up = false;
-  else if (key == "q" || key == "c") held_.down = false;
+  if (bool* moving = movement_of(held_, key)) *moving = false;
 }
 
 void ViewerSession::mouse_motion(vec2 delta_px) {

@@ -7,14 +7,13 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <string>
 
 #include "proxima/core/error.h"
 #include "proxima/core/limits.h"
 #include "proxima/core/parallel.h"
 #include "proxima/scene/builtin_scenes.h"
+#include "study_test_util.h"
 #include "test_util.h"
 
 namespace proxima {
@@ -36,11 +35,6 @@ double metric(const Results& r, const std::string& name) {
   const auto it = r.metrics.find(name);
   EXPECT_NE(it, r.metrics.end()) << name;
   return it == r.metrics.end() ? std::nan("") : it->second;
-}
-
-std::string file_bytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
 }
 
 bool is_timing(const std::string& name) { return name.find("_ms") != std::string::npos; }
@@ -132,9 +126,9 @@ TEST(EnvmapReflectStudy, BadOptionsAreRefusedNamingTheFlag) {
     EXPECT_FALSE(std::filesystem::exists(dir.path / "never")) << flag;
   }
   EXPECT_EQ(error_of([&] { study::validate(small_options()); }), "");
-  EXPECT_EQ(error_of([&] { study::validate(scene, small_options()); }), "");
+  EXPECT_EQ(error_of([&] { study::validate(small_options(), scene); }), "");
   const std::string no_reflector =
-      error_of([&] { study::validate(make_builtin_scene("nest"), small_options()); });
+      error_of([&] { study::validate(small_options(), make_builtin_scene("nest")); });
   EXPECT_EQ(no_reflector.rfind("--scene: 'nest' has no reflective object", 0), 0u) << no_reflector;
 }
 

@@ -7,13 +7,12 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 
 #include "depthimage/figure11.h"
 #include "proxima/core/parallel.h"
 #include "proxima/study/sampling.h"
+#include "study_test_util.h"
 #include "test_util.h"
 
 namespace proxima {
@@ -38,11 +37,6 @@ study::SamplingOptions small_options(int size) {
   o.reps = 1;
   o.methods = {SamplingMethod::Conventional, SamplingMethod::Peeling, SamplingMethod::NrrPixel};
   return o;
-}
-
-std::string read_bytes(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
 }
 
 bool is_timing(const std::string& metric) { return metric.find("_ms") != std::string::npos; }
@@ -114,7 +108,7 @@ TEST(SamplingStudy, SameFiguresAndImagesForOneAndTwoThreads) {
     }
   ASSERT_EQ(one.images, two.images);
   for (const auto& [role, file] : one.images)
-    EXPECT_EQ(read_bytes(one_dir.path / file), read_bytes(two_dir.path / file)) << file;
+    EXPECT_EQ(file_bytes(one_dir.path / file), file_bytes(two_dir.path / file)) << file;
 }
 
 TEST(SamplingStudy, ValidateNamesTheFlag) {

@@ -9,13 +9,12 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 
 #include "proxima/core/parallel.h"
 #include "proxima/scene/procedural.h"
 #include "proxima/study/shadows.h"
+#include "study_test_util.h"
 #include "test_util.h"
 
 namespace proxima {
@@ -51,11 +50,6 @@ study::ShadowsOptions small_options() {
   o.out_res = 64;
   o.shadow_res = 256;
   return o;
-}
-
-std::string read_bytes(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
 }
 
 TEST(ShadowsStudy, ReconstructedOccludersCastTheGeometrysShadow) {
@@ -123,7 +117,7 @@ TEST(ShadowsStudy, SameFiguresAndImagesForOneAndTwoThreads) {
   ASSERT_EQ(one.images, two.images);
   for (const auto& [role, file] : one.images) {
     EXPECT_TRUE(std::filesystem::is_regular_file(one_dir.path / file)) << file;
-    EXPECT_EQ(read_bytes(one_dir.path / file), read_bytes(two_dir.path / file)) << file;
+    EXPECT_EQ(file_bytes(one_dir.path / file), file_bytes(two_dir.path / file)) << file;
   }
 }
 

@@ -28,7 +28,9 @@ inline size_t expect_same_metrics(const Results& a, const Results& b) {
     if (std::regex_search(name, timing)) continue;
     auto it = b.metrics.find(name);
     EXPECT_TRUE(it != b.metrics.end()) << name;
-    if (it != b.metrics.end()) EXPECT_EQ(value, it->second) << name;
+    if (it != b.metrics.end()) {
+      EXPECT_EQ(value, it->second) << name;
+    }
     ++compared;
   }
   return compared;

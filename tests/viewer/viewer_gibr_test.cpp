@@ -39,11 +39,11 @@ TEST(ViewerGibr, OnRoomsBuildsOnceThenRendersNovelViews) {
   ViewerOptions o;
   o.overlay = false;
   o.move_scale = 2;
-  o.techniques.gibr_photos = 6;  // small and quick; the real settings are the demo's
-  o.techniques.gibr_photo_width = 64;
-  o.techniques.gibr_photo_height = 48;
-  o.techniques.gibr_supersample = 1;
-  o.techniques.reference_light_samples = 1;
+  o.techniques.gibr_model.photos = 6;  // small and quick; the real settings are the demo's
+  o.techniques.gibr_model.photo_width = 64;
+  o.techniques.gibr_model.photo_height = 48;
+  o.techniques.gibr_model.supersample = 1;
+  o.techniques.reference.area_light_samples = 1;
   Scene scene = make_builtin_scene("rooms");
   const Camera start = scene.cameras.at(0).camera;
   ViewerSession s(std::move(scene), start, 48, 32, o);
@@ -123,7 +123,7 @@ TEST(ViewerGibr, UnavailableWithTheReasonOffVisibilityModels) {
 // A build that fails (here: bad settings) keeps showing placeholders with the reason.
 TEST(ViewerGibr, AFailedBuildIsReportedNotFatal) {
   ViewerOptions o;
-  o.techniques.gibr_photos = 0;
+  o.techniques.gibr_model.photos = 0;
   Scene scene = make_builtin_scene("rooms");
   const Camera start = scene.cameras.at(0).camera;
   ViewerSession s(std::move(scene), start, 32, 24, o);

@@ -17,8 +17,8 @@ ViewerSession small_session(ViewerOptions o = {}) {
   o.techniques.occluder_resolution = 64;
   o.techniques.shadow_map_resolution = 64;
   o.techniques.shadow_light_samples = 2;
-  o.techniques.reference_glossy_rays = 2;
-  o.techniques.reference_light_samples = 2;
+  o.techniques.reference.glossy_rays = 2;
+  o.techniques.reference.area_light_samples = 2;
   return ViewerSession(std::move(scene), start, 48, 32, o);
 }
 

@@ -45,7 +45,7 @@ struct EnvmapReflectOptions {
 void validate(const EnvmapReflectOptions& options);
 // The same, and what depends on the scene: the camera choice (--camera, --path, --frame)
 // and a reflective object to study (--scene). Callers check before writing anything.
-void validate(const Scene& scene, const EnvmapReflectOptions& options);
+void validate(const EnvmapReflectOptions& options, const Scene& scene);
 
 // Renders the reference and the chosen methods on the camera of `options` and compares them.
 // Metrics (per method m): m_mae, m_env_mae, m_ms, m_with_build_ms, m_object_match_pct, and for
@@ -55,7 +55,7 @@ void validate(const Scene& scene, const EnvmapReflectOptions& options);
 // layer<k>_shaded_texels, layer<k>_hidden_texels, layered_fallback_pct. One table (a row per
 // method). Images per method m run: m.png, and for the env-map methods (the reference outside
 // the reflector) error_m.png, the error heat map on the reflector (0 … kErrorHeatmapMax).
-// Throws InputError as validate(scene, options) does, before anything is written.
+// Throws InputError as validate(options, scene) does, before anything is written.
 // Deterministic for any thread count (timings aside).
 Results run_envmap_reflect(const Scene& scene, const EnvmapReflectOptions& options, const StudyOutput& out,
                            Progress* progress = nullptr);

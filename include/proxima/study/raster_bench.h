@@ -1,11 +1,10 @@
 // The software rasterizer against Embree: its triangle-id agreement with ray-cast item
-// buffers on every built-in camera, and its frame time on one scene beside Mesa's llvmpipe
-// (an optional OpenGL harness, run as a separate program), at one thread and at all
-// threads. What `proxima bench raster` runs.
+// buffers on every built-in camera, and its frame time on one scene at one thread and at all
+// threads. What `proxima bench raster` runs; the command adds Mesa's llvmpipe beside the
+// times (an optional OpenGL harness, a separate program: apps/proxima/llvmpipe_columns.h).
 #pragma once
 
 #include <cstddef>
-#include <filesystem>
 #include <vector>
 
 #include "proxima/core/progress.h"
@@ -25,10 +24,6 @@ struct RasterBenchStudyOptions {
   int threads = 0;              // --threads: the "all threads" count (≤ 0 = all cores); 1 is timed too
   int reps = 9;                 // --reps: timed frames per measurement, 1..1000 (median reported)
   bool skip_agreement = false;  // --skip-agreement: time only
-  // The llvmpipe harness (proxima_llvmpipe_bench) and the --scene it loads the same scene
-  // by; an empty or missing harness leaves the llvmpipe columns NaN (with a warning).
-  std::filesystem::path llvmpipe_harness;
-  std::string llvmpipe_scene;
 };
 
 // Throws InputError naming the flag (--reps).
@@ -46,9 +41,10 @@ AgreementSummary agreement_summary(int size);
 // Runs the study. Without skip_agreement: metrics id_agreement_pct,
 // id_agreement_with_ties_pct, id_disagreements_other and the table "rasterized vs
 // ray-cast triangle ids, 512×512, every built-in camera". Then per thread count (suffix _1t
-// for 1 thread when all threads > 1): raster_ms_depth_id, raster_ms_gbuffer, tris_per_s,
-// llvmpipe_ms_depth_id, speedup_vs_llvmpipe, and the table "raster <scene>, WxH, median of
-// N". No images. Throws InputError for invalid options or camera choice.
+// for 1 thread when all threads > 1): raster_ms_depth_id, raster_ms_gbuffer, tris_per_s, and
+// the table "raster <scene>, WxH, median of N" (columns threads, depth_id_ms, gbuffer_ms,
+// tris_per_s; one row per thread count, all threads last). No images. Throws InputError for
+// invalid options or camera choice.
 Results run_raster_bench(const Scene& scene, const RasterBenchStudyOptions& options, const StudyOutput& out,
                          Progress* progress = nullptr);
 

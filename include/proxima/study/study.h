@@ -28,5 +28,11 @@ struct StudyOutput {
 // `role`; does nothing when `out` has no directory.
 void write_image(const StudyOutput& out, Results& results, const std::string& role, const std::string& file,
                  const ImageF& image);
+// The same as EXR (float channels as they are), for depth, normals and ids.
+void write_exr_image(const StudyOutput& out, Results& results, const std::string& role, const std::string& file,
+                     const ImageF& image);
+
+// Triangle ids as one float channel for EXR: exact up to 2^24, −1 where no triangle was hit.
+ImageF triangle_ids_as_float(const ImageU32& ids);
 
 }  // namespace proxima::study

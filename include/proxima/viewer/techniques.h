@@ -13,8 +13,11 @@
 
 #include "proxima/core/camera.h"
 #include "proxima/core/image.h"
+#include "proxima/gibr/gibr_model.h"
+#include "proxima/reflect/reflection_frame.h"
 #include "proxima/scene/scene.h"
 #include "proxima/trace/ray_scene.h"
+#include "proxima/trace/reference_renderer.h"
 
 namespace proxima {
 
@@ -40,19 +43,19 @@ struct TechniqueFrame {
 };
 
 // Quality knobs of the live techniques (the viewer trades quality for frame rate) and of
-// the references the error is measured against.
+// the references the error is measured against: the techniques' own options, whose seeds
+// `seed` replaces.
 struct TechniqueSettings {
-  // Live reference ray tracing: mirror reflections, hard shadows (one area-light sample).
-  int live_light_samples = 1;
-  int live_glossy_rays = 1;
-  int live_bounces = 1;
-  // The reference of the error overlay (render_reference's defaults).
-  int reference_light_samples = 4;
-  int reference_glossy_rays = 16;
-  int reference_bounces = 2;
-  // Env maps, cluster, temporal.
+  // Live reference ray tracing: mirror reflections (1 glossy ray, 1 bounce), hard shadows
+  // (one area-light sample).
+  ReferenceOptions live{.area_light_samples = 1, .glossy_rays = 1, .max_bounces = 1};
+  // The reference of the error overlay (render_reference's defaults); its rows are the
+  // band asked for.
+  ReferenceOptions reference;
+  // Env maps, cluster, temporal: the G-buffer at one sample per pixel, its glossy lobe rays
+  // and area-light samples (also the cube map's).
+  ReflectionOptions reflection{.supersample = 1, .glossy_rays = 4, .area_light_samples = 1};
   int cube_size = 256;
-  int reflection_glossy_rays = 4;
   // Soft shadows (`proxima shadows`): light diagonal / scene diagonal, n×n samples.
   float shadow_light_size = 0.25f;
   int shadow_light_samples = 2;
@@ -60,9 +63,8 @@ struct TechniqueSettings {
   int shadow_map_resolution = 512;
   // GIBR novel views: the model built once (`proxima demo`'s quick settings: photographs
   // along the scene's first path), k photographs blended per pixel.
-  int gibr_photos = 16;
-  int gibr_photo_width = 160, gibr_photo_height = 120;
-  int gibr_supersample = 2;
+  gibr::GibrModelOptions gibr_model{
+      .photos = 16, .photo_width = 160, .photo_height = 120, .supersample = 2, .camera_file = {}};
   int gibr_k = 3;
   uint64_t seed = 1;
 };

@@ -1,8 +1,8 @@
-#include "study_out_dir.h"
+#include "scene_study.h"
+
+#include <unistd.h>
 
 #include <system_error>
-
-#include "command.h"
 
 namespace proxima::cli {
 
@@ -31,16 +31,20 @@ bool holds_no_file(const fs::path& dir) {
 
 }  // namespace
 
-Results run_study_into(const std::string& out, const std::function<Results(const study::StudyOutput&)>& study) {
+bool progress_is_terminal() { return isatty(fileno(stderr)) != 0; }
+
+Results run_in_out_dir(const std::string& out, const std::function<Results(const fs::path&)>& study) {
   const fs::path created = first_missing(out);
   const fs::path dir = prepare_out_dir(out);
   try {
-    return study(study::StudyOutput{dir});
+    return study(dir);
   } catch (...) {
     std::error_code ec;
     if (!created.empty() && holds_no_file(created)) fs::remove_all(created, ec);
     throw;
   }
 }
+
+int publish_study(SceneStudyRun run) { return publish_study(run.out, std::move(run.results)); }
 
 }  // namespace proxima::cli
