@@ -35,6 +35,7 @@ set(PROXIMA_LIB_SOURCES
   src/reconstruct/reconstruction.cpp
   src/reflect/cluster_camera.cpp
   src/reflect/cluster_clustering.cpp
+  src/reflect/cluster_depth_image.cpp
   src/reflect/cluster_depth_image_march.cpp
   src/reflect/cluster_reflection.cpp
   src/reflect/distance_cube_map.cpp

@@ -20,15 +20,34 @@
 #include "proxima/core/parallel.h"
 #include "proxima/core/rng.h"
 #include "proxima/core/timer.h"
-#include "proxima/raster/depth_peeling.h"
 #include "proxima/raster/rasterizer.h"
 #include "proxima/reflect/cluster_camera.h"
+#include "proxima/reflect/cluster_depth_image.h"
 #include "proxima/reflect/depth_image_march.h"
 #include "proxima/scene/shading.h"
 
 namespace proxima {
 
 namespace {
+
+// Culling margin, as a fraction of the scene diagonal: wider than any float rounding of a
+// plane test, so culling never drops a triangle that would show.
+constexpr float kCullMargin = 1e-3f;
+
+// Wall-clock and process CPU time of a step, added to the step's figures.
+struct PhaseClock {
+  Stopwatch wall;
+  double cpu0 = process_cpu_ms();
+  void restart() {
+    wall.restart();
+    cpu0 = process_cpu_ms();
+  }
+  double wall_ms() const { return wall.elapsed_ms(); }
+  void add_to(double& wall_total, double& cpu_total) const {
+    wall_total += wall.elapsed_ms();
+    cpu_total += process_cpu_ms() - cpu0;
+  }
+};
 
 // Bilinear color of the texels around continuous pixel `s` that lie on the hit surface
 // (depth within 5% of `depth`); the nearest texel when none does.
@@ -52,6 +71,46 @@ vec3 lookup_color(const ImageF& color, const ImageF& depth, vec2 s, float hit_de
   if (weight > 0.0f) return sum / weight;
   int x = std::clamp(int(s.x), 0, w - 1), y = std::clamp(int(s.y), 0, h - 1);
   return vec3(color.at(x, y, 0), color.at(x, y, 1), color.at(x, y, 2));
+}
+
+// Marks in `needed` (one byte per texel of `depth`) every texel lookup_color may read for
+// the hits of rays whose answer is not `env`: the 2×2 bilinear texels and the nearest one.
+void mark_lookup_texels(const ImageF& depth, std::span<const DepthImageHit> hits, std::span<const uint8_t> answer,
+                        uint8_t env, std::vector<uint8_t>& needed) {
+  const int w = depth.width(), h = depth.height();
+  needed.assign(size_t(w) * size_t(h), 0);
+  for (size_t r = 0; r < hits.size(); ++r) {
+    if (answer[r] == env) continue;
+    const vec2 s = hits[r].pixel;
+    const int x0 = int(std::floor(s.x - 0.5f)), y0 = int(std::floor(s.y - 0.5f));
+    for (int y = std::max(0, y0); y <= std::min(h - 1, y0 + 1); ++y)
+      for (int x = std::max(0, x0); x <= std::min(w - 1, x0 + 1); ++x) needed[size_t(y) * size_t(w) + size_t(x)] = 1;
+    const int x = std::clamp(int(s.x), 0, w - 1), y = std::clamp(int(s.y), 0, h - 1);
+    needed[size_t(y) * size_t(w) + size_t(x)] = 1;
+  }
+}
+
+// Shades the needed texels of a cluster image that hold a surface (shade_reflected_point
+// towards the camera); the others stay black. Returns the texels shaded.
+uint64_t shade_texels(const Scene& scene, int area_light_samples, const Camera& cam, const RasterImages& images,
+                      std::span<const uint8_t> needed, ImageF& color) {
+  color = ImageF(cam.width, cam.height, 3, 0.0f);
+  std::vector<uint64_t> row_count(size_t(cam.height), 0);
+  parallel_for(size_t(cam.height), 8, [&](size_t y0, size_t y1) {
+    for (int y = int(y0); y < int(y1); ++y)
+      for (int x = 0; x < cam.width; ++x) {
+        const uint32_t t = images.triangle.at(x, y);
+        if (t == kNoTriangle || !needed[size_t(y) * size_t(cam.width) + size_t(x)]) continue;
+        const float u = images.barycentric.at(x, y, 0), v = images.barycentric.at(x, y, 1);
+        const vec3 toward = cam.position - triangle_point(scene, t, u, v);
+        const vec3 col = shade_reflected_point(scene, t, u, v, toward, area_light_samples);
+        for (int ch = 0; ch < 3; ++ch) color.at(x, y, ch) = col[ch];
+        ++row_count[size_t(y)];
+      }
+  });
+  uint64_t total = 0;
+  for (uint64_t n : row_count) total += n;
+  return total;
 }
 
 // Whether the surface point at continuous pixel `s`, depth `z`, on `triangle`, shows in the
@@ -104,12 +163,12 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
   // Step 2: clusters; step 3a needs each cluster's mean pixel footprint p: the distance
   // between horizontally and vertically neighbouring samples of the cluster in the
   // tangent plane of the first.
-  Stopwatch watch;
+  PhaseClock clock;
   ReflectionClusters clusters = cluster_reflections(frame.normal, frame.reflector, options.clustering);
   const size_t nc = clusters.count();
   st.clusters = nc;
-  st.clustering_ms = watch.elapsed_ms();
-  watch.restart();
+  clock.add_to(st.clustering_ms, st.clustering_cpu_ms);
+  clock.restart();
   std::vector<int32_t> sample_at(frame.base.pixel_count(), -1);
   for (size_t i = 0; i < n; ++i) sample_at[frame.pixel[i]] = int32_t(i);
   std::vector<double> footprint_sum(nc, 0.0);
@@ -165,13 +224,21 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
       }
     }
   }
-  st.cameras_ms = watch.elapsed_ms();
+  clock.add_to(st.cameras_ms, st.cameras_cpu_ms);
 
   out.cluster = clusters.cluster_of;
   out.flags.assign(n, 0);
   out.occlusion_cause.assign(n, uint8_t(OcclusionCause::None));
+  // Culling hierarchy of the posed scene, built once per frame (part of step 3b).
+  clock.restart();
+  const TriangleBlocks blocks = options.cull ? triangle_blocks(scene) : TriangleBlocks{};
+  const float cull_margin = kCullMargin * frame.scene_diagonal;
+  clock.add_to(st.depth_images_ms, st.depth_images_cpu_ms);
   RasterImages images, back;
   ImageF color;
+  std::vector<uint32_t> drawn;
+  std::vector<uint8_t> needed;
+  out.cameras = cameras;
   for (size_t c = 0; c < nc; ++c) {
     const std::span<const uint32_t> members = clusters.cluster(c);
     st.max_cluster_samples = std::max<uint64_t>(st.max_cluster_samples, members.size());
@@ -188,41 +255,23 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     const ClusterCamera& k = *cameras[c];
     const Camera& cam = k.camera;
 
-    // Step 3b: the cluster image, everything in front of the near (clip) plane, shaded.
-    watch.restart();
-    RasterOptions ro;
-    ro.outputs = kRasterDepth | kRasterTriangle | kRasterBarycentric;
-    ro.object_bounds = object_bounds;
-    // A curved cluster's own reflector bulges in front of its fitting plane and would only
-    // hide what its rays hit; it is left out (convex reflectors do not see themselves).
-    std::vector<uint32_t> others;
-    if (!k.planar) {
-      for (uint32_t o = 0; o < scene.objects.size(); ++o)
-        if (o != clusters.reflector[c]) others.push_back(o);
-      ro.objects = others;
-    }
-    RasterStats rs = rasterize(scene, cam, ro, images, [&](const Fragment& fr) {
-      vec3 x = unproject(cam, vec2(float(fr.x) + 0.5f, float(fr.y) + 0.5f), fr.depth);
-      return glm::dot(x - k.plane_point, k.plane_normal) > k.clip_offset;
-    });
+    // Step 3b: the cluster image, everything in front of the near (clip) plane. A curved
+    // cluster's own reflector bulges in front of its fitting plane and would only hide what
+    // its rays hit; it is left out (convex reflectors do not see themselves).
+    clock.restart();
+    ClusterDrawList draw;
+    draw.excluded_object = k.planar ? kNoObject : clusters.reflector[c];
+    draw.object_bounds = object_bounds;
+    draw.culled = options.cull && cull_cluster_triangles(scene, blocks, k, draw.excluded_object, cull_margin, drawn);
+    draw.triangles = drawn;
+    RasterStats rs = rasterize_cluster_image(scene, k, draw, images);
     st.objects_drawn += rs.objects_drawn;
+    st.triangles_drawn += rs.triangles_submitted;
     st.texels += uint64_t(cam.width) * uint64_t(cam.height);
-    color = ImageF(cam.width, cam.height, 3, 0.0f);
-    parallel_for(size_t(cam.height), 8, [&](size_t y0, size_t y1) {
-      for (int y = int(y0); y < int(y1); ++y)
-        for (int x = 0; x < cam.width; ++x) {
-          uint32_t t = images.triangle.at(x, y);
-          if (t == kNoTriangle) continue;
-          float u = images.barycentric.at(x, y, 0), v = images.barycentric.at(x, y, 1);
-          vec3 toward = cam.position - triangle_point(scene, t, u, v);
-          vec3 col = shade_reflected_point(scene, t, u, v, toward, frame.area_light_samples);
-          for (int ch = 0; ch < 3; ++ch) color.at(x, y, ch) = col[ch];
-        }
-    });
-    st.depth_images_ms += watch.elapsed_ms();
+    clock.add_to(st.depth_images_ms, st.depth_images_cpu_ms);
 
-    // Step 3c: every ray of every pixel against the image; G = the lobe mean.
-    watch.restart();
+    // Step 3c: every ray of every pixel against the image.
+    clock.restart();
     const float far = far_distance[c];
     const bool glossy = cluster_gloss[c] > 0.0f;
     MarchOptions march;
@@ -236,6 +285,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     const size_t ray_count = frame.first_ray[members.back() + 1] - ray_base;
     std::vector<uint8_t> ray_occluded(ray_count, 0);
     std::vector<vec3> ray_color(ray_count, vec3(0.0f));
+    std::vector<DepthImageHit> ray_hit(ray_count);
     enum Answer : uint8_t { kHit, kFill, kEnv, kSecond };
     std::vector<uint8_t> answer(ray_count, kHit);
     // Glossy hits in the last fade_fraction of the far distance fade to the environment.
@@ -259,8 +309,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
           if (inside) hit = march_depth_image(cam, images.depth, o + t0 * dir, o + t1 * dir, march);
           if (layered && inside && (!hit || hit->filled)) needs_second[r - ray_base] = 1;
           if (hit) {
-            vec3 c_hit = lookup_color(color, images.depth, hit->pixel, hit->depth);
-            ray_color[r - ray_base] = glossy ? fade(*hit, o, dir, c_hit) : c_hit;
+            ray_hit[r - ray_base] = *hit;
             answer[r - ray_base] = hit->filled ? kFill : kHit;
           } else {
             ray_color[r - ray_base] = environment_radiance(scene.environment, dir);
@@ -269,25 +318,38 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
         }
       }
     });
-    st.intersection_ms += watch.elapsed_ms();
+    clock.add_to(st.intersection_ms, st.intersection_cpu_ms);
+    // Step 3b, shading: only the texels a hit's color lookup reads (most of an image is
+    // never read), the same color each would get if all were shaded.
+    clock.restart();
+    mark_lookup_texels(images.depth, ray_hit, answer, kEnv, needed);
+    st.shaded_texels += shade_texels(scene, frame.area_light_samples, cam, images, needed, color);
+    st.texel_shading_ms += clock.wall_ms();
+    clock.add_to(st.depth_images_ms, st.depth_images_cpu_ms);
+    clock.restart();
+    parallel_for(members.size(), 64, [&](size_t b, size_t e) {
+      for (size_t m = b; m < e; ++m) {
+        const uint32_t i = members[m];
+        for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
+          if (answer[r - ray_base] == kEnv) continue;
+          const DepthImageHit& hit = ray_hit[r - ray_base];
+          const vec3 c_hit = lookup_color(color, images.depth, hit.pixel, hit.depth);
+          ray_color[r - ray_base] = glossy ? fade(hit, frame.origin[i], frame.direction[r], c_hit) : c_hit;
+        }
+      }
+    });
+    clock.add_to(st.intersection_ms, st.intersection_cpu_ms);
     const bool two_layers = layered && std::find(needs_second.begin(), needs_second.end(), 1) != needs_second.end();
     if (two_layers) {
       // Step 3b for the second layer: the nearest front face behind the first layer, e.g.
-      // the wall behind a fixture standing on a glossy floor. Back faces are culled so a
-      // closed occluder's far side does not take the place of what it hides.
-      watch.restart();
-      RasterOptions ro2 = ro;
-      ro2.cull = CullMode::Back;
-      const BehindLayerTest behind{images.depth, images.triangle, options.second_layer_separation};
-      rs = rasterize(scene, cam, ro2, back, [&](const Fragment& fr) {
-        if (!behind(fr)) return false;
-        vec3 x = unproject(cam, vec2(float(fr.x) + 0.5f, float(fr.y) + 0.5f), fr.depth);
-        return glm::dot(x - k.plane_point, k.plane_normal) > k.clip_offset;
-      });
+      // the wall behind a fixture standing on a glossy floor.
+      clock.restart();
+      rs = rasterize_cluster_second_layer(scene, k, draw, images, options.second_layer_separation, back);
+      st.triangles_drawn += rs.triangles_submitted;
       st.second_layer_texels += uint64_t(cam.width) * uint64_t(cam.height);
-      st.depth_images_ms += watch.elapsed_ms();
+      clock.add_to(st.depth_images_ms, st.depth_images_cpu_ms);
       // Those rays marched again in it (without fill); its texels are shaded on demand.
-      watch.restart();
+      clock.restart();
       const ImageF back_block_min = block > 0 ? depth_block_min(back.depth, block) : ImageF();
       MarchOptions plain;
       plain.block = block;
@@ -314,10 +376,10 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
           }
         }
       });
-      st.intersection_ms += watch.elapsed_ms();
+      clock.add_to(st.intersection_ms, st.intersection_cpu_ms);
     }
     // Step 3d: G = the mean over each sample's rays.
-    watch.restart();
+    clock.restart();
     for (uint32_t i : members) {
       vec3 sum(0.0f);
       for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
@@ -328,7 +390,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
       }
       out.radiance[i] = sum / float(frame.first_ray[i + 1] - frame.first_ray[i]);
     }
-    st.intersection_ms += watch.elapsed_ms();
+    clock.add_to(st.intersection_ms, st.intersection_cpu_ms);
     // Occlusion errors, a diagnostic outside the timed steps: the surface Embree hits is
     // not what the image holds there.
     if (reference) {

@@ -85,7 +85,8 @@ struct ClusterSeries {
       cameras_ms, images_ms, intersection_ms, clusters, samples_per_cluster, occlusion_pct, fallback_pct,
       planar_pct, mae_r, mae_g, mae_b, env_r, env_g, env_b, texels, fill_pct, occlusion_ray_pct,
       occlusion_mirror_pct, occlusion_glossy_pct, full_r, full_g, full_b, traced_full, second_texels,
-      second_ray_pct;
+      second_ray_pct, cluster_cpu_ms, reference_cpu_ms, reference_dynamic_cpu_ms, step1_cpu_ms, cameras_cpu_ms,
+      images_cpu_ms, intersection_cpu_ms, texel_shading_ms, triangles_drawn, shaded_texels;
   Series cause_pct[kOcclusionCauses], cause_mirror_pct[kOcclusionCauses];
 };
 
@@ -98,6 +99,9 @@ struct FrameRun {
   std::vector<vec3> env_radiance;
   double cluster_ms = 0.0, step1_ms = 0.0, cameras_ms = 0.0, images_ms = 0.0, intersection_ms = 0.0;
   double reference_ms = 0.0, build_ms = 0.0, envmap_ms = 0.0, envmap_build_ms = 0.0;
+  // Process CPU time (all threads) of the same steps: steadier than wall-clock under load.
+  double cluster_cpu_ms = 0.0, step1_cpu_ms = 0.0, cameras_cpu_ms = 0.0, images_cpu_ms = 0.0,
+         intersection_cpu_ms = 0.0, texel_shading_ms = 0.0, reference_cpu_ms = 0.0, build_cpu_ms = 0.0;
 };
 
 // The env map of the reflectors' environment from their common centre, texels shaded as the
@@ -120,7 +124,8 @@ DistanceCubeMap environment_map(const Scene& scene, const RayScene& rays, const 
 FrameRun run_frame(const Scene& scene, const Camera& camera, const ClusterReflectOptions& o,
                    const ReflectionOptions& ro) {
   FrameRun f;
-  std::vector<double> c_ms, r_ms, b_ms, e_ms, s1, s2, s3, s4;
+  std::vector<double> c_ms, r_ms, b_ms, e_ms, s1, s2, s3, s4, c_cpu, r_cpu, b_cpu, s1_cpu, s2_cpu, s3_cpu, s4_cpu,
+      shading;
   DistanceCubeMap map;
   RectifyOptions rectify;
   rectify.D = o.distance > 0.0f ? o.distance : scene_bounds(scene).diagonal();
@@ -128,13 +133,18 @@ FrameRun run_frame(const Scene& scene, const Camera& camera, const ClusterReflec
   rectify.edge = o.edge_fallback ? EdgeRule::PlainFallback : EdgeRule::Black;
   for (int rep = 0; rep < o.reps; ++rep) {
     Stopwatch watch;
+    double cpu = process_cpu_ms();
     const std::vector<Bounds3> bounds = raster_object_bounds(scene);
     f.frame = prepare_reflection_frame(scene, camera, ro, bounds);
-    const double step1 = watch.elapsed_ms();
+    const double step1 = watch.elapsed_ms(), step1_cpu = process_cpu_ms() - cpu;
     if (o.compare) {
+      cpu = process_cpu_ms();
       f.rays = std::make_unique<RayScene>(scene);
+      b_cpu.push_back(process_cpu_ms() - cpu);
       b_ms.push_back(f.rays->build_ms());
+      cpu = process_cpu_ms();
       f.traced = trace_reflections(scene, *f.rays, f.frame);
+      r_cpu.push_back(step1_cpu + process_cpu_ms() - cpu);
       r_ms.push_back(step1 + f.traced.ms);
       if (rep == 0) {
         Stopwatch w;
@@ -153,7 +163,19 @@ FrameRun run_frame(const Scene& scene, const Camera& camera, const ClusterReflec
     s3.push_back(st.depth_images_ms);
     s4.push_back(st.intersection_ms);
     c_ms.push_back(s1.back() + s2.back() + s3.back() + s4.back());
+    s1_cpu.push_back(step1_cpu + st.clustering_cpu_ms);
+    s2_cpu.push_back(st.cameras_cpu_ms);
+    s3_cpu.push_back(st.depth_images_cpu_ms);
+    s4_cpu.push_back(st.intersection_cpu_ms);
+    c_cpu.push_back(s1_cpu.back() + s2_cpu.back() + s3_cpu.back() + s4_cpu.back());
+    shading.push_back(st.texel_shading_ms);
   }
+  f.cluster_cpu_ms = median(c_cpu);
+  f.step1_cpu_ms = median(s1_cpu);
+  f.cameras_cpu_ms = median(s2_cpu);
+  f.images_cpu_ms = median(s3_cpu);
+  f.intersection_cpu_ms = median(s4_cpu);
+  f.texel_shading_ms = median(shading);
   f.cluster_ms = median(c_ms);
   f.step1_ms = median(s1);
   f.cameras_ms = median(s2);
@@ -163,6 +185,8 @@ FrameRun run_frame(const Scene& scene, const Camera& camera, const ClusterReflec
     f.reference_ms = median(r_ms);
     f.build_ms = median(b_ms);
     f.envmap_ms = median(e_ms);
+    f.reference_cpu_ms = median(r_cpu);
+    f.build_cpu_ms = median(b_cpu);
   }
   return f;
 }
@@ -223,7 +247,15 @@ void add_frame(const FrameRun& f, size_t reflective, size_t pixels, bool compare
   s.cameras_ms.add(f.cameras_ms);
   s.images_ms.add(f.images_ms);
   s.intersection_ms.add(f.intersection_ms);
+  s.cluster_cpu_ms.add(f.cluster_cpu_ms);
+  s.step1_cpu_ms.add(f.step1_cpu_ms);
+  s.cameras_cpu_ms.add(f.cameras_cpu_ms);
+  s.images_cpu_ms.add(f.images_cpu_ms);
+  s.intersection_cpu_ms.add(f.intersection_cpu_ms);
+  s.texel_shading_ms.add(f.texel_shading_ms);
   if (reflective > 0) {
+    s.triangles_drawn.add(double(st.triangles_drawn));
+    s.shaded_texels.add(double(st.shaded_texels));
     s.clusters.add(double(st.clusters));
     s.texels.add(double(st.texels));
     s.second_texels.add(double(st.second_layer_texels));
@@ -238,6 +270,8 @@ void add_frame(const FrameRun& f, size_t reflective, size_t pixels, bool compare
     s.reference_dynamic_ms.add(f.reference_ms + f.build_ms);
     s.envmap_ms.add(f.envmap_ms);
     s.envmap_build_ms.add(f.envmap_build_ms);
+    s.reference_cpu_ms.add(f.reference_cpu_ms);
+    s.reference_dynamic_cpu_ms.add(f.reference_cpu_ms + f.build_cpu_ms);
   }
 }
 
@@ -263,6 +297,14 @@ void add_metrics(const ClusterReflectOptions& o, const ClusterSeries& s, Results
   m["cluster_cameras_ms_avg"] = s.cameras_ms.avg();
   m["depth_images_ms_avg"] = s.images_ms.avg();
   m["intersection_ms_avg"] = s.intersection_ms.avg();
+  m["texel_shading_ms_avg"] = s.texel_shading_ms.avg();
+  m["cluster_cpu_ms_avg"] = s.cluster_cpu_ms.avg();
+  m["gbuffer_clustering_cpu_ms_avg"] = s.step1_cpu_ms.avg();
+  m["cluster_cameras_cpu_ms_avg"] = s.cameras_cpu_ms.avg();
+  m["depth_images_cpu_ms_avg"] = s.images_cpu_ms.avg();
+  m["intersection_cpu_ms_avg"] = s.intersection_cpu_ms.avg();
+  m["triangles_drawn_avg"] = s.triangles_drawn.avg();
+  m["shaded_texels_avg"] = s.shaded_texels.avg();
   m["env_fallback_pct_avg"] = s.fallback_pct.avg();
   m["texels_avg"] = s.texels.avg();
   m["second_layer_texels_avg"] = s.second_texels.avg();
@@ -293,6 +335,10 @@ void add_metrics(const ClusterReflectOptions& o, const ClusterSeries& s, Results
   m["envmap_build_ms_avg"] = s.envmap_build_ms.avg();
   m["speedup_static"] = s.reference_ms.avg() / s.cluster_ms.avg();
   m["speedup_dynamic"] = s.reference_dynamic_ms.avg() / s.cluster_ms.avg();
+  m["reference_cpu_ms_avg"] = s.reference_cpu_ms.avg();
+  m["reference_dynamic_cpu_ms_avg"] = s.reference_dynamic_cpu_ms.avg();
+  m["speedup_static_cpu"] = s.reference_cpu_ms.avg() / s.cluster_cpu_ms.avg();
+  m["speedup_dynamic_cpu"] = s.reference_dynamic_cpu_ms.avg() / s.cluster_cpu_ms.avg();
   if (o.full_reference) {
     m["full_mae_r"] = s.full_r.avg();
     m["full_mae_g"] = s.full_g.avg();

@@ -11,10 +11,12 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "proxima/core/image.h"
+#include "proxima/reflect/cluster_camera.h"
 #include "proxima/reflect/reflection_clustering.h"
 #include "proxima/reflect/reflection_frame.h"
 #include "proxima/scene/scene.h"
@@ -36,6 +38,9 @@ struct ClusterReflectionOptions {
   bool second_layer = true;
   float second_layer_separation = 0.05f;
   int march_block = 0;  // > 0: block size of depth minima the march skips with (same result); 0 = none
+  // Each cluster image draws only the triangle blocks its frustum and clip plane can hold
+  // (cluster_depth_image.h; identical images); false = every cluster draws the whole scene.
+  bool cull = true;
 };
 
 // Why a ray's Embree hit is absent from its cluster image (the first cause that applies).
@@ -55,6 +60,8 @@ struct ClusterFrameStats {
   uint64_t max_cluster_samples = 0;
   uint64_t texels = 0;                  // Σ cluster image pixels
   uint64_t objects_drawn = 0;           // Σ over cluster images, after frustum culling
+  uint64_t triangles_drawn = 0;         // Σ over cluster images (both layers), after culling
+  uint64_t shaded_texels = 0;           // Σ first-layer texels shaded (those lookups read)
   uint64_t env_fallback_samples = 0;    // samples with a ray that found no hit in its image
   uint64_t occlusion_error_samples = 0; // samples with a ray whose Embree hit is absent
                                         // from the cluster image (needs the reference)
@@ -71,8 +78,11 @@ struct ClusterFrameStats {
   uint64_t planar_samples = 0;          // samples in planar clusters
   double clustering_ms = 0.0;           // step 2
   double cameras_ms = 0.0;              // pixel footprints + cluster cameras (step 3a)
-  double depth_images_ms = 0.0;         // rasterization + texel shading (step 3b), both layers
+  double depth_images_ms = 0.0;         // culling + rasterization + texel shading (step 3b), both layers
+  double texel_shading_ms = 0.0;        // of depth_images_ms: the texel shading
   double intersection_ms = 0.0;         // marching + blending over the lobe (step 3c)
+  // The same steps' process CPU time (all threads): steadier than wall-clock on a shared machine.
+  double clustering_cpu_ms = 0.0, cameras_cpu_ms = 0.0, depth_images_cpu_ms = 0.0, intersection_cpu_ms = 0.0;
 };
 
 // Per-sample flags of ClusterReflections::flags.
@@ -88,6 +98,7 @@ struct ClusterReflections {
   std::vector<uint32_t> cluster;  // per sample: its cluster
   std::vector<uint8_t> flags;     // per sample: ClusterSampleFlag bits
   std::vector<uint8_t> occlusion_cause;  // per sample: OcclusionCause of its first occlusion-error ray
+  std::vector<std::optional<ClusterCamera>> cameras;  // per cluster: its camera (none: environment only)
   ClusterFrameStats stats;
 };
 

@@ -1,0 +1,73 @@
+// The depth image of one cluster camera (thesis ch. 4 §4.4–4.5, step 3b of Algorithm 6):
+// the scene rasterized from the cluster camera, everything behind its near (clip) plane
+// discarded, and the culling that keeps a frame's many cluster cameras from each drawing
+// the whole scene.
+//
+// Culling is exact: a triangle is left out only when no fragment of it could be written —
+// its block's bounds lie outside the image's frustum (beyond one pixel of margin), before
+// the near or beyond the far plane, wholly behind the clip plane, or project between pixel
+// centres (coverage is decided at pixel centres) — so the images with
+// and without culling are bit-identical (test ClusterDepthImage.CullingIsExact). The
+// rasterizer's result does not depend on draw order (rasterizer.h: per pixel the
+// lexicographically smallest (depth, triangle id) of the kept fragments), so drawing a
+// subset in any order gives the same image.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "proxima/raster/rasterizer.h"
+#include "proxima/reflect/cluster_camera.h"
+#include "proxima/scene/scene.h"
+
+namespace proxima {
+
+// A two-level hierarchy over the scene for culling: objects, and within each object runs
+// of at most `block_triangles` consecutive triangles (a mesh's consecutive triangles are
+// neighbours, so a run's bounds are tight). Blocks of object o are
+// object_first_block[o] .. object_first_block[o + 1] − 1.
+struct TriangleBlocks {
+  std::vector<uint32_t> first;               // per block: first triangle id
+  std::vector<uint32_t> count;               // per block: triangles
+  std::vector<Bounds3> bounds;               // per block: world bounds of its vertices
+  std::vector<uint32_t> object_first_block;  // per object, plus one end entry
+  std::vector<Bounds3> object_bounds;        // per object: union of its blocks' bounds
+};
+
+// Blocks of the scene as posed (call again after moving objects). Scenes without objects
+// give no blocks (cull_cluster_triangles then keeps everything).
+TriangleBlocks triangle_blocks(const Scene& scene, int block_triangles = 64);
+
+// Triangle ids (ascending) of the blocks that may write a fragment into the image of
+// `camera`: bounds inside the frustum, not wholly on the discarded side of the clip plane,
+// and not projecting between pixel centres. Objects are tested first by their bounds, then their blocks. `excluded_object` (kNoObject for none) is left out entirely. `margin`
+// (meters, ≥ 0) widens every plane test so that float rounding can never cull a triangle
+// that would show. Returns false when the scene has no objects (nothing can be culled;
+// `out` is then empty and means "the whole scene").
+bool cull_cluster_triangles(const Scene& scene, const TriangleBlocks& blocks, const ClusterCamera& camera, uint32_t excluded_object, float margin,
+                            std::vector<uint32_t>& out);
+
+// Which triangles a cluster image draws: all of the scene but `excluded_object`
+// (`culled` = false), or exactly `triangles` (`culled` = true, e.g. from
+// cull_cluster_triangles, which already left the excluded object out).
+struct ClusterDrawList {
+  bool culled = false;
+  std::span<const uint32_t> triangles;
+  uint32_t excluded_object = kNoObject;  // used when not culled
+  std::span<const Bounds3> object_bounds;  // as RasterOptions::object_bounds
+};
+
+// First layer: depth (−z_cam), triangle id and barycentrics of the nearest surface in
+// front of the clip plane (dot(x − P_c, n_c) > clip_offset) at each texel of
+// camera.camera's image.
+RasterStats rasterize_cluster_image(const Scene& scene, const ClusterCamera& camera, const ClusterDrawList& draw,
+                                    RasterImages& out);
+
+// Second layer: the nearest front face more than `separation` (relative depth) behind
+// `first` (the first layer of the same camera and draw list), in front of the clip plane.
+RasterStats rasterize_cluster_second_layer(const Scene& scene, const ClusterCamera& camera,
+                                           const ClusterDrawList& draw, const RasterImages& first,
+                                           float separation, RasterImages& out);
+
+}  // namespace proxima
