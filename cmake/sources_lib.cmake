@@ -71,6 +71,7 @@ set(PROXIMA_LIB_SOURCES
   src/shadows/light_visibility.cpp
   src/shadows/occluders.cpp
   src/shadows/shadow_error.cpp
+  src/study/catalog.cpp
   src/study/cluster_reflect.cpp
   src/study/demo.cpp
   src/study/demo_cluster.cpp

@@ -1,0 +1,65 @@
+// Every study by name: its options as a table of named, typed, documented values, and one
+// call that runs it from a map of those values. The sweep manifest (sweep/manifest.h) and the
+// Python bindings (`proxima.study.<name>(scene, **options)`) share this mapping instead of
+// each copying the options structs field by field.
+//
+// Option names are the command-line flags without "--", '-' → '_' (`--cube-size` →
+// `cube_size`, `--spp` → `spp`); a flag that clears a field (`--no-oracle`) is named after
+// the field (`oracle`, default true). Types: "bool", "int", "float", "string"; an enum is a
+// "string" with `choices`, a list of enums the same names comma-separated ("nrr,peeling").
+// A "float" option also takes "inf" / "-inf" as a string (JSON has no infinity).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "proxima/core/progress.h"
+#include "proxima/eval/results.h"
+#include "proxima/scene/scene.h"
+#include "proxima/study/study.h"
+
+namespace proxima::study {
+
+using OptionValue = std::variant<bool, std::int64_t, double, std::string>;
+using OptionValues = std::map<std::string, OptionValue>;  // option name → value
+
+struct OptionInfo {
+  std::string name;                  // flag without "--", '-' → '_'
+  std::string type;                  // "bool" | "int" | "float" | "string"
+  std::string doc;                   // one line, from the options struct's comment
+  OptionValue default_value;         // the options struct's default
+  std::vector<std::string> choices;  // the valid names of an enum; empty = any value of the type
+};
+
+struct StudyInfo {
+  std::string name;  // the header's name: "envmap_reflect" for study/envmap_reflect.h
+  std::string summary;
+  std::vector<OptionInfo> options;  // in the order of the options struct
+};
+
+// Every study of study/*.h but the demo (which runs studies itself), sorted by name.
+const std::vector<StudyInfo>& study_catalog();
+
+// The study named `name`; throws InputError listing the valid names for anything else.
+const StudyInfo& study_info(std::string_view name);
+
+// Every option of the study with `options` applied over the defaults, as the study will see
+// them (a value given as int for a float option comes back as float, "inf" as a number).
+// Throws InputError naming the study or option: unknown study, unknown option, a value of
+// the wrong type, an int out of the field's range, an enum name not in `choices`.
+OptionValues resolved_options(std::string_view name, const OptionValues& options);
+
+// Runs study `name` on `scene` with `options` over the defaults (run_<name> of its header).
+// Throws InputError as resolved_options does, and as the study's validate() does for values
+// out of range (those messages name the flag, "--cube-size", of the option `cube_size`).
+Results run_study(std::string_view name, const Scene& scene, const OptionValues& options, const StudyOutput& out,
+                  Progress* progress = nullptr);
+
+// The value as text: "true", "42", "0.5", "inf", or the string itself.
+std::string option_text(const OptionValue& value);
+
+}  // namespace proxima::study
