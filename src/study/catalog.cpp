@@ -509,10 +509,7 @@ Entry raster_bench_entry() {
   f.push_back(field<O>("threads", "the \"all threads\" count (<= 0 = all cores); 1 is timed too", &O::threads));
   f.push_back(field<O>("reps", "timed frames per measurement, 1..1000 (median)", &O::reps));
   f.push_back(field<O>("skip_agreement", "time only", &O::skip_agreement));
-  f.push_back(field<O>("llvmpipe_harness", "the llvmpipe harness program; empty = no llvmpipe columns",
-                       &O::llvmpipe_harness));
-  f.push_back(field<O>("llvmpipe_scene", "the --scene the harness loads the same scene by", &O::llvmpipe_scene));
-  return entry<O>("raster_bench", "the rasterizer against Embree and llvmpipe (proxima bench raster)", std::move(f),
+  return entry<O>("raster_bench", "the rasterizer against Embree (proxima bench raster)", std::move(f),
                   run_raster_bench);
 }
 
