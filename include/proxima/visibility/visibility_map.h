@@ -40,6 +40,8 @@ struct MapStats {
   size_t beams = 0;             // beams traced (face intersections, opaque or transparent)
   size_t cells_visited = 0;
   size_t faces_culled = 0;      // faces skipped as wholly outside a beam plane
+  size_t escaped = 0;           // beams ended as background at a transparent face beyond
+                                // the opaque faces' bounding box (nothing left to meet)
   size_t regions = 0;           // final convex regions
   size_t merged_regions = 0;    // after merging contiguous regions of one polygon
   size_t visible_polygons = 0;  // distinct polygons with a region
