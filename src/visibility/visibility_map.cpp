@@ -167,7 +167,8 @@ struct Camera64 {
 
 class Tracer {
  public:
-  Tracer(const WingedPair& wp, const Camera& cam, bool culling) : wp_(wp), culling_(culling) {
+  Tracer(const WingedPair& wp, const Camera& cam, const TraceOptions& options)
+      : wp_(wp), culling_(options.beam_culling), rejoin_(options.rejoin), escape_(options.escape) {
     c_.eye = dvec3(cam.position);
     c_.right = dvec3(camera_right(cam));
     c_.up = dvec3(camera_up(cam));
@@ -230,7 +231,7 @@ class Tracer {
     ++map.stats.cells_visited;
     std::vector<LPoly> in = std::move(inbox_[c]);
     inbox_[c] = {};
-    if (in.size() > 1) merge_pieces(in);
+    if (rejoin_ && in.size() > 1) merge_pieces(in);
     seen_.clear();
     for (uint32_t f : wp_.faces_of_cell(c))
       if (seen_from_inside(f, c)) seen_.push_back({f, {}, {}, false, {}, 0.0});
@@ -267,12 +268,12 @@ class Tracer {
     }
     for (SeenFace& s : seen_) {
       if (s.pieces.empty()) continue;
-      if (s.pieces.size() > 1) rejoin(s, frame);
-      if (s.pieces.size() > 1) merge_pieces(s.pieces);
+      if (rejoin_ && s.pieces.size() > 1) rejoin(s, frame);
+      if (rejoin_ && s.pieces.size() > 1) merge_pieces(s.pieces);
       const Face& face = wp_.faces[s.face];
       const uint32_t next = wp_.cell_across(s.face, c);
       if (!face.opaque() && next != kNone) {
-        if (!escapes(s.face)) {
+        if (!escape_ || !escapes(s.face)) {
           for (LPoly& p : s.pieces) inbox_[next].push_back(std::move(p));
           continue;
         }
@@ -372,8 +373,9 @@ class Tracer {
   }
 
   // True when every sightline through face f has left the opaque faces' bounding box for
-  // good: all of f's vertices lie beyond one side of the box, farther out than the eye.
-  // Beyond f such a sightline only moves farther out, so it meets no opaque face: the beam
+  // good: all of f's vertices lie on or beyond one side of the box, farther out than the
+  // eye. Past f (a transparent face: no opaque face shares its points) such a sightline
+  // lies strictly beyond that side, so it meets no opaque face: the beam
   // ends there as background instead of being split by the free-space cells it still
   // crosses (outside a building, every extended wall plane cuts them).
   bool escapes(uint32_t f) const {
@@ -382,8 +384,8 @@ class Tracer {
       bool above = true, below = true;
       for (uint32_t v : verts) {
         const double x = wp_.vertices[v].position[axis];
-        above &= x > wp_.opaque_hi[axis] && x > c_.eye[axis];
-        below &= x < wp_.opaque_lo[axis] && x < c_.eye[axis];
+        above &= x >= wp_.opaque_hi[axis] && x > c_.eye[axis];
+        below &= x <= wp_.opaque_lo[axis] && x < c_.eye[axis];
       }
       if (above || below) return true;
     }
@@ -464,7 +466,7 @@ class Tracer {
 
  private:
   const WingedPair& wp_;
-  bool culling_;
+  bool culling_, rejoin_, escape_;
   std::vector<dvec3> planes_;  // beam planes of the current region (beam_planes)
   Camera64 c_;
   double zmin_, eye_tol_;
@@ -694,7 +696,7 @@ VisibilityMap trace_visibility_map(const WingedPair& wp, const Camera& camera, c
   // The frame, counter-clockwise in pixel coordinates (x right, y down): positive shoelace.
   LPoly frame = {{{0, 0}, kImageBorder}, {{w, 0}, kImageBorder}, {{w, h}, kImageBorder}, {{0, h}, kImageBorder}};
   if (shoelace(frame) < 0) std::reverse(frame.begin(), frame.end());
-  Tracer tracer(wp, camera, options.beam_culling);
+  Tracer tracer(wp, camera, options);
   tracer.trace(start, frame, map);
   build_planar_map(map, tracer);
   map.stats.ms = watch.elapsed_ms();
