@@ -61,7 +61,7 @@ TEST(BeamRejoin, CutsTheBeamsOfAClutteredHallAndKeepsEveryLabel) {
     const RayScene rays(scene);
     size_t beams_on = 0, beams_off = 0;
     for (const vec3& eye : eyes) {
-      SCOPED_TRACE("seed " + std::to_string(seed) + " eye " + std::to_string(eye.x) + ", " + std::to_string(eye.z));
+      SCOPED_TRACE(testing::Message() << "seed " << seed << " eye " << eye.x << ", " << eye.z);
       const Camera cam = look_at(eye, eye + vec3(1.0f, -0.2f, 0.7f), {0, 1, 0}, 90.0f, kW, kH, 1e-4f, 1e4f);
       const VisibilityMap on = trace_visibility_map(wp, cam);
       const VisibilityMap off = trace_visibility_map(wp, cam, {.rejoin = false});
@@ -101,7 +101,7 @@ TEST(BeamRejoin, EscapingBeamsEndAsBackgroundWithTheSameLabels) {
   const RayScene rays(s);
   size_t escaped = 0;
   for (const vec3 eye : {vec3(0, 1.6f, 2), vec3(-2, 1.2f, 0), vec3(0.3f, 1.7f, -4.0f)}) {
-    SCOPED_TRACE("eye " + std::to_string(eye.x) + ", " + std::to_string(eye.z));
+    SCOPED_TRACE(testing::Message() << "eye " << eye.x << ", " << eye.z);
     const Camera cam = look_at(eye, {0, 1.3f, -8}, {0, 1, 0}, 80.0f, kW, kH, 1e-4f, 1e4f);
     const VisibilityMap on = trace_visibility_map(wp, cam);
     const VisibilityMap off = trace_visibility_map(wp, cam, {.escape = false});

@@ -14,7 +14,9 @@ inline void add_mesh(Scene& s, std::vector<vec3> positions, std::vector<uvec3> t
   Mesh mesh;
   mesh.positions = std::move(positions);
   mesh.triangles = std::move(triangles);
-  add_object(s, mesh, "o" + std::to_string(s.objects.size()), 0);
+  std::string name = std::to_string(s.objects.size());
+  name.insert(name.begin(), 'o');  // not "o" + …: GCC 12 warns falsely on that (-Wstringop-overflow)
+  add_object(s, mesh, name, 0);
 }
 
 // Quad c, c + u, c + u + v, c + v, wound to face `toward` (single-sided, open).
