@@ -3,6 +3,8 @@
 // interior samples, plus a depth check of disagreeing interior labels.
 #include "proxima/visibility/oracle.h"
 
+#include <algorithm>
+
 #include "proxima/trace/reference_renderer.h"
 
 namespace proxima::visibility {
@@ -37,6 +39,24 @@ bool polygon_through_hit(const ModelPolygons& model, uint32_t polygon, const dve
   return true;
 }
 
+bool ray_grazes_outline(const ModelPolygons& model, uint32_t polygon, const dvec3& origin, const dvec3& dir) {
+  const InputPolygon& poly = model.polygons[polygon];
+  const double denom = glm::dot(poly.plane.normal, dir);
+  if (std::abs(denom) < 1e-12) return false;
+  const double t = -poly.plane.distance(origin) / denom;
+  if (!(t > 0.0)) return false;
+  const dvec3 p = origin + t * dir;
+  const double reach = kSnapTolerance * model.scale + 2e-6 * t;
+  const size_t n = poly.vertices.size();
+  for (size_t i = 0; i < n; ++i) {
+    const dvec3 a = poly.vertices[i], e = poly.vertices[(i + 1) % n] - a;
+    const double len2 = glm::dot(e, e);
+    const double u = len2 > 0.0 ? std::clamp(glm::dot(p - a, e) / len2, 0.0, 1.0) : 0.0;
+    if (glm::length(p - (a + u * e)) <= reach) return true;
+  }
+  return false;
+}
+
 OracleCounts compare_with_ray_casts(const VisibilityMap& map, const ModelPolygons& model,
                                     const Scene& scene, const RayScene& rays, const Camera& camera) {
   const ImageU32 labels = rasterize_map(map);
@@ -58,7 +78,8 @@ OracleCounts compare_with_ray_casts(const VisibilityMap& map, const ModelPolygon
       const Ray ray = ray_through(camera, vec2(float(x) + 0.5f, float(y) + 0.5f));
       const double t_hit = glm::length(dvec3(item.position.at(x, y, 0), item.position.at(x, y, 1),
                                              item.position.at(x, y, 2)) - eye);
-      if (polygon_through_hit(model, label, eye, dvec3(ray.dir), t_hit)) {
+      if (polygon_through_hit(model, label, eye, dvec3(ray.dir), t_hit) ||
+          ray_grazes_outline(model, label, eye, dvec3(ray.dir)) || ray_grazes_outline(model, truth, eye, dvec3(ray.dir))) {
         ++c.ties;
         c.interior_ties += interior;
         continue;

@@ -74,6 +74,8 @@ ModelPolygons extract_polygons(const Scene& scene) {
   // Welded vertex ids: positions within the weld tolerance are one vertex (unwelded seams).
   std::vector<dvec3> pos;
   const std::vector<uint32_t> vid = weld_positions(scene.positions, kSnapTolerance * out.scale, pos);
+  out.welded_positions.reserve(vid.size());
+  for (uint32_t v : vid) out.welded_positions.push_back(vec3(pos[v]));
 
   for (uint32_t obj = 0; obj < scene.objects.size(); ++obj) {
     const Object& o = scene.objects[obj];
@@ -145,6 +147,12 @@ ModelPolygons extract_polygons(const Scene& scene) {
       out.polygons.push_back(std::move(poly));
     }
   }
+  return out;
+}
+
+Scene welded_scene(const Scene& scene, const ModelPolygons& model) {
+  Scene out = scene;
+  out.positions = model.welded_positions;
   return out;
 }
 

@@ -107,6 +107,59 @@ Box2 box_of(const LPoly& poly) {
   return b;
 }
 
+// When the union of the convex polygons a and b (disjoint interiors, areas summing to
+// `area`) is convex — their convex hull has that area within 1e-9 relative + 1e-7 px² —
+// writes it to `out` (counter-clockwise, each edge labeled with the edge of a or b it runs
+// along) and returns true.
+bool convex_union(const LPoly& a, const LPoly& b, double area, LPoly& out) {
+  std::vector<dvec2> pts;
+  for (const LVert& v : a) pts.push_back(v.p);
+  for (const LVert& v : b) pts.push_back(v.p);
+  std::sort(pts.begin(), pts.end(), [](const dvec2& x, const dvec2& y) { return x.x < y.x || (x.x == y.x && x.y < y.y); });
+  std::vector<dvec2> h(2 * pts.size());
+  size_t k = 0;
+  for (size_t i = 0; i < pts.size(); ++i) {  // Andrew's monotone chain, collinear points dropped
+    while (k >= 2 && cross2(h[k - 1] - h[k - 2], pts[i] - h[k - 2]) <= 0.0) --k;
+    h[k++] = pts[i];
+  }
+  for (size_t i = pts.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross2(h[k - 1] - h[k - 2], pts[i] - h[k - 2]) <= 0.0) --k;
+    h[k++] = pts[i];
+  }
+  h.resize(k > 0 ? k - 1 : 0);
+  if (h.size() < 3) return false;
+  double hull_area = 0.0;
+  for (size_t i = 0; i < h.size(); ++i) hull_area += cross2(h[i], h[(i + 1) % h.size()]);
+  hull_area *= 0.5;
+  if (std::abs(hull_area - area) > 1e-9 * area + 1e-7) return false;
+  out.clear();
+  for (size_t i = 0; i < h.size(); ++i) {
+    const dvec2 p = h[i], d = h[(i + 1) % h.size()] - p;
+    uint32_t label = kNone, fallback = kNone;
+    for (const LPoly* poly : {&a, &b})
+      for (size_t j = 0; j < poly->size() && label == kNone; ++j) {
+        if ((*poly)[j].p != p) continue;
+        const dvec2 e = (*poly)[(j + 1) % poly->size()].p - p;
+        if (fallback == kNone) fallback = (*poly)[j].label;
+        if (glm::dot(d, e) > 0.0 && std::abs(cross2(d, e)) <= 1e-9 * glm::length(d) * glm::length(e))
+          label = (*poly)[j].label;
+      }
+    out.push_back({p, label != kNone ? label : fallback});
+  }
+  return true;
+}
+
+// A face of the current cell seen from inside: its projection (made on first use) and the
+// pieces of it the incoming beams cover.
+struct SeenFace {
+  uint32_t face;
+  LPoly q;
+  Box2 box;
+  bool projected;
+  std::vector<LPoly> pieces;
+  double area;  // sum of the pieces' areas
+};
+
 struct Camera64 {
   dvec3 eye, right, up, forward;
   double f, cx, cy;
@@ -114,7 +167,8 @@ struct Camera64 {
 
 class Tracer {
  public:
-  Tracer(const WingedPair& wp, const Camera& cam, bool culling) : wp_(wp), culling_(culling) {
+  Tracer(const WingedPair& wp, const Camera& cam, const TraceOptions& options)
+      : wp_(wp), culling_(options.beam_culling), rejoin_(options.rejoin), escape_(options.escape) {
     c_.eye = dvec3(cam.position);
     c_.right = dvec3(camera_right(cam));
     c_.up = dvec3(camera_up(cam));
@@ -126,66 +180,165 @@ class Tracer {
     eye_tol_ = 1e-9 * wp.scale;
   }
 
+  // Whether face f is seen from inside cell c (the eye strictly on c's side of its plane);
+  // a face through the eye is seen edge-on from both sides and skipped.
+  bool seen_from_inside(uint32_t f, uint32_t c) const {
+    const Face& face = wp_.faces[f];
+    const double d = face.plane.distance(c_.eye);
+    return face.cell[1] == c ? d > eye_tol_ : d < -eye_tol_;
+  }
+
   // Starts from every cell holding the eye: an eye on a face (edge, vertex) of the BSP
   // sees each cell's half-space through that cell only, since the faces through the eye
-  // are seen edge-on and skipped.
+  // are seen edge-on and skipped. Cells are processed front to back (a topological order
+  // of "seen through": a cell is taken once every neighbor that can pass beams into it is
+  // done; BSP cells admit one from any eye), so a cell sees all its incoming beams at
+  // once. Beams are split by every transparent face they cross, but where the beams
+  // entering a cell together cover a face's whole projection, the face passes on one beam,
+  // its projection, instead of the pieces: fragments rejoin in free space and the beam
+  // count follows the visible structure, not the paths through the cells.
   void trace(const std::vector<uint32_t>& start, const LPoly& frame, VisibilityMap& map) {
-    struct Item {
-      uint32_t cell;
-      LPoly region;
-      size_t depth;  // cells the beam has passed through
-    };
-    std::vector<Item> stack;
-    for (uint32_t c : start) stack.push_back({c, frame, 1});
-    LPoly q, r, tmp;
-    while (!stack.empty()) {
-      Item item = std::move(stack.back());
-      stack.pop_back();
-      ++map.stats.cells_visited;
-      // Every sightline of a beam passes through all the cells of its chain, and a
-      // sightline crosses a convex cell once: a longer chain means cells that overlap (a
-      // corrupt --load file), and tracing would never end.
-      if (item.depth > wp_.cells.size())
-        fail_input("inconsistent winged pair: a beam passes through more cells than there are (overlapping cells)");
+    const size_t nc = wp_.cells.size();
+    std::vector<uint32_t> entries(nc, 0);  // faces a beam can still enter each cell through
+    for (uint32_t f = 0; f < wp_.faces.size(); ++f) {
+      const Face& face = wp_.faces[f];
+      if (face.cell[0] == kNone || face.cell[1] == kNone) continue;
+      for (int k = 0; k < 2; ++k)
+        if (seen_from_inside(f, face.cell[k])) ++entries[face.cell[1 - k]];
+    }
+    inbox_.assign(nc, {});
+    for (uint32_t c : start) inbox_[c].push_back(frame);
+    std::vector<uint32_t> ready;
+    for (uint32_t c = uint32_t(nc); c-- > 0;)
+      if (entries[c] == 0) ready.push_back(c);
+    while (!ready.empty()) {
+      const uint32_t c = ready.back();
+      ready.pop_back();
+      if (!inbox_[c].empty()) trace_cell(c, frame, map);
+      for (uint32_t f : wp_.faces_of_cell(c)) {
+        const uint32_t next = wp_.cell_across(f, c);
+        if (next != kNone && seen_from_inside(f, c) && --entries[next] == 0) ready.push_back(next);
+      }
+    }
+    // Beams left waiting: a cycle of cells each in front of the other (a corrupt --load file).
+    for (const std::vector<LPoly>& in : inbox_)
+      if (!in.empty())
+        fail_input("inconsistent winged pair: cells that lie in front of each other (overlapping cells)");
+  }
+
+  // Splits the beams entering cell c among the faces it sees from inside.
+  void trace_cell(uint32_t c, const LPoly& frame, VisibilityMap& map) {
+    ++map.stats.cells_visited;
+    std::vector<LPoly> in = std::move(inbox_[c]);
+    inbox_[c] = {};
+    if (rejoin_ && in.size() > 1) merge_pieces(in);
+    seen_.clear();
+    for (uint32_t f : wp_.faces_of_cell(c))
+      if (seen_from_inside(f, c)) seen_.push_back({f, {}, {}, false, {}, 0.0});
+    LPoly r, tmp;
+    for (const LPoly& region : in) {
       // Faces whose projection's bounding box misses the region's by more than the clip
       // tolerance would clip to nothing: skip them before clipping (same result, cheaper).
-      Box2 rb = box_of(item.region);
+      Box2 rb = box_of(region);
       rb.lo -= dvec2(1e-6);
       rb.hi += dvec2(1e-6);
-      if (culling_) beam_planes(item.region);
-      for (uint32_t f : wp_.faces_of_cell(item.cell)) {
-        const Face& face = wp_.faces[f];
-        const double d = face.plane.distance(c_.eye);
-        if (face.cell[1] == item.cell ? d <= eye_tol_ : d >= -eye_tol_) continue;  // not seen from inside
-        if (culling_ && outside_beam(f)) {
+      if (culling_) beam_planes(region);
+      for (SeenFace& s : seen_) {
+        if (culling_ && outside_beam(s.face)) {
           ++map.stats.faces_culled;
           continue;
         }
-        project_face(f, q);
-        if (q.size() < 3) continue;
-        const Box2 qb = box_of(q);
-        if (qb.lo.x > rb.hi.x || qb.lo.y > rb.hi.y || qb.hi.x < rb.lo.x || qb.hi.y < rb.lo.y) continue;
-        r = q;
-        for (size_t k = 0; k < item.region.size() && r.size() >= 3; ++k)
-          if (clip_left(r, item.region[k].p, item.region[(k + 1) % item.region.size()].p, item.region[k].label, tmp))
-            r.swap(tmp);
-        if (r.size() < 3 || shoelace(r) <= 1e-9) continue;
+        if (!s.projected) {
+          project_face(s.face, s.q);
+          s.box = box_of(s.q);
+          s.projected = true;
+        }
+        if (s.q.size() < 3) continue;
+        if (s.box.lo.x > rb.hi.x || s.box.lo.y > rb.hi.y || s.box.hi.x < rb.lo.x || s.box.hi.y < rb.lo.y) continue;
+        r = s.q;
+        for (size_t k = 0; k < region.size() && r.size() >= 3; ++k)
+          if (clip_left(r, region[k].p, region[(k + 1) % region.size()].p, region[k].label, tmp)) r.swap(tmp);
+        if (r.size() < 3) continue;
+        const double area = shoelace(r);
+        if (area <= 1e-9) continue;
         ++map.stats.beams;
-        const uint32_t next = wp_.cell_across(f, item.cell);
-        if (!face.opaque() && next != kNone) {
-          stack.push_back({next, r, item.depth + 1});
+        s.area += area;
+        s.pieces.push_back(r);
+      }
+    }
+    for (SeenFace& s : seen_) {
+      if (s.pieces.empty()) continue;
+      if (rejoin_ && s.pieces.size() > 1) rejoin(s, frame);
+      if (rejoin_ && s.pieces.size() > 1) merge_pieces(s.pieces);
+      const Face& face = wp_.faces[s.face];
+      const uint32_t next = wp_.cell_across(s.face, c);
+      if (!face.opaque() && next != kNone) {
+        if (!escape_ || !escapes(s.face)) {
+          for (LPoly& p : s.pieces) inbox_[next].push_back(std::move(p));
           continue;
         }
+        ++map.stats.escaped;
+      }
+      for (const LPoly& p : s.pieces) {
         MapRegion region;
-        region.face = f;
+        region.face = s.face;
         region.polygon = face.polygon;
-        for (const LVert& v : r) {
+        for (const LVert& v : p) {
           region.vertices.push_back(v.p);
           region.edge_source.push_back(v.label);
         }
         map.regions.push_back(std::move(region));
       }
     }
+  }
+
+  // Merges pieces of one face pairwise while the union of two is convex (the convex hull
+  // of both has their summed area within 1e-9 relative + 1e-7 px²): the pieces of a face
+  // partly hidden are split by the free-space faces their beams crossed, most of which do
+  // not bound what is visible.
+  void merge_pieces(std::vector<LPoly>& pieces) {
+    std::vector<Box2> boxes;
+    std::vector<double> areas;
+    for (const LPoly& p : pieces) {
+      boxes.push_back(box_of(p));
+      areas.push_back(shoelace(p));
+    }
+    LPoly hull;
+    for (size_t i = 0; i < pieces.size(); ++i) {
+      for (size_t j = i + 1; j < pieces.size();) {
+        const Box2& a = boxes[i];
+        const Box2& b = boxes[j];
+        const double t = 1e-6;
+        if (a.lo.x > b.hi.x + t || b.lo.x > a.hi.x + t || a.lo.y > b.hi.y + t || b.lo.y > a.hi.y + t ||
+            !convex_union(pieces[i], pieces[j], areas[i] + areas[j], hull)) {
+          ++j;
+          continue;
+        }
+        pieces[i].swap(hull);
+        boxes[i] = box_of(pieces[i]);
+        areas[i] += areas[j];
+        pieces[j].swap(pieces.back());
+        boxes[j] = boxes.back();
+        areas[j] = areas.back();
+        pieces.pop_back();
+        boxes.pop_back();
+        areas.pop_back();
+        j = i + 1;  // the grown piece may now join earlier candidates
+      }
+    }
+  }
+
+  // When the pieces of a face's projection (disjoint beams) cover all of it inside the
+  // frame — their areas sum to its area within 1e-9 relative + 1e-7 px² — they are replaced
+  // by that one polygon: every sightline through the face passed through the cell.
+  void rejoin(SeenFace& s, const LPoly& frame) {
+    LPoly whole = s.q, tmp;
+    for (size_t k = 0; k < frame.size() && whole.size() >= 3; ++k)
+      if (clip_left(whole, frame[k].p, frame[(k + 1) % frame.size()].p, kImageBorder, tmp)) whole.swap(tmp);
+    if (whole.size() < 3) return;
+    const double area = shoelace(whole);
+    if (std::abs(area - s.area) > 1e-9 * area + 1e-7) return;
+    s.pieces.assign(1, std::move(whole));
   }
 
   // The planes through the eye and the region's edges, world space, unit normals pointing
@@ -215,6 +368,26 @@ class Tracer {
           break;
         }
       if (all_out) return true;
+    }
+    return false;
+  }
+
+  // True when every sightline through face f has left the opaque faces' bounding box for
+  // good: all of f's vertices lie on or beyond one side of the box, farther out than the
+  // eye. Past f (a transparent face: no opaque face shares its points) such a sightline
+  // lies strictly beyond that side, so it meets no opaque face: the beam
+  // ends there as background instead of being split by the free-space cells it still
+  // crosses (outside a building, every extended wall plane cuts them).
+  bool escapes(uint32_t f) const {
+    auto verts = wp_.face_vertices(f);
+    for (int axis = 0; axis < 3; ++axis) {
+      bool above = true, below = true;
+      for (uint32_t v : verts) {
+        const double x = wp_.vertices[v].position[axis];
+        above &= x >= wp_.opaque_hi[axis] && x > c_.eye[axis];
+        below &= x <= wp_.opaque_lo[axis] && x < c_.eye[axis];
+      }
+      if (above || below) return true;
     }
     return false;
   }
@@ -293,11 +466,13 @@ class Tracer {
 
  private:
   const WingedPair& wp_;
-  bool culling_;
+  bool culling_, rejoin_, escape_;
   std::vector<dvec3> planes_;  // beam planes of the current region (beam_planes)
   Camera64 c_;
   double zmin_, eye_tol_;
   std::vector<std::pair<dvec3, uint32_t>> cam_, clipped_;  // project_face scratch
+  std::vector<std::vector<LPoly>> inbox_;  // beams waiting to enter each cell
+  std::vector<SeenFace> seen_;             // trace_cell scratch
   std::unordered_map<uint32_t, bool> silhouette_cache_;
 };
 
@@ -521,7 +696,7 @@ VisibilityMap trace_visibility_map(const WingedPair& wp, const Camera& camera, c
   // The frame, counter-clockwise in pixel coordinates (x right, y down): positive shoelace.
   LPoly frame = {{{0, 0}, kImageBorder}, {{w, 0}, kImageBorder}, {{w, h}, kImageBorder}, {{0, h}, kImageBorder}};
   if (shoelace(frame) < 0) std::reverse(frame.begin(), frame.end());
-  Tracer tracer(wp, camera, options.beam_culling);
+  Tracer tracer(wp, camera, options);
   tracer.trace(start, frame, map);
   build_planar_map(map, tracer);
   map.stats.ms = watch.elapsed_ms();

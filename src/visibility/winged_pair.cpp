@@ -106,6 +106,15 @@ bool finalize(WingedPair& wp) {
         wp.cell_hi[c] = glm::max(wp.cell_hi[c], p);
       }
     }
+  wp.opaque_lo = dvec3(INFINITY);
+  wp.opaque_hi = dvec3(-INFINITY);
+  for (uint32_t f = 0; f < wp.faces.size(); ++f) {
+    if (!wp.faces[f].opaque()) continue;
+    for (uint32_t i = wp.loop_offset[f]; i < wp.loop_offset[f + 1]; ++i) {
+      wp.opaque_lo = glm::min(wp.opaque_lo, wp.vertices[wp.loop_vertex[i]].position);
+      wp.opaque_hi = glm::max(wp.opaque_hi, wp.vertices[wp.loop_vertex[i]].position);
+    }
+  }
   build_cell_tree(wp);
   return true;
 }

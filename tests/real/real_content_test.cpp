@@ -63,22 +63,6 @@ double metric(const Results& r, const std::string& name) {
   return it == r.metrics.end() ? std::nan("") : it->second;
 }
 
-// Column `column` of the table whose title starts with `title`, as numbers.
-std::vector<double> column(const Results& r, const std::string& title, const std::string& column) {
-  for (const Table& t : r.tables) {
-    if (t.title.rfind(title, 0) != 0) continue;
-    for (size_t c = 0; c < t.columns.size(); ++c) {
-      if (t.columns[c] != column) continue;
-      std::vector<double> v;
-      for (const auto& row : t.rows)
-        if (const double* d = std::get_if<double>(&row[c])) v.push_back(*d);
-      return v;
-    }
-  }
-  ADD_FAILURE() << "no table '" << title << "' with column " << column;
-  return {};
-}
-
 std::string figure(const std::string& what, double measured, const char* op, double bound) {
   std::ostringstream s;
   s << what << ": " << measured << " (bound " << op << " " << bound << ")";
@@ -243,26 +227,25 @@ TEST(RealContent, SamplingTheGallery) {
   expect_sampling_bounds(dir, "gallery");
 }
 
-// Exact visibility maps on the corpus' building: at every viewpoint
-// agreement with Embree ≥ 99.9 %, ≥ 99.99 % away from map edges; no sample labelled with an
-// occluded polygon; no fragment the BSP could not place.
+// Exact visibility maps on the corpus' building: at every viewpoint agreement with Embree
+// ≥ 99.9 %, ≥ 99.99 % away from map edges (coplanar and snap ties counting as agreement, as
+// on the brush levels: docs/visibility.md, "What the map is exact for"); no sample labelled
+// with an occluded polygon; no fragment the BSP could not place; every map passing its
+// self-check.
 TEST(RealContent, ExactVisibilityInTheHouse) {
   REQUIRE_CORPUS();
   const Results r = run(dir, "visibility-house", "visibility", "house-bare.json",
                         "--path walk --frames 10 --width 256 --height 192 --no-images");
-  const std::vector<double> all = column(r, "visibility maps", "agreement_pct");
-  const std::vector<double> interior = column(r, "visibility maps", "agreement_interior_pct");
-  ASSERT_EQ(all.size(), 10u);
-  const double worst = *std::min_element(all.begin(), all.end());
-  const double worst_interior = *std::min_element(interior.begin(), interior.end());
-  // Holds by less than one pixel of 49,152 (99.9003 %): printed, not asserted, so that one
-  // edge pixel decided differently by another CPU's Embree kernels does not fail the tier.
-  known_failure("house worst view agreement_pct", worst, "≥", 99.9, worst >= 99.9);
-  known_failure("house worst view agreement_interior_pct", worst_interior, "≥", 99.99, worst_interior >= 99.99);
+  ASSERT_EQ(metric(r, "viewpoints"), 10.0);
+  expect_ge("house worst view agreement_with_ties_pct", metric(r, "agreement_with_ties_pct_worst"), 99.9);
+  expect_ge("house worst view agreement_interior_with_ties_pct", metric(r, "agreement_interior_with_ties_pct_worst"),
+            99.99);
   expect_le("house occluded_label_samples", metric(r, "occluded_label_samples"), 0.0);
+  std::cout << "[real-content] house beams_avg " << metric(r, "beams_avg") << ", worst view agreement_pct (no ties) "
+            << metric(r, "agreement_pct_worst") << "\n";
   const double unplaced = metric(r, "unplaced_fragments");
   known_failure("house unplaced_fragments", unplaced, "≤", 0.0, unplaced <= 0.0);
-  // Maps spoiled by unplaced fragments say so: the self-check flags them.
+  // Maps with holes (cracks the BSP leaves where it rejected planes) say so: the self-check flags them.
   const double failed = metric(r, "maps_failed_selfcheck");
   known_failure("house maps_failed_selfcheck", failed, "≤", 0.0, failed <= 0.0);
 }

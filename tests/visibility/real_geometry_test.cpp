@@ -24,30 +24,6 @@ namespace {
 
 constexpr int kW = 160, kH = 120;
 
-// An axis-aligned brush (closed box, faces outward, one object), as a level editor writes
-// it: 8 corners, 12 triangles, no CSG against other brushes. `skip` drops one face
-// (0..5 = −x, +x, −y, +y, −z, +z) to make an open mesh; `inward` turns the faces inward
-// (a room around the eye).
-void add_box(Scene& s, vec3 lo, vec3 hi, int skip = -1, bool inward = false) {
-  std::vector<vec3> p;
-  for (int i = 0; i < 8; ++i) p.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
-  // Counter-clockwise seen from outside.
-  const uint32_t quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-  std::vector<uvec3> tris;
-  for (int f = 0; f < 6; ++f) {
-    if (f == skip) continue;
-    const uint32_t* q = quads[f];
-    if (inward) {
-      tris.push_back({q[0], q[2], q[1]});
-      tris.push_back({q[0], q[3], q[2]});
-    } else {
-      tris.push_back({q[0], q[1], q[2]});
-      tris.push_back({q[0], q[2], q[3]});
-    }
-  }
-  add_mesh(s, std::move(p), std::move(tris));
-}
-
 Scene empty_scene() {
   Scene s;
   add_material(s, Material{});

@@ -20,6 +20,8 @@ struct OracleCounts {
   size_t occluded_label = 0;     // interior samples whose map polygon lies behind the ray's hit
   size_t ties = 0;               // disagreeing samples where the map's polygon passes through the
                                  // ray's hit point (coplanar overlapping polygons: either is right)
+                                 // or the ray grazes the outline of the map's or Embree's polygon
+                                 // within the snap tolerance (an edge the snapping moved)
   size_t interior_ties = 0;      // of those, interior samples
 
   OracleCounts& operator+=(const OracleCounts& o);
@@ -41,6 +43,13 @@ struct OracleCounts {
 // snaps planes within kSnapTolerance, so polygons that close tie in depth.
 bool polygon_through_hit(const ModelPolygons& model, uint32_t polygon, const dvec3& origin, const dvec3& dir,
                          double t_hit);
+
+// True when the ray (origin, unit dir) passes within the snap tolerance (kSnapTolerance ·
+// model.scale, plus 2e-6 · t of float ray-tracing precision) of the outline of `polygon`,
+// measured where it meets the polygon's plane (at distance t): welding and plane snapping
+// move a polygon's edges by up to that much, so a sightline grazing an edge may see either
+// side of it (docs/visibility.md, "What the map is exact for").
+bool ray_grazes_outline(const ModelPolygons& model, uint32_t polygon, const dvec3& origin, const dvec3& dir);
 
 // `map` must be traced for `camera` through the winged pair of `model` (polygons of `scene`);
 // `rays` is built from `scene`. The camera's near plane should be closer than any surface.

@@ -34,6 +34,8 @@ struct InputPolygon {
 struct ModelPolygons {
   std::vector<InputPolygon> polygons;
   std::vector<uint32_t> triangle_polygon;  // per scene triangle: polygon id
+  std::vector<vec3> welded_positions;      // per scene vertex: its welded position (an input
+                                           // position, the first of its weld group)
   double scale = 1.0;                      // diagonal of the polygons' bounding box, meters (> 0)
 };
 
@@ -48,6 +50,11 @@ inline constexpr double kSnapTolerance = 1e-5;
 // to 1e-6 relative to the model scale into convex polygons, greedily in triangle order;
 // collinear vertices are dropped. Every triangle belongs to exactly one polygon.
 ModelPolygons extract_polygons(const Scene& scene);
+
+// The scene with every vertex at its welded position (model = extract_polygons(scene)): the
+// geometry the polygons, the winged pair and so the visibility map are exact for. It differs
+// from the input by at most the snap tolerance; the oracle compares the map against it.
+Scene welded_scene(const Scene& scene, const ModelPolygons& model);
 
 // Twice the area vector of a planar polygon (Newell): its direction is the normal of the
 // counter-clockwise winding, its length twice the area.

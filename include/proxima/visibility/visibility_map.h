@@ -40,6 +40,8 @@ struct MapStats {
   size_t beams = 0;             // beams traced (face intersections, opaque or transparent)
   size_t cells_visited = 0;
   size_t faces_culled = 0;      // faces skipped as wholly outside a beam plane
+  size_t escaped = 0;           // beams ended as background at a transparent face beyond
+                                // the opaque faces' bounding box (nothing left to meet)
   size_t regions = 0;           // final convex regions
   size_t merged_regions = 0;    // after merging contiguous regions of one polygon
   size_t visible_polygons = 0;  // distinct polygons with a region
@@ -59,6 +61,14 @@ struct TraceOptions {
   // Skip a boundary face lying wholly outside one plane of the current beam (eye + a region
   // edge) before projecting and clipping it. Same map either way (tested); off = reference.
   bool beam_culling = true;
+  // Rejoin the pieces of a face's projection before passing them on: the face's whole
+  // projection when the beams entering the cell cover it, convex unions of pieces
+  // otherwise (docs/visibility.md). Same labels at every pixel either way (tested); off =
+  // every piece traced on separately (the reference).
+  bool rejoin = true;
+  // End a beam as background at a transparent face beyond the opaque faces' bounding box.
+  // Same labels either way (tested); off = traced on to the outer box.
+  bool escape = true;
 };
 
 // Traces the beams of `camera` through `wp` (built with finalize()); the camera must lie

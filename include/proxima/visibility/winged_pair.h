@@ -15,6 +15,7 @@
 // Coordinates are world meters, double precision.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -68,6 +69,9 @@ struct WingedPair {
   std::vector<uint32_t> loop_offset, loop_vertex, loop_edge;  // face f: [loop_offset[f], [f+1])
   std::vector<uint32_t> cell_face_offset, cell_face;          // cell c: [offset[c], [c+1])
   std::vector<dvec3> cell_lo, cell_hi;  // each cell's bounding box (fast point location)
+  // The bounding box of the opaque faces' vertices (empty: lo > hi when there are none): a
+  // sightline that has left it through one of its sides meets no opaque face any more.
+  dvec3 opaque_lo{INFINITY}, opaque_hi{-INFINITY};
   // A bounding-volume tree over the cell boxes: O(log n) point location instead of a scan
   // of every cell (the scan grew with `building --floors`). Leaves hold ≤ 4 cells of
   // `tree_cell`; cells without faces are left out (they contain no point).
