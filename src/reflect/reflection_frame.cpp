@@ -8,6 +8,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
@@ -78,6 +82,224 @@ vec3 shade_reflected_point(const Scene& scene, uint32_t triangle, float u, float
   return combine_shading(terms);
 }
 
+namespace {
+
+// The view directions of ray_through with the camera's constants (focal length, half
+// sizes) computed once: the same operations on the same values, so the same bits.
+struct ViewRays {
+  explicit ViewRays(const Camera& c)
+      : orientation(c.orientation), f(focal_length_px(c)), half_w(0.5f * float(c.width)),
+        half_h(0.5f * float(c.height)) {}
+  vec3 dir(int x, int y) const {
+    const vec2 pixel(float(x) + 0.5f, float(y) + 0.5f);
+    const vec3 d((pixel.x - half_w) / f, (half_h - pixel.y) / f, -1.0f);
+    return glm::normalize(orientation * d);
+  }
+  quat orientation;
+  float f, half_w, half_h;
+};
+
+// The lights as shade_reflected_point evaluates them, with what it recomputes per sample
+// (each area light's normal and area, its n×n stratum centres) computed once per frame by
+// the same expressions: the same values. Points are stored per coordinate for the lanes.
+struct LightTable {
+  struct Area {
+    vec3 normal, radiance;
+    float area = 0.0f;
+    std::vector<float> x, y, z;  // the n×n stratum centres in shade_reflected_point's order
+  };
+  std::vector<PointLight> points;
+  std::vector<Area> areas;
+  float samples = 1.0f;  // float(n·n)
+
+  LightTable(const Scene& scene, int n) : points(scene.point_lights), samples(float(n * n)) {
+    for (const AreaLight& light : scene.area_lights) {
+      Area a;
+      a.normal = light.normal();
+      a.radiance = light.radiance;
+      a.area = light.area();
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const vec2 ab = stratum_sample(i, j, n, 0.5f, 0.5f);
+          const vec3 q = light.point(ab.x, ab.y);
+          a.x.push_back(q.x);
+          a.y.push_back(q.y);
+          a.z.push_back(q.z);
+        }
+      areas.push_back(std::move(a));
+    }
+  }
+};
+
+// Lit points of one row, per coordinate (padded to whole lane groups), and their unshadowed
+// direct irradiance.
+struct LitPoints {
+  std::vector<float> px, py, pz, nx, ny, nz, ex, ey, ez;
+  size_t count = 0;
+
+  void clear() { count = 0; }
+  void add(vec3 p, vec3 n) {
+    if (px.size() <= count) {
+      for (auto* v : {&px, &py, &pz, &nx, &ny, &nz, &ex, &ey, &ez}) v->resize(std::max<size_t>(64, 2 * count), 0.0f);
+    }
+    px[count] = p.x, py[count] = p.y, pz[count] = p.z;
+    nx[count] = n.x, ny[count] = n.y, nz[count] = n.z;
+    ++count;
+  }
+};
+
+#if defined(__SSE2__)
+// The direct irradiance of shade_reflected_point for four points at once: each lane runs
+// point_light_irradiance and area_light_sample_irradiance's IEEE single operations in their
+// order (dot = (x·x' + y·y') + z·z', a returned 0 added as +0; SSE2 has no fused
+// multiply-add, so nothing is contracted): the same bits as the scalar code per lane.
+void direct_irradiance(const LightTable& lights, LitPoints& lit) {
+  const __m128 zero = _mm_setzero_ps(), sign = _mm_set1_ps(-0.0f);
+  auto dot = [](__m128 ax, __m128 ay, __m128 az, __m128 bx, __m128 by, __m128 bz) {
+    return _mm_add_ps(_mm_add_ps(_mm_mul_ps(ax, bx), _mm_mul_ps(ay, by)), _mm_mul_ps(az, bz));
+  };
+  for (size_t i = 0; i < lit.count; i += 4) {
+    const __m128 px = _mm_loadu_ps(&lit.px[i]), py = _mm_loadu_ps(&lit.py[i]), pz = _mm_loadu_ps(&lit.pz[i]);
+    const __m128 nx = _mm_loadu_ps(&lit.nx[i]), ny = _mm_loadu_ps(&lit.ny[i]), nz = _mm_loadu_ps(&lit.nz[i]);
+    __m128 ex = zero, ey = zero, ez = zero;
+    for (const PointLight& light : lights.points) {
+      const __m128 tx = _mm_sub_ps(_mm_set1_ps(light.position.x), px);
+      const __m128 ty = _mm_sub_ps(_mm_set1_ps(light.position.y), py);
+      const __m128 tz = _mm_sub_ps(_mm_set1_ps(light.position.z), pz);
+      const __m128 r2 = dot(tx, ty, tz, tx, ty, tz);
+      const __m128 c = _mm_div_ps(dot(nx, ny, nz, tx, ty, tz), _mm_sqrt_ps(r2));
+      const __m128 q = _mm_div_ps(_mm_and_ps(_mm_cmplt_ps(zero, c), c), r2);  // max(0, c) / r²
+      const __m128 keep = _mm_cmpnle_ps(r2, zero);                             // r² <= 0 gives 0
+      ex = _mm_add_ps(ex, _mm_and_ps(keep, _mm_mul_ps(_mm_set1_ps(light.intensity.x), q)));
+      ey = _mm_add_ps(ey, _mm_and_ps(keep, _mm_mul_ps(_mm_set1_ps(light.intensity.y), q)));
+      ez = _mm_add_ps(ez, _mm_and_ps(keep, _mm_mul_ps(_mm_set1_ps(light.intensity.z), q)));
+    }
+    for (const LightTable::Area& a : lights.areas) {
+      const __m128 lnx = _mm_set1_ps(a.normal.x), lny = _mm_set1_ps(a.normal.y), lnz = _mm_set1_ps(a.normal.z);
+      const __m128 area = _mm_set1_ps(a.area);
+      const __m128 rx = _mm_set1_ps(a.radiance.x), ry = _mm_set1_ps(a.radiance.y), rz = _mm_set1_ps(a.radiance.z);
+      __m128 sx = zero, sy = zero, sz = zero;
+      for (size_t k = 0; k < a.x.size(); ++k) {
+        const __m128 tx = _mm_sub_ps(_mm_set1_ps(a.x[k]), px);
+        const __m128 ty = _mm_sub_ps(_mm_set1_ps(a.y[k]), py);
+        const __m128 tz = _mm_sub_ps(_mm_set1_ps(a.z[k]), pz);
+        const __m128 r2 = dot(tx, ty, tz, tx, ty, tz);
+        const __m128 r = _mm_sqrt_ps(r2);
+        const __m128 cs = _mm_div_ps(dot(nx, ny, nz, tx, ty, tz), r);
+        const __m128 cl = _mm_div_ps(_mm_xor_ps(dot(lnx, lny, lnz, tx, ty, tz), sign), r);
+        const __m128 f = _mm_mul_ps(_mm_div_ps(_mm_mul_ps(cs, cl), r2), area);
+        // 0 where r² <= 0, cos_surface <= 0 or cos_light <= 0 (NaN passes, as in the scalar test)
+        const __m128 keep = _mm_and_ps(_mm_cmpnle_ps(r2, zero), _mm_and_ps(_mm_cmpnle_ps(cs, zero), _mm_cmpnle_ps(cl, zero)));
+        sx = _mm_add_ps(sx, _mm_and_ps(keep, _mm_mul_ps(rx, f)));
+        sy = _mm_add_ps(sy, _mm_and_ps(keep, _mm_mul_ps(ry, f)));
+        sz = _mm_add_ps(sz, _mm_and_ps(keep, _mm_mul_ps(rz, f)));
+      }
+      const __m128 m = _mm_set1_ps(lights.samples);
+      ex = _mm_add_ps(ex, _mm_div_ps(sx, m));
+      ey = _mm_add_ps(ey, _mm_div_ps(sy, m));
+      ez = _mm_add_ps(ez, _mm_div_ps(sz, m));
+    }
+    _mm_storeu_ps(&lit.ex[i], ex);
+    _mm_storeu_ps(&lit.ey[i], ey);
+    _mm_storeu_ps(&lit.ez[i], ez);
+  }
+}
+#else
+void direct_irradiance(const LightTable& lights, LitPoints& lit) {
+  for (size_t i = 0; i < lit.count; ++i) {
+    const vec3 p(lit.px[i], lit.py[i], lit.pz[i]), n(lit.nx[i], lit.ny[i], lit.nz[i]);
+    vec3 e(0.0f);
+    for (const PointLight& light : lights.points) e += point_light_irradiance(light, p, n);
+    for (const LightTable::Area& a : lights.areas) {
+      vec3 sum(0.0f);
+      for (size_t k = 0; k < a.x.size(); ++k) {  // area_light_sample_irradiance with the table's values
+        const vec3 to_light = vec3(a.x[k], a.y[k], a.z[k]) - p;
+        const float r2 = glm::dot(to_light, to_light);
+        const float r = std::sqrt(r2);
+        const float cs = glm::dot(n, to_light) / r, cl = -glm::dot(a.normal, to_light) / r;
+        const bool keep = !(r2 <= 0.0f) && !(cs <= 0.0f) && !(cl <= 0.0f);
+        sum += keep ? a.radiance * (cs * cl / r2 * a.area) : vec3(0.0f);
+      }
+      e += sum / lights.samples;
+    }
+    lit.ex[i] = e.x, lit.ey[i] = e.y, lit.ez[i] = e.z;
+  }
+}
+#endif
+
+// The G-buffer images prepare_reflection_frame rasterizes into, kept between calls (the
+// rasterizer reuses an image of the right size in place): no fresh pages per frame.
+std::mutex g_gbuffer_mutex;
+std::vector<RasterImages> g_gbuffers;
+
+RasterImages take_gbuffer() {
+  std::lock_guard<std::mutex> lock(g_gbuffer_mutex);
+  if (g_gbuffers.empty()) return {};
+  RasterImages g = std::move(g_gbuffers.back());
+  g_gbuffers.pop_back();
+  return g;
+}
+
+void return_gbuffer(RasterImages&& g) {
+  std::lock_guard<std::mutex> lock(g_gbuffer_mutex);
+  if (g_gbuffers.size() < 4) g_gbuffers.push_back(std::move(g));
+}
+
+// Row y of `base`: per pixel what shade_reflected_point (or the environment) gives along the
+// view ray — the point lights and area-light stratum centres four pixels at a time.
+void shade_base_row(const Scene& scene, const RasterImages& g, const ViewRays& view, const LightTable& lights, int y,
+                    LitPoints& lit, std::vector<ShadingTerms>& terms, std::vector<uint32_t>& lit_x, ImageF& base) {
+  const int sw = g.triangle.width();
+  const uint32_t* tri = &g.triangle.at(0, y);
+  const float* bary = &g.barycentric.at(0, y);
+  float* out = &base.at(0, y);
+  lit.clear();
+  lit_x.clear();
+  terms.clear();
+  uint32_t cached = kNoTriangle;
+  vec3 cached_ng(0.0f);
+  for (int x = 0; x < sw; ++x) {
+    const uint32_t t = tri[x];
+    const vec3 dir = view.dir(x, y);
+    if (t == kNoTriangle) {
+      const vec3 c = environment_radiance(scene.environment, dir);
+      out[3 * x] = c.x, out[3 * x + 1] = c.y, out[3 * x + 2] = c.z;
+      continue;
+    }
+    const float u = bary[2 * x], v = bary[2 * x + 1];
+    if (t != cached) cached = t, cached_ng = triangle_normal(scene, t);
+    // facing(): the two-sided surface seen from −dir.
+    const vec3 toward = -dir;
+    vec3 ng = cached_ng;
+    if (glm::dot(ng, toward) < 0.0f) ng = -ng;
+    vec3 n = shading_normal(scene, t, u, v);
+    if (glm::dot(n, ng) < 0.0f) n = -n;
+    const Material& m = scene.materials[scene.triangle_material[t]];
+    ShadingTerms st;
+    st.emission = m.emission;
+    st.ambient = scene.ambient;
+    st.albedo = surface_diffuse(scene, t, u, v);
+    st.specular = m.specular;
+    if (m.specular < 1.0f && st.albedo != vec3(0.0f)) {
+      lit.add(triangle_point(scene, t, u, v), n);
+      lit_x.push_back(uint32_t(x));
+      terms.push_back(st);
+      continue;
+    }
+    const vec3 c = combine_shading(st);
+    out[3 * x] = c.x, out[3 * x + 1] = c.y, out[3 * x + 2] = c.z;
+  }
+  direct_irradiance(lights, lit);
+  for (size_t i = 0; i < lit_x.size(); ++i) {
+    terms[i].direct_irradiance = vec3(lit.ex[i], lit.ey[i], lit.ez[i]);
+    const vec3 c = combine_shading(terms[i]);
+    const size_t x = lit_x[i];
+    out[3 * x] = c.x, out[3 * x + 1] = c.y, out[3 * x + 2] = c.z;
+  }
+}
+
+}  // namespace
+
 ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camera, const ReflectionOptions& options,
                                          std::span<const Bounds3> object_bounds) {
   validate(options);
@@ -95,38 +317,37 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
   frame.scene_diagonal = std::max(scene_bounds(scene).diagonal(), 1e-3f);
   const float epsilon = kReflectionRayOffset * frame.scene_diagonal;
 
-  // Step 1: G-buffer from e.
+  // Step 1: G-buffer from e (the object id is scene.triangle_object of the triangle).
   RasterOptions ro;
-  ro.outputs = kRasterDepth | kRasterTriangle | kRasterBarycentric | kRasterObject;
+  ro.outputs = kRasterTriangle | kRasterBarycentric;
   ro.object_bounds = object_bounds;
-  RasterImages g = rasterize(scene, frame.sample_camera, ro);
+  RasterImages g = take_gbuffer();
+  rasterize(scene, frame.sample_camera, ro, g, AcceptAllFragments{});
   const int sw = frame.sample_camera.width, sh = frame.sample_camera.height;
-  const Camera& sc = frame.sample_camera;
-  frame.base = ImageF(sw, sh, 3, 0.0f);
+  const ViewRays view(frame.sample_camera);
+  const LightTable lights(scene, options.area_light_samples);
+  frame.base = ImageF(sw, sh, 3);
   parallel_for(size_t(sh), 8, [&](size_t y0, size_t y1) {
-    for (int y = int(y0); y < int(y1); ++y)
-      for (int x = 0; x < sw; ++x) {
-        uint32_t t = g.triangle.at(x, y);
-        vec3 dir = ray_through(sc, vec2(float(x) + 0.5f, float(y) + 0.5f)).dir;
-        vec3 c = t == kNoTriangle ? environment_radiance(scene.environment, dir)
-                                  : shade_reflected_point(scene, t, g.barycentric.at(x, y, 0),
-                                                          g.barycentric.at(x, y, 1), -dir, options.area_light_samples);
-        for (int ch = 0; ch < 3; ++ch) frame.base.at(x, y, ch) = c[ch];
-      }
+    LitPoints lit;
+    std::vector<ShadingTerms> terms;
+    std::vector<uint32_t> lit_x;
+    for (int y = int(y0); y < int(y1); ++y) shade_base_row(scene, g, view, lights, y, lit, terms, lit_x, frame.base);
   });
 
   // Reflective samples in row-major order, and their ray counts.
-  for (int y = 0; y < sh; ++y)
+  for (int y = 0; y < sh; ++y) {
+    const uint32_t* tri = &g.triangle.at(0, y);
     for (int x = 0; x < sw; ++x) {
-      uint32_t t = g.triangle.at(x, y);
+      const uint32_t t = tri[x];
       if (t == kNoTriangle) continue;
       const Material& m = scene.materials[scene.triangle_material[t]];
       if (!m.reflective()) continue;
       frame.pixel.push_back(uint32_t(y) * uint32_t(sw) + uint32_t(x));
-      frame.reflector.push_back(g.object.at(x, y));
+      frame.reflector.push_back(scene.triangle_object[t]);
       frame.specular.push_back(m.specular);
       frame.gloss.push_back(m.gloss);
     }
+  }
   const size_t n = frame.pixel.size();
   frame.first_ray.assign(n + 1, 0);
   for (size_t i = 0; i < n; ++i)
@@ -144,7 +365,7 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
       const int x = int(frame.pixel[i] % uint32_t(sw)), y = int(frame.pixel[i] / uint32_t(sw));
       const uint32_t t = g.triangle.at(x, y);
       const float u = g.barycentric.at(x, y, 0), v = g.barycentric.at(x, y, 1);
-      const vec3 dir = glm::normalize(ray_through(sc, vec2(float(x) + 0.5f, float(y) + 0.5f)).dir);
+      const vec3 dir = glm::normalize(view.dir(x, y));
       const Facing f = facing(scene, t, u, v, -dir);
       frame.position[i] = triangle_point(scene, t, u, v);
       frame.normal[i] = f.n;
@@ -167,6 +388,7 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
       }
     }
   });
+  return_gbuffer(std::move(g));
   frame.ms = watch.elapsed_ms();
   return frame;
 }
@@ -221,22 +443,38 @@ void trace_reflection_samples(const Scene& scene, const RayScene& rays, const Re
 }
 
 ImageF compose_reflections(const ReflectionFrame& frame, std::span<const vec3> reflected) {
+  const int k = frame.supersample, w = frame.camera.width, h = frame.camera.height;
+  const int sw = frame.sample_camera.width;
+  ImageF out(w, h, 3);
+  if (k == 1) {
+    // The box filter over one sample: (0 + sample) / 1, i.e. the sample with −0 made +0.
+    const float* base = frame.base.data().data();
+    float* o = out.data().data();
+    parallel_for(size_t(h), 16, [&](size_t y0, size_t y1) {
+      for (size_t j = y0 * size_t(w) * 3; j < y1 * size_t(w) * 3; ++j) o[j] = 0.0f + base[j];
+    });
+    for (size_t i = 0; i < frame.sample_count(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        const size_t j = 3 * size_t(frame.pixel[i]) + size_t(c);
+        o[j] = 0.0f + (base[j] + frame.specular[i] * reflected[i][c]);
+      }
+    return out;
+  }
   ImageF samples = frame.base;
   for (size_t i = 0; i < frame.sample_count(); ++i) {
-    const int sw = frame.sample_camera.width;
     const int x = int(frame.pixel[i] % uint32_t(sw)), y = int(frame.pixel[i] / uint32_t(sw));
     for (int c = 0; c < 3; ++c) samples.at(x, y, c) += frame.specular[i] * reflected[i][c];
   }
-  const int k = frame.supersample, w = frame.camera.width, h = frame.camera.height;
-  ImageF out(w, h, 3, 0.0f);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      for (int c = 0; c < 3; ++c) {
-        float sum = 0.0f;
-        for (int j = 0; j < k; ++j)
-          for (int i = 0; i < k; ++i) sum += samples.at(x * k + i, y * k + j, c);
-        out.at(x, y, c) = sum / float(k * k);
-      }
+  parallel_for(size_t(h), 8, [&](size_t y0, size_t y1) {
+    for (int y = int(y0); y < int(y1); ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 3; ++c) {
+          float sum = 0.0f;
+          for (int j = 0; j < k; ++j)
+            for (int i = 0; i < k; ++i) sum += samples.at(x * k + i, y * k + j, c);
+          out.at(x, y, c) = sum / float(k * k);
+        }
+  });
   return out;
 }
 
