@@ -12,6 +12,16 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+// The eight-lane shading path: GCC optimized builds only, as the best match's AVX-512 path
+// (temporal_best_match.cpp) — unoptimized, the lane ops would not be inlined into the avx
+// code and would pass __m256 across targets; clang rejects the default-target template.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(__OPTIMIZE__)
+#include <immintrin.h>
+#define PROXIMA_SHADE_AVX 1
+#pragma GCC diagnostic ignored "-Wpsabi"
+#else
+#define PROXIMA_SHADE_AVX 0
+#endif
 
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
@@ -149,60 +159,121 @@ struct LitPoints {
 };
 
 #if defined(__SSE2__)
-// The direct irradiance of shade_reflected_point for four points at once: each lane runs
-// point_light_irradiance and area_light_sample_irradiance's IEEE single operations in their
-// order (dot = (x·x' + y·y') + z·z', a returned 0 added as +0; SSE2 has no fused
-// multiply-add, so nothing is contracted): the same bits as the scalar code per lane.
-void direct_irradiance(const LightTable& lights, LitPoints& lit) {
-  const __m128 zero = _mm_setzero_ps(), sign = _mm_set1_ps(-0.0f);
-  auto dot = [](__m128 ax, __m128 ay, __m128 az, __m128 bx, __m128 by, __m128 bz) {
-    return _mm_add_ps(_mm_add_ps(_mm_mul_ps(ax, bx), _mm_mul_ps(ay, by)), _mm_mul_ps(az, bz));
-  };
-  for (size_t i = 0; i < lit.count; i += 4) {
-    const __m128 px = _mm_loadu_ps(&lit.px[i]), py = _mm_loadu_ps(&lit.py[i]), pz = _mm_loadu_ps(&lit.pz[i]);
-    const __m128 nx = _mm_loadu_ps(&lit.nx[i]), ny = _mm_loadu_ps(&lit.ny[i]), nz = _mm_loadu_ps(&lit.nz[i]);
-    __m128 ex = zero, ey = zero, ez = zero;
+#define PROXIMA_LANE_OP static inline __attribute__((always_inline))
+struct Lanes4 {
+  using V = __m128;
+  static constexpr size_t kWidth = 4;
+  PROXIMA_LANE_OP V zero() { return _mm_setzero_ps(); }
+  PROXIMA_LANE_OP V set1(float v) { return _mm_set1_ps(v); }
+  PROXIMA_LANE_OP V load(const float* p) { return _mm_loadu_ps(p); }
+  PROXIMA_LANE_OP void store(float* p, V v) { _mm_storeu_ps(p, v); }
+  PROXIMA_LANE_OP V add(V a, V b) { return _mm_add_ps(a, b); }
+  PROXIMA_LANE_OP V sub(V a, V b) { return _mm_sub_ps(a, b); }
+  PROXIMA_LANE_OP V mul(V a, V b) { return _mm_mul_ps(a, b); }
+  PROXIMA_LANE_OP V div(V a, V b) { return _mm_div_ps(a, b); }
+  PROXIMA_LANE_OP V sqrt(V a) { return _mm_sqrt_ps(a); }
+  PROXIMA_LANE_OP V neg(V a) { return _mm_xor_ps(a, _mm_set1_ps(-0.0f)); }
+  PROXIMA_LANE_OP V keep(V mask, V a) { return _mm_and_ps(mask, a); }
+  PROXIMA_LANE_OP V both(V a, V b) { return _mm_and_ps(a, b); }
+  PROXIMA_LANE_OP V gt0(V a) { return _mm_cmplt_ps(_mm_setzero_ps(), a); }     // 0 < a (NaN: false)
+  PROXIMA_LANE_OP V dot(V ax, V ay, V az, V bx, V by, V bz) { return add(add(mul(ax, bx), mul(ay, by)), mul(az, bz)); }
+  PROXIMA_LANE_OP V not_le0(V a) { return _mm_cmpnle_ps(a, _mm_setzero_ps()); }  // !(a <= 0) (NaN: true)
+};
+
+// The direct irradiance of shade_reflected_point for L::kWidth points at once: each lane
+// runs point_light_irradiance's and area_light_sample_irradiance's IEEE single operations
+// in their order (dot = (x·x' + y·y') + z·z', max(0, c) as 0 < c ? c : +0, a returned 0
+// added as +0; no fused multiply-add on these targets, so nothing is contracted): per lane
+// the scalar code's bits.
+template <class L>
+inline __attribute__((always_inline)) void direct_irradiance_lanes(const LightTable& lights, LitPoints& lit) {
+  using V = typename L::V;
+  for (size_t i = 0; i < lit.count; i += L::kWidth) {
+    const V px = L::load(&lit.px[i]), py = L::load(&lit.py[i]), pz = L::load(&lit.pz[i]);
+    const V nx = L::load(&lit.nx[i]), ny = L::load(&lit.ny[i]), nz = L::load(&lit.nz[i]);
+    V ex = L::zero(), ey = L::zero(), ez = L::zero();
     for (const PointLight& light : lights.points) {
-      const __m128 tx = _mm_sub_ps(_mm_set1_ps(light.position.x), px);
-      const __m128 ty = _mm_sub_ps(_mm_set1_ps(light.position.y), py);
-      const __m128 tz = _mm_sub_ps(_mm_set1_ps(light.position.z), pz);
-      const __m128 r2 = dot(tx, ty, tz, tx, ty, tz);
-      const __m128 c = _mm_div_ps(dot(nx, ny, nz, tx, ty, tz), _mm_sqrt_ps(r2));
-      const __m128 q = _mm_div_ps(_mm_and_ps(_mm_cmplt_ps(zero, c), c), r2);  // max(0, c) / r²
-      const __m128 keep = _mm_cmpnle_ps(r2, zero);                             // r² <= 0 gives 0
-      ex = _mm_add_ps(ex, _mm_and_ps(keep, _mm_mul_ps(_mm_set1_ps(light.intensity.x), q)));
-      ey = _mm_add_ps(ey, _mm_and_ps(keep, _mm_mul_ps(_mm_set1_ps(light.intensity.y), q)));
-      ez = _mm_add_ps(ez, _mm_and_ps(keep, _mm_mul_ps(_mm_set1_ps(light.intensity.z), q)));
+      const V tx = L::sub(L::set1(light.position.x), px);
+      const V ty = L::sub(L::set1(light.position.y), py);
+      const V tz = L::sub(L::set1(light.position.z), pz);
+      const V r2 = L::dot(tx, ty, tz, tx, ty, tz);
+      const V c = L::div(L::dot(nx, ny, nz, tx, ty, tz), L::sqrt(r2));
+      const V q = L::div(L::keep(L::gt0(c), c), r2);  // max(0, c) / r²
+      const V keep = L::not_le0(r2);                   // r² <= 0 gives 0
+      ex = L::add(ex, L::keep(keep, L::mul(L::set1(light.intensity.x), q)));
+      ey = L::add(ey, L::keep(keep, L::mul(L::set1(light.intensity.y), q)));
+      ez = L::add(ez, L::keep(keep, L::mul(L::set1(light.intensity.z), q)));
     }
     for (const LightTable::Area& a : lights.areas) {
-      const __m128 lnx = _mm_set1_ps(a.normal.x), lny = _mm_set1_ps(a.normal.y), lnz = _mm_set1_ps(a.normal.z);
-      const __m128 area = _mm_set1_ps(a.area);
-      const __m128 rx = _mm_set1_ps(a.radiance.x), ry = _mm_set1_ps(a.radiance.y), rz = _mm_set1_ps(a.radiance.z);
-      __m128 sx = zero, sy = zero, sz = zero;
+      const V lnx = L::set1(a.normal.x), lny = L::set1(a.normal.y), lnz = L::set1(a.normal.z);
+      const V area = L::set1(a.area);
+      const V rx = L::set1(a.radiance.x), ry = L::set1(a.radiance.y), rz = L::set1(a.radiance.z);
+      V sx = L::zero(), sy = L::zero(), sz = L::zero();
       for (size_t k = 0; k < a.x.size(); ++k) {
-        const __m128 tx = _mm_sub_ps(_mm_set1_ps(a.x[k]), px);
-        const __m128 ty = _mm_sub_ps(_mm_set1_ps(a.y[k]), py);
-        const __m128 tz = _mm_sub_ps(_mm_set1_ps(a.z[k]), pz);
-        const __m128 r2 = dot(tx, ty, tz, tx, ty, tz);
-        const __m128 r = _mm_sqrt_ps(r2);
-        const __m128 cs = _mm_div_ps(dot(nx, ny, nz, tx, ty, tz), r);
-        const __m128 cl = _mm_div_ps(_mm_xor_ps(dot(lnx, lny, lnz, tx, ty, tz), sign), r);
-        const __m128 f = _mm_mul_ps(_mm_div_ps(_mm_mul_ps(cs, cl), r2), area);
+        const V tx = L::sub(L::set1(a.x[k]), px);
+        const V ty = L::sub(L::set1(a.y[k]), py);
+        const V tz = L::sub(L::set1(a.z[k]), pz);
+        const V r2 = L::dot(tx, ty, tz, tx, ty, tz);
+        const V r = L::sqrt(r2);
+        const V cs = L::div(L::dot(nx, ny, nz, tx, ty, tz), r);
+        const V cl = L::div(L::neg(L::dot(lnx, lny, lnz, tx, ty, tz)), r);
+        const V f = L::mul(L::div(L::mul(cs, cl), r2), area);
         // 0 where r² <= 0, cos_surface <= 0 or cos_light <= 0 (NaN passes, as in the scalar test)
-        const __m128 keep = _mm_and_ps(_mm_cmpnle_ps(r2, zero), _mm_and_ps(_mm_cmpnle_ps(cs, zero), _mm_cmpnle_ps(cl, zero)));
-        sx = _mm_add_ps(sx, _mm_and_ps(keep, _mm_mul_ps(rx, f)));
-        sy = _mm_add_ps(sy, _mm_and_ps(keep, _mm_mul_ps(ry, f)));
-        sz = _mm_add_ps(sz, _mm_and_ps(keep, _mm_mul_ps(rz, f)));
+        const V keep = L::both(L::not_le0(r2), L::both(L::not_le0(cs), L::not_le0(cl)));
+        sx = L::add(sx, L::keep(keep, L::mul(rx, f)));
+        sy = L::add(sy, L::keep(keep, L::mul(ry, f)));
+        sz = L::add(sz, L::keep(keep, L::mul(rz, f)));
       }
-      const __m128 m = _mm_set1_ps(lights.samples);
-      ex = _mm_add_ps(ex, _mm_div_ps(sx, m));
-      ey = _mm_add_ps(ey, _mm_div_ps(sy, m));
-      ez = _mm_add_ps(ez, _mm_div_ps(sz, m));
+      const V m = L::set1(lights.samples);
+      ex = L::add(ex, L::div(sx, m));
+      ey = L::add(ey, L::div(sy, m));
+      ez = L::add(ez, L::div(sz, m));
     }
-    _mm_storeu_ps(&lit.ex[i], ex);
-    _mm_storeu_ps(&lit.ey[i], ey);
-    _mm_storeu_ps(&lit.ez[i], ez);
+    L::store(&lit.ex[i], ex);
+    L::store(&lit.ey[i], ey);
+    L::store(&lit.ez[i], ez);
   }
+}
+
+#if PROXIMA_SHADE_AVX
+// Eight lanes where the CPU has AVX (runtime dispatch). target("avx") brings no fused
+// multiply-add, so the operations stay separate: the same bits as four lanes.
+#define PROXIMA_AVX_OP static __attribute__((target("avx"))) inline
+struct Lanes8 {
+  using V = __m256;
+  static constexpr size_t kWidth = 8;
+  PROXIMA_AVX_OP V zero() { return _mm256_setzero_ps(); }
+  PROXIMA_AVX_OP V set1(float v) { return _mm256_set1_ps(v); }
+  PROXIMA_AVX_OP V load(const float* p) { return _mm256_loadu_ps(p); }
+  PROXIMA_AVX_OP void store(float* p, V v) { _mm256_storeu_ps(p, v); }
+  PROXIMA_AVX_OP V add(V a, V b) { return _mm256_add_ps(a, b); }
+  PROXIMA_AVX_OP V sub(V a, V b) { return _mm256_sub_ps(a, b); }
+  PROXIMA_AVX_OP V mul(V a, V b) { return _mm256_mul_ps(a, b); }
+  PROXIMA_AVX_OP V div(V a, V b) { return _mm256_div_ps(a, b); }
+  PROXIMA_AVX_OP V sqrt(V a) { return _mm256_sqrt_ps(a); }
+  PROXIMA_AVX_OP V neg(V a) { return _mm256_xor_ps(a, _mm256_set1_ps(-0.0f)); }
+  PROXIMA_AVX_OP V keep(V mask, V a) { return _mm256_and_ps(mask, a); }
+  PROXIMA_AVX_OP V both(V a, V b) { return _mm256_and_ps(a, b); }
+  PROXIMA_AVX_OP V gt0(V a) { return _mm256_cmp_ps(_mm256_setzero_ps(), a, _CMP_LT_OS); }
+  PROXIMA_AVX_OP V dot(V ax, V ay, V az, V bx, V by, V bz) { return add(add(mul(ax, bx), mul(ay, by)), mul(az, bz)); }
+  PROXIMA_AVX_OP V not_le0(V a) { return _mm256_cmp_ps(a, _mm256_setzero_ps(), _CMP_NLE_US); }
+};
+
+__attribute__((target("avx"), flatten)) void direct_irradiance_avx(const LightTable& lights, LitPoints& lit) {
+  direct_irradiance_lanes<Lanes8>(lights, lit);
+}
+
+bool has_avx() {
+  static const bool yes = __builtin_cpu_supports("avx");
+  return yes;
+}
+#endif
+
+void direct_irradiance(const LightTable& lights, LitPoints& lit) {
+#if PROXIMA_SHADE_AVX
+  if (has_avx()) return direct_irradiance_avx(lights, lit);
+#endif
+  direct_irradiance_lanes<Lanes4>(lights, lit);
 }
 #else
 void direct_irradiance(const LightTable& lights, LitPoints& lit) {
