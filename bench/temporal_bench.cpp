@@ -183,12 +183,14 @@ void BM_TemporalWalk(benchmark::State& state) {
   // Wall and process CPU time: on a shared machine the CPU times are the steadier figures.
   double temporal_ms = 0.0, reference_ms = 0.0, temporal_cpu = 0.0, reference_cpu = 0.0;
   double shared_ms = 0.0, shared_cpu = 0.0;  // G-buffer pass and one blend per frame, both sides
+  double key_ms = 0.0, match_ms = 0.0, warp_ms = 0.0, reproject_ms = 0.0, recompute_ms = 0.0;  // wall, per step
   int keyframes = 0;
   for (auto _ : state) {
     TemporalState temporal;
     std::vector<vec3> reflected;
     std::vector<uint8_t> flags;
     temporal_ms = reference_ms = temporal_cpu = reference_cpu = shared_ms = shared_cpu = 0.0;
+    key_ms = match_ms = warp_ms = reproject_ms = recompute_ms = 0.0;
     keyframes = 0;
     for (int f = 0; f < frames; ++f) {
       const float t = frames > 1 ? t0 + float(f) * (t1 - t0) / float(frames - 1) : t0;
@@ -203,6 +205,8 @@ void BM_TemporalWalk(benchmark::State& state) {
       temporal_cpu += process_cpu_ms() - cpu;
       temporal_ms += st.reflection_ms();
       keyframes += st.key ? 1 : 0;
+      key_ms += st.key_ms, match_ms += st.match_ms, warp_ms += st.warp_ms;
+      reproject_ms += st.reproject_ms, recompute_ms += st.recompute_ms;
       Stopwatch watch;
       cpu = process_cpu_ms();
       const TracedReflections traced = trace_reflections(scene, rays, frame);
@@ -223,6 +227,11 @@ void BM_TemporalWalk(benchmark::State& state) {
   state.counters["reference_cpu_ms"] = reference_cpu / frames;
   state.counters["speedup_cpu"] = temporal_cpu > 0.0 ? reference_cpu / temporal_cpu : 0.0;
   state.counters["keyframes"] = keyframes;
+  state.counters["key_ms"] = key_ms / frames;  // per frame of the walk, key frames amortized
+  state.counters["match_ms"] = match_ms / frames;
+  state.counters["warp_ms"] = warp_ms / frames;
+  state.counters["reproject_ms"] = reproject_ms / frames;
+  state.counters["recompute_ms"] = recompute_ms / frames;
   state.counters["shared_ms"] = shared_ms / frames;
   state.counters["shared_cpu_ms"] = shared_cpu / frames;
   state.counters["frame_speedup_cpu"] =
