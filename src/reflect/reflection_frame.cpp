@@ -397,7 +397,7 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
   const int sw = frame.sample_camera.width, sh = frame.sample_camera.height;
   const ViewRays view(frame.sample_camera);
   const LightTable lights(scene, options.area_light_samples);
-  frame.base = ImageF(sw, sh, 3);
+  frame.base = ImageF(sw, sh, 3, 0.0f);
   parallel_for(size_t(sh), 8, [&](size_t y0, size_t y1) {
     LitPoints lit;
     std::vector<ShadingTerms> terms;
