@@ -299,7 +299,11 @@ void direct_irradiance(const LightTable& lights, LitPoints& lit) {
 #endif
 
 // The G-buffer images prepare_reflection_frame rasterizes into, kept between calls (the
-// rasterizer reuses an image of the right size in place): no fresh pages per frame.
+// rasterizer reuses an image of the right size in place): no fresh pages per frame. At most
+// kPooledGBuffers of at most kPooledSamples samples each (12 bytes a sample), so the pool
+// holds ≤ 100 MB whatever sizes a program renders.
+constexpr size_t kPooledGBuffers = 2;
+constexpr size_t kPooledSamples = size_t(2048) * 2048;
 std::mutex g_gbuffer_mutex;
 std::vector<RasterImages> g_gbuffers;
 
@@ -312,8 +316,9 @@ RasterImages take_gbuffer() {
 }
 
 void return_gbuffer(RasterImages&& g) {
+  if (size_t(g.triangle.width()) * size_t(g.triangle.height()) > kPooledSamples) return;
   std::lock_guard<std::mutex> lock(g_gbuffer_mutex);
-  if (g_gbuffers.size() < 4) g_gbuffers.push_back(std::move(g));
+  if (g_gbuffers.size() < kPooledGBuffers) g_gbuffers.push_back(std::move(g));
 }
 
 // Row y of `base`: per pixel what shade_reflected_point (or the environment) gives along the
