@@ -8,7 +8,7 @@
 // come from `proxima reflect --compare`; these are for profiling.
 // BM_TemporalWalk is the whole method through the library: the walk at side², every frame
 // temporal reuse beside full reflection ray tracing (as `proxima reflect --method temporal
-// --path walk --glossy-rays 8 --threshold 0.3 --compare --threads 1` with the CLI's
+// --path walk --glossy-rays 8 --threshold 0.3 --compare --threads N` with the CLI's
 // defaults), so its buffers get what every library user gets (core/large_buffer.h).
 #include <benchmark/benchmark.h>
 
@@ -143,10 +143,30 @@ void BM_TemporalDepthImage(benchmark::State& state) {
   state.counters["reflective"] = double(key.pixels.size());
 }
 
+// The shared first step of every frame: G-buffer, base shading and ray set-up
+// (prepare_reflection_frame), and the final blend, on the timed frame.
+void BM_ReflectionFramePrepare(benchmark::State& state) {
+  const Walk& w = walk(int(state.range(0)), false);
+  ThreadLimit limit(int(state.range(1)));
+  ReflectionOptions ro;
+  ro.supersample = 1;
+  ro.glossy_rays = 8;
+  for (auto _ : state) benchmark::DoNotOptimize(prepare_reflection_frame(w.scene, w.frame.camera, ro).base.data().data());
+}
+
+void BM_ReflectionCompose(benchmark::State& state) {
+  const Walk& w = walk(int(state.range(0)), false);
+  ThreadLimit limit(int(state.range(1)));
+  const std::vector<vec3> reflected(w.frame.sample_count(), vec3(0.25f));
+  for (auto _ : state) benchmark::DoNotOptimize(compose_reflections(w.frame, reflected).data().data());
+}
+
 // The walk's `frames` frames, each: the G-buffer, temporal reuse (timed), full reflection
-// tracing of the same frame (timed). Counters: mean ms per frame of each and their ratio.
+// tracing of the same frame (timed), the blend (timed). Counters: mean ms per frame of each
+// and their ratio, for the reflection work alone and for the whole frame (G-buffer, base
+// shading and ray set-up, reflections, blend: what a user waits for).
 void BM_TemporalWalk(benchmark::State& state) {
-  const int side = int(state.range(0)), frames = int(state.range(1));
+  const int side = int(state.range(0)), frames = int(state.range(1)), threads = int(state.range(2));
   const Scene scene = make_builtin_scene("living-room");
   const RayScene rays(scene);
   const CameraPath& path = scene.camera_paths[size_t(find_camera_path(scene, "walk"))];
@@ -159,31 +179,45 @@ void BM_TemporalWalk(benchmark::State& state) {
   to.keyframe_threshold = 0.3f;
   to.keyframe_cost = 1.0f;
   to.warp.blend_error = 8.0f;
-  ThreadLimit limit(1);
+  ThreadLimit limit(threads);
   // Wall and process CPU time: on a shared machine the CPU times are the steadier figures.
   double temporal_ms = 0.0, reference_ms = 0.0, temporal_cpu = 0.0, reference_cpu = 0.0;
+  double shared_ms = 0.0, shared_cpu = 0.0;  // G-buffer pass and one blend per frame, both sides
+  double key_ms = 0.0, match_ms = 0.0, warp_ms = 0.0, reproject_ms = 0.0, recompute_ms = 0.0;  // wall, per step
   int keyframes = 0;
   for (auto _ : state) {
     TemporalState temporal;
     std::vector<vec3> reflected;
     std::vector<uint8_t> flags;
-    temporal_ms = reference_ms = temporal_cpu = reference_cpu = 0.0;
+    temporal_ms = reference_ms = temporal_cpu = reference_cpu = shared_ms = shared_cpu = 0.0;
+    key_ms = match_ms = warp_ms = reproject_ms = recompute_ms = 0.0;
     keyframes = 0;
     for (int f = 0; f < frames; ++f) {
       const float t = frames > 1 ? t0 + float(f) * (t1 - t0) / float(frames - 1) : t0;
-      const ReflectionFrame frame = prepare_reflection_frame(scene, camera_at_time(path, t, side, side, 0.01f, far), ro);
-      TemporalFrameStats st;
+      Stopwatch shared;
       double cpu = process_cpu_ms();
+      const ReflectionFrame frame = prepare_reflection_frame(scene, camera_at_time(path, t, side, side, 0.01f, far), ro);
+      shared_cpu += process_cpu_ms() - cpu;
+      shared_ms += shared.elapsed_ms();
+      TemporalFrameStats st;
+      cpu = process_cpu_ms();
       temporal_reflections_into(scene, rays, frame, temporal, to, reflected, &st, &flags);
       temporal_cpu += process_cpu_ms() - cpu;
       temporal_ms += st.reflection_ms();
       keyframes += st.key ? 1 : 0;
+      key_ms += st.key_ms, match_ms += st.match_ms, warp_ms += st.warp_ms;
+      reproject_ms += st.reproject_ms, recompute_ms += st.recompute_ms;
       Stopwatch watch;
       cpu = process_cpu_ms();
       const TracedReflections traced = trace_reflections(scene, rays, frame);
       reference_cpu += process_cpu_ms() - cpu;
       reference_ms += watch.elapsed_ms();
       benchmark::DoNotOptimize(traced.radiance.data());
+      shared.restart();
+      cpu = process_cpu_ms();
+      benchmark::DoNotOptimize(compose_reflections(frame, reflected).data().data());
+      shared_cpu += process_cpu_ms() - cpu;
+      shared_ms += shared.elapsed_ms();
     }
   }
   state.counters["temporal_ms"] = temporal_ms / frames;
@@ -193,6 +227,15 @@ void BM_TemporalWalk(benchmark::State& state) {
   state.counters["reference_cpu_ms"] = reference_cpu / frames;
   state.counters["speedup_cpu"] = temporal_cpu > 0.0 ? reference_cpu / temporal_cpu : 0.0;
   state.counters["keyframes"] = keyframes;
+  state.counters["key_ms"] = key_ms / frames;  // per frame of the walk, key frames amortized
+  state.counters["match_ms"] = match_ms / frames;
+  state.counters["warp_ms"] = warp_ms / frames;
+  state.counters["reproject_ms"] = reproject_ms / frames;
+  state.counters["recompute_ms"] = recompute_ms / frames;
+  state.counters["shared_ms"] = shared_ms / frames;
+  state.counters["shared_cpu_ms"] = shared_cpu / frames;
+  state.counters["frame_speedup_cpu"] =
+      shared_cpu + temporal_cpu > 0.0 ? (shared_cpu + reference_cpu) / (shared_cpu + temporal_cpu) : 0.0;
 }
 
 #define TEMPORAL_ARGS ArgsProduct({{256, 512, 1024}, {0, 1}})->ArgNames({"side", "rules"})->Unit(benchmark::kMillisecond)
@@ -205,10 +248,11 @@ BENCHMARK(BM_TemporalReproject)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TemporalDepthImage)->ArgsProduct({{256, 512, 1024}, {0}})->ArgNames({"side", "rules"})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TemporalTrace)->ArgsProduct({{256, 512, 1024}, {0}})->ArgNames({"side", "rules"})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ReflectionFramePrepare)->ArgsProduct({{1024}, {1, 2}})->ArgNames({"side", "threads"})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ReflectionCompose)->ArgsProduct({{1024}, {1, 2}})->ArgNames({"side", "threads"})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TemporalWalk)
-    ->Args({1024, 100})
-    ->Args({1024, 500})
-    ->ArgNames({"side", "frames"})
+    ->ArgsProduct({{1024}, {100, 500}, {1, 2}})
+    ->ArgNames({"side", "frames", "threads"})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);
 

@@ -8,6 +8,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+// The eight-lane shading path: GCC optimized builds only, as the best match's AVX-512 path
+// (temporal_best_match.cpp) — unoptimized, the lane ops would not be inlined into the avx
+// code and would pass __m256 across targets; clang rejects the default-target template.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(__OPTIMIZE__)
+#include <immintrin.h>
+#define PROXIMA_SHADE_AVX 1
+#pragma GCC diagnostic ignored "-Wpsabi"
+#else
+#define PROXIMA_SHADE_AVX 0
+#endif
 
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
@@ -78,6 +92,290 @@ vec3 shade_reflected_point(const Scene& scene, uint32_t triangle, float u, float
   return combine_shading(terms);
 }
 
+namespace {
+
+// The view directions of ray_through with the camera's constants (focal length, half
+// sizes) computed once: the same operations on the same values, so the same bits.
+struct ViewRays {
+  explicit ViewRays(const Camera& c)
+      : orientation(c.orientation), f(focal_length_px(c)), half_w(0.5f * float(c.width)),
+        half_h(0.5f * float(c.height)) {}
+  vec3 dir(int x, int y) const {
+    const vec2 pixel(float(x) + 0.5f, float(y) + 0.5f);
+    const vec3 d((pixel.x - half_w) / f, (half_h - pixel.y) / f, -1.0f);
+    return glm::normalize(orientation * d);
+  }
+  quat orientation;
+  float f, half_w, half_h;
+};
+
+// The lights as shade_reflected_point evaluates them, with what it recomputes per sample
+// (each area light's normal and area, its n×n stratum centres) computed once per frame by
+// the same expressions: the same values. Points are stored per coordinate for the lanes.
+struct LightTable {
+  struct Area {
+    vec3 normal, radiance;
+    float area = 0.0f;
+    std::vector<float> x, y, z;  // the n×n stratum centres in shade_reflected_point's order
+  };
+  std::vector<PointLight> points;
+  std::vector<Area> areas;
+  float samples = 1.0f;  // float(n·n)
+
+  LightTable(const Scene& scene, int n) : points(scene.point_lights), samples(float(n * n)) {
+    for (const AreaLight& light : scene.area_lights) {
+      Area a;
+      a.normal = light.normal();
+      a.radiance = light.radiance;
+      a.area = light.area();
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const vec2 ab = stratum_sample(i, j, n, 0.5f, 0.5f);
+          const vec3 q = light.point(ab.x, ab.y);
+          a.x.push_back(q.x);
+          a.y.push_back(q.y);
+          a.z.push_back(q.z);
+        }
+      areas.push_back(std::move(a));
+    }
+  }
+};
+
+// Lit points of one row, per coordinate (padded to whole lane groups), and their unshadowed
+// direct irradiance.
+struct LitPoints {
+  std::vector<float> px, py, pz, nx, ny, nz, ex, ey, ez;
+  size_t count = 0;
+
+  void clear() { count = 0; }
+  void add(vec3 p, vec3 n) {
+    if (px.size() <= count) {
+      for (auto* v : {&px, &py, &pz, &nx, &ny, &nz, &ex, &ey, &ez}) v->resize(std::max<size_t>(64, 2 * count), 0.0f);
+    }
+    px[count] = p.x, py[count] = p.y, pz[count] = p.z;
+    nx[count] = n.x, ny[count] = n.y, nz[count] = n.z;
+    ++count;
+  }
+};
+
+#if defined(__SSE2__)
+#define PROXIMA_LANE_OP static inline __attribute__((always_inline))
+struct Lanes4 {
+  using V = __m128;
+  static constexpr size_t kWidth = 4;
+  PROXIMA_LANE_OP V zero() { return _mm_setzero_ps(); }
+  PROXIMA_LANE_OP V set1(float v) { return _mm_set1_ps(v); }
+  PROXIMA_LANE_OP V load(const float* p) { return _mm_loadu_ps(p); }
+  PROXIMA_LANE_OP void store(float* p, V v) { _mm_storeu_ps(p, v); }
+  PROXIMA_LANE_OP V add(V a, V b) { return _mm_add_ps(a, b); }
+  PROXIMA_LANE_OP V sub(V a, V b) { return _mm_sub_ps(a, b); }
+  PROXIMA_LANE_OP V mul(V a, V b) { return _mm_mul_ps(a, b); }
+  PROXIMA_LANE_OP V div(V a, V b) { return _mm_div_ps(a, b); }
+  PROXIMA_LANE_OP V sqrt(V a) { return _mm_sqrt_ps(a); }
+  PROXIMA_LANE_OP V neg(V a) { return _mm_xor_ps(a, _mm_set1_ps(-0.0f)); }
+  PROXIMA_LANE_OP V keep(V mask, V a) { return _mm_and_ps(mask, a); }
+  PROXIMA_LANE_OP V both(V a, V b) { return _mm_and_ps(a, b); }
+  PROXIMA_LANE_OP V gt0(V a) { return _mm_cmplt_ps(_mm_setzero_ps(), a); }     // 0 < a (NaN: false)
+  PROXIMA_LANE_OP V dot(V ax, V ay, V az, V bx, V by, V bz) { return add(add(mul(ax, bx), mul(ay, by)), mul(az, bz)); }
+  PROXIMA_LANE_OP V not_le0(V a) { return _mm_cmpnle_ps(a, _mm_setzero_ps()); }  // !(a <= 0) (NaN: true)
+};
+
+// The direct irradiance of shade_reflected_point for L::kWidth points at once: each lane
+// runs point_light_irradiance's and area_light_sample_irradiance's IEEE single operations
+// in their order (dot = (x·x' + y·y') + z·z', max(0, c) as 0 < c ? c : +0, a returned 0
+// added as +0; no fused multiply-add on these targets, so nothing is contracted): per lane
+// the scalar code's bits.
+template <class L>
+inline __attribute__((always_inline)) void direct_irradiance_lanes(const LightTable& lights, LitPoints& lit) {
+  using V = typename L::V;
+  for (size_t i = 0; i < lit.count; i += L::kWidth) {
+    const V px = L::load(&lit.px[i]), py = L::load(&lit.py[i]), pz = L::load(&lit.pz[i]);
+    const V nx = L::load(&lit.nx[i]), ny = L::load(&lit.ny[i]), nz = L::load(&lit.nz[i]);
+    V ex = L::zero(), ey = L::zero(), ez = L::zero();
+    for (const PointLight& light : lights.points) {
+      const V tx = L::sub(L::set1(light.position.x), px);
+      const V ty = L::sub(L::set1(light.position.y), py);
+      const V tz = L::sub(L::set1(light.position.z), pz);
+      const V r2 = L::dot(tx, ty, tz, tx, ty, tz);
+      const V c = L::div(L::dot(nx, ny, nz, tx, ty, tz), L::sqrt(r2));
+      const V q = L::div(L::keep(L::gt0(c), c), r2);  // max(0, c) / r²
+      const V keep = L::not_le0(r2);                   // r² <= 0 gives 0
+      ex = L::add(ex, L::keep(keep, L::mul(L::set1(light.intensity.x), q)));
+      ey = L::add(ey, L::keep(keep, L::mul(L::set1(light.intensity.y), q)));
+      ez = L::add(ez, L::keep(keep, L::mul(L::set1(light.intensity.z), q)));
+    }
+    for (const LightTable::Area& a : lights.areas) {
+      const V lnx = L::set1(a.normal.x), lny = L::set1(a.normal.y), lnz = L::set1(a.normal.z);
+      const V area = L::set1(a.area);
+      const V rx = L::set1(a.radiance.x), ry = L::set1(a.radiance.y), rz = L::set1(a.radiance.z);
+      V sx = L::zero(), sy = L::zero(), sz = L::zero();
+      for (size_t k = 0; k < a.x.size(); ++k) {
+        const V tx = L::sub(L::set1(a.x[k]), px);
+        const V ty = L::sub(L::set1(a.y[k]), py);
+        const V tz = L::sub(L::set1(a.z[k]), pz);
+        const V r2 = L::dot(tx, ty, tz, tx, ty, tz);
+        const V r = L::sqrt(r2);
+        const V cs = L::div(L::dot(nx, ny, nz, tx, ty, tz), r);
+        const V cl = L::div(L::neg(L::dot(lnx, lny, lnz, tx, ty, tz)), r);
+        const V f = L::mul(L::div(L::mul(cs, cl), r2), area);
+        // 0 where r² <= 0, cos_surface <= 0 or cos_light <= 0 (NaN passes, as in the scalar test)
+        const V keep = L::both(L::not_le0(r2), L::both(L::not_le0(cs), L::not_le0(cl)));
+        sx = L::add(sx, L::keep(keep, L::mul(rx, f)));
+        sy = L::add(sy, L::keep(keep, L::mul(ry, f)));
+        sz = L::add(sz, L::keep(keep, L::mul(rz, f)));
+      }
+      const V m = L::set1(lights.samples);
+      ex = L::add(ex, L::div(sx, m));
+      ey = L::add(ey, L::div(sy, m));
+      ez = L::add(ez, L::div(sz, m));
+    }
+    L::store(&lit.ex[i], ex);
+    L::store(&lit.ey[i], ey);
+    L::store(&lit.ez[i], ez);
+  }
+}
+
+#if PROXIMA_SHADE_AVX
+// Eight lanes where the CPU has AVX (runtime dispatch). target("avx") brings no fused
+// multiply-add, so the operations stay separate: the same bits as four lanes.
+#define PROXIMA_AVX_OP static __attribute__((target("avx"))) inline
+struct Lanes8 {
+  using V = __m256;
+  static constexpr size_t kWidth = 8;
+  PROXIMA_AVX_OP V zero() { return _mm256_setzero_ps(); }
+  PROXIMA_AVX_OP V set1(float v) { return _mm256_set1_ps(v); }
+  PROXIMA_AVX_OP V load(const float* p) { return _mm256_loadu_ps(p); }
+  PROXIMA_AVX_OP void store(float* p, V v) { _mm256_storeu_ps(p, v); }
+  PROXIMA_AVX_OP V add(V a, V b) { return _mm256_add_ps(a, b); }
+  PROXIMA_AVX_OP V sub(V a, V b) { return _mm256_sub_ps(a, b); }
+  PROXIMA_AVX_OP V mul(V a, V b) { return _mm256_mul_ps(a, b); }
+  PROXIMA_AVX_OP V div(V a, V b) { return _mm256_div_ps(a, b); }
+  PROXIMA_AVX_OP V sqrt(V a) { return _mm256_sqrt_ps(a); }
+  PROXIMA_AVX_OP V neg(V a) { return _mm256_xor_ps(a, _mm256_set1_ps(-0.0f)); }
+  PROXIMA_AVX_OP V keep(V mask, V a) { return _mm256_and_ps(mask, a); }
+  PROXIMA_AVX_OP V both(V a, V b) { return _mm256_and_ps(a, b); }
+  PROXIMA_AVX_OP V gt0(V a) { return _mm256_cmp_ps(_mm256_setzero_ps(), a, _CMP_LT_OS); }
+  PROXIMA_AVX_OP V dot(V ax, V ay, V az, V bx, V by, V bz) { return add(add(mul(ax, bx), mul(ay, by)), mul(az, bz)); }
+  PROXIMA_AVX_OP V not_le0(V a) { return _mm256_cmp_ps(a, _mm256_setzero_ps(), _CMP_NLE_US); }
+};
+
+__attribute__((target("avx"), flatten)) void direct_irradiance_avx(const LightTable& lights, LitPoints& lit) {
+  direct_irradiance_lanes<Lanes8>(lights, lit);
+}
+
+bool has_avx() {
+  static const bool yes = __builtin_cpu_supports("avx");
+  return yes;
+}
+#endif
+
+void direct_irradiance(const LightTable& lights, LitPoints& lit) {
+#if PROXIMA_SHADE_AVX
+  if (has_avx()) return direct_irradiance_avx(lights, lit);
+#endif
+  direct_irradiance_lanes<Lanes4>(lights, lit);
+}
+#else
+void direct_irradiance(const LightTable& lights, LitPoints& lit) {
+  for (size_t i = 0; i < lit.count; ++i) {
+    const vec3 p(lit.px[i], lit.py[i], lit.pz[i]), n(lit.nx[i], lit.ny[i], lit.nz[i]);
+    vec3 e(0.0f);
+    for (const PointLight& light : lights.points) e += point_light_irradiance(light, p, n);
+    for (const LightTable::Area& a : lights.areas) {
+      vec3 sum(0.0f);
+      for (size_t k = 0; k < a.x.size(); ++k) {  // area_light_sample_irradiance with the table's values
+        const vec3 to_light = vec3(a.x[k], a.y[k], a.z[k]) - p;
+        const float r2 = glm::dot(to_light, to_light);
+        const float r = std::sqrt(r2);
+        const float cs = glm::dot(n, to_light) / r, cl = -glm::dot(a.normal, to_light) / r;
+        const bool keep = !(r2 <= 0.0f) && !(cs <= 0.0f) && !(cl <= 0.0f);
+        sum += keep ? a.radiance * (cs * cl / r2 * a.area) : vec3(0.0f);
+      }
+      e += sum / lights.samples;
+    }
+    lit.ex[i] = e.x, lit.ey[i] = e.y, lit.ez[i] = e.z;
+  }
+}
+#endif
+
+// The G-buffer images prepare_reflection_frame rasterizes into, kept between calls (the
+// rasterizer reuses an image of the right size in place): no fresh pages per frame. At most
+// kPooledGBuffers of at most kPooledSamples samples each (12 bytes a sample), so the pool
+// holds ≤ 100 MB whatever sizes a program renders.
+constexpr size_t kPooledGBuffers = 2;
+constexpr size_t kPooledSamples = size_t(2048) * 2048;
+std::mutex g_gbuffer_mutex;
+std::vector<RasterImages> g_gbuffers;
+
+RasterImages take_gbuffer() {
+  std::lock_guard<std::mutex> lock(g_gbuffer_mutex);
+  if (g_gbuffers.empty()) return {};
+  RasterImages g = std::move(g_gbuffers.back());
+  g_gbuffers.pop_back();
+  return g;
+}
+
+void return_gbuffer(RasterImages&& g) {
+  if (size_t(g.triangle.width()) * size_t(g.triangle.height()) > kPooledSamples) return;
+  std::lock_guard<std::mutex> lock(g_gbuffer_mutex);
+  if (g_gbuffers.size() < kPooledGBuffers) g_gbuffers.push_back(std::move(g));
+}
+
+// Row y of `base`: per pixel what shade_reflected_point (or the environment) gives along the
+// view ray — the point lights and area-light stratum centres four pixels at a time.
+void shade_base_row(const Scene& scene, const RasterImages& g, const ViewRays& view, const LightTable& lights, int y,
+                    LitPoints& lit, std::vector<ShadingTerms>& terms, std::vector<uint32_t>& lit_x, ImageF& base) {
+  const int sw = g.triangle.width();
+  const uint32_t* tri = &g.triangle.at(0, y);
+  const float* bary = &g.barycentric.at(0, y);
+  float* out = &base.at(0, y);
+  lit.clear();
+  lit_x.clear();
+  terms.clear();
+  uint32_t cached = kNoTriangle;
+  vec3 cached_ng(0.0f);
+  for (int x = 0; x < sw; ++x) {
+    const uint32_t t = tri[x];
+    const vec3 dir = view.dir(x, y);
+    if (t == kNoTriangle) {
+      const vec3 c = environment_radiance(scene.environment, dir);
+      out[3 * x] = c.x, out[3 * x + 1] = c.y, out[3 * x + 2] = c.z;
+      continue;
+    }
+    const float u = bary[2 * x], v = bary[2 * x + 1];
+    if (t != cached) cached = t, cached_ng = triangle_normal(scene, t);
+    // facing(): the two-sided surface seen from −dir.
+    const vec3 toward = -dir;
+    vec3 ng = cached_ng;
+    if (glm::dot(ng, toward) < 0.0f) ng = -ng;
+    vec3 n = shading_normal(scene, t, u, v);
+    if (glm::dot(n, ng) < 0.0f) n = -n;
+    const Material& m = scene.materials[scene.triangle_material[t]];
+    ShadingTerms st;
+    st.emission = m.emission;
+    st.ambient = scene.ambient;
+    st.albedo = surface_diffuse(scene, t, u, v);
+    st.specular = m.specular;
+    if (m.specular < 1.0f && st.albedo != vec3(0.0f)) {
+      lit.add(triangle_point(scene, t, u, v), n);
+      lit_x.push_back(uint32_t(x));
+      terms.push_back(st);
+      continue;
+    }
+    const vec3 c = combine_shading(st);
+    out[3 * x] = c.x, out[3 * x + 1] = c.y, out[3 * x + 2] = c.z;
+  }
+  direct_irradiance(lights, lit);
+  for (size_t i = 0; i < lit_x.size(); ++i) {
+    terms[i].direct_irradiance = vec3(lit.ex[i], lit.ey[i], lit.ez[i]);
+    const vec3 c = combine_shading(terms[i]);
+    const size_t x = lit_x[i];
+    out[3 * x] = c.x, out[3 * x + 1] = c.y, out[3 * x + 2] = c.z;
+  }
+}
+
+}  // namespace
+
 ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camera, const ReflectionOptions& options,
                                          std::span<const Bounds3> object_bounds) {
   validate(options);
@@ -95,38 +393,37 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
   frame.scene_diagonal = std::max(scene_bounds(scene).diagonal(), 1e-3f);
   const float epsilon = kReflectionRayOffset * frame.scene_diagonal;
 
-  // Step 1: G-buffer from e.
+  // Step 1: G-buffer from e (the object id is scene.triangle_object of the triangle).
   RasterOptions ro;
-  ro.outputs = kRasterDepth | kRasterTriangle | kRasterBarycentric | kRasterObject;
+  ro.outputs = kRasterTriangle | kRasterBarycentric;
   ro.object_bounds = object_bounds;
-  RasterImages g = rasterize(scene, frame.sample_camera, ro);
+  RasterImages g = take_gbuffer();
+  rasterize(scene, frame.sample_camera, ro, g, AcceptAllFragments{});
   const int sw = frame.sample_camera.width, sh = frame.sample_camera.height;
-  const Camera& sc = frame.sample_camera;
+  const ViewRays view(frame.sample_camera);
+  const LightTable lights(scene, options.area_light_samples);
   frame.base = ImageF(sw, sh, 3, 0.0f);
   parallel_for(size_t(sh), 8, [&](size_t y0, size_t y1) {
-    for (int y = int(y0); y < int(y1); ++y)
-      for (int x = 0; x < sw; ++x) {
-        uint32_t t = g.triangle.at(x, y);
-        vec3 dir = ray_through(sc, vec2(float(x) + 0.5f, float(y) + 0.5f)).dir;
-        vec3 c = t == kNoTriangle ? environment_radiance(scene.environment, dir)
-                                  : shade_reflected_point(scene, t, g.barycentric.at(x, y, 0),
-                                                          g.barycentric.at(x, y, 1), -dir, options.area_light_samples);
-        for (int ch = 0; ch < 3; ++ch) frame.base.at(x, y, ch) = c[ch];
-      }
+    LitPoints lit;
+    std::vector<ShadingTerms> terms;
+    std::vector<uint32_t> lit_x;
+    for (int y = int(y0); y < int(y1); ++y) shade_base_row(scene, g, view, lights, y, lit, terms, lit_x, frame.base);
   });
 
   // Reflective samples in row-major order, and their ray counts.
-  for (int y = 0; y < sh; ++y)
+  for (int y = 0; y < sh; ++y) {
+    const uint32_t* tri = &g.triangle.at(0, y);
     for (int x = 0; x < sw; ++x) {
-      uint32_t t = g.triangle.at(x, y);
+      const uint32_t t = tri[x];
       if (t == kNoTriangle) continue;
       const Material& m = scene.materials[scene.triangle_material[t]];
       if (!m.reflective()) continue;
       frame.pixel.push_back(uint32_t(y) * uint32_t(sw) + uint32_t(x));
-      frame.reflector.push_back(g.object.at(x, y));
+      frame.reflector.push_back(scene.triangle_object[t]);
       frame.specular.push_back(m.specular);
       frame.gloss.push_back(m.gloss);
     }
+  }
   const size_t n = frame.pixel.size();
   frame.first_ray.assign(n + 1, 0);
   for (size_t i = 0; i < n; ++i)
@@ -144,7 +441,7 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
       const int x = int(frame.pixel[i] % uint32_t(sw)), y = int(frame.pixel[i] / uint32_t(sw));
       const uint32_t t = g.triangle.at(x, y);
       const float u = g.barycentric.at(x, y, 0), v = g.barycentric.at(x, y, 1);
-      const vec3 dir = glm::normalize(ray_through(sc, vec2(float(x) + 0.5f, float(y) + 0.5f)).dir);
+      const vec3 dir = glm::normalize(view.dir(x, y));
       const Facing f = facing(scene, t, u, v, -dir);
       frame.position[i] = triangle_point(scene, t, u, v);
       frame.normal[i] = f.n;
@@ -167,6 +464,7 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
       }
     }
   });
+  return_gbuffer(std::move(g));
   frame.ms = watch.elapsed_ms();
   return frame;
 }
@@ -221,22 +519,38 @@ void trace_reflection_samples(const Scene& scene, const RayScene& rays, const Re
 }
 
 ImageF compose_reflections(const ReflectionFrame& frame, std::span<const vec3> reflected) {
+  const int k = frame.supersample, w = frame.camera.width, h = frame.camera.height;
+  const int sw = frame.sample_camera.width;
+  ImageF out(w, h, 3);
+  if (k == 1) {
+    // The box filter over one sample: (0 + sample) / 1, i.e. the sample with −0 made +0.
+    const float* base = frame.base.data().data();
+    float* o = out.data().data();
+    parallel_for(size_t(h), 16, [&](size_t y0, size_t y1) {
+      for (size_t j = y0 * size_t(w) * 3; j < y1 * size_t(w) * 3; ++j) o[j] = 0.0f + base[j];
+    });
+    for (size_t i = 0; i < frame.sample_count(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        const size_t j = 3 * size_t(frame.pixel[i]) + size_t(c);
+        o[j] = 0.0f + (base[j] + frame.specular[i] * reflected[i][c]);
+      }
+    return out;
+  }
   ImageF samples = frame.base;
   for (size_t i = 0; i < frame.sample_count(); ++i) {
-    const int sw = frame.sample_camera.width;
     const int x = int(frame.pixel[i] % uint32_t(sw)), y = int(frame.pixel[i] / uint32_t(sw));
     for (int c = 0; c < 3; ++c) samples.at(x, y, c) += frame.specular[i] * reflected[i][c];
   }
-  const int k = frame.supersample, w = frame.camera.width, h = frame.camera.height;
-  ImageF out(w, h, 3, 0.0f);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      for (int c = 0; c < 3; ++c) {
-        float sum = 0.0f;
-        for (int j = 0; j < k; ++j)
-          for (int i = 0; i < k; ++i) sum += samples.at(x * k + i, y * k + j, c);
-        out.at(x, y, c) = sum / float(k * k);
-      }
+  parallel_for(size_t(h), 8, [&](size_t y0, size_t y1) {
+    for (int y = int(y0); y < int(y1); ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 3; ++c) {
+          float sum = 0.0f;
+          for (int j = 0; j < k; ++j)
+            for (int i = 0; i < k; ++i) sum += samples.at(x * k + i, y * k + j, c);
+          out.at(x, y, c) = sum / float(k * k);
+        }
+  });
   return out;
 }
 

@@ -64,7 +64,7 @@ struct ReflectionFrame {
   size_t sample_count() const { return pixel.size(); }
 };
 
-// Rasterizes the G-buffer (depth, triangle, barycentrics, normal, object) from `camera` at
+// Rasterizes the G-buffer (triangle and barycentrics per sample) from `camera` at
 // k× resolution and builds every reflection ray exactly as render_reference does at its
 // first bounce: mirror r = reflect(d, n), lobe directions glossy_lobe_direction() from the
 // same stratified samples of the same per-sub-sample stream (unless lobe_seed_cell > 0). `object_bounds` as in
