@@ -83,9 +83,15 @@ def main():
     print(f"scene {args.scene}: {scene.triangle_count} triangles; {args.rays} random rays from inside its "
           f"bounds; threads {proxima.threads()} (of {proxima.hardware_threads()}); load average "
           f"{' '.join(f'{x:.2f}' for x in os.getloadavg())}; {args.reps} interleaved repetitions")
-    print(f"agreement: same triangle id {100 * same_id:.4f} % of rays, hit fraction "
-          f"{100 * np.mean(a['triangle'] >= 0):.2f} %, max relative t difference {t_diff:.2e}, "
-          f"max normal difference {n_diff:.2e}")
+    print(f"agreement: same triangle id {100 * same_id:.4f} % of rays; hits: proxima "
+          f"{100 * np.mean(a['triangle'] >= 0):.2f} %, Open3D {100 * np.mean(b_ids >= 0):.2f} %; over rays "
+          f"both hit: max relative t difference {t_diff:.2e}, max normal difference {n_diff:.2e}")
+    if np.mean(b_ids >= 0) < 0.5 * np.mean(a["triangle"] >= 0):
+        # Debian's python3-open3d 0.16 with Debian's Embree 3.13 (built with EMBREE_RAY_MASK
+        # ON) leaves the ray mask 0, so every ray misses: its times are then those of a query
+        # that finds nothing, not a valid baseline.
+        print("WARNING: Open3D misses where proxima hits: its cast is broken here (ray mask?); the "
+              "comparison below is not valid", file=sys.stderr)
     print()
     print("| | BVH build (s) | cast median (ms) | Mrays/s | min (ms) | max (ms) |")
     print("| --- | --- | --- | --- | --- | --- |")
