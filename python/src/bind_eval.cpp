@@ -97,6 +97,7 @@ void bind_eval(py::module_& m) {
       "write_png",
       [](const std::string& path, py::handle image_obj) {
         const ImageF image = checked_image(image_obj, "image", 1);
+        if (image.channels() == 2) fail_input("image: expected 1, 3 or 4 channels, got " + describe(image_obj));
         py::gil_scoped_release release;
         write_png_linear(path, image);
       },

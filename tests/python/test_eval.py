@@ -80,3 +80,7 @@ def test_missing_and_bad_files(tmp_path):
         proxima.read_exr(str(bad))
     with pytest.raises(ValueError, match="image"):
         proxima.write_exr(str(tmp_path / "x.exr"), np.zeros((2, 2, 5), np.float32))
+    with pytest.raises(ValueError, match="1, 3 or 4 channels"):
+        proxima.write_png(str(tmp_path / "x.png"), np.zeros((2, 2, 2), np.float32))
+    with pytest.raises(ValueError, match="does not exist"):
+        proxima.write_exr(str(tmp_path / "no" / "x.exr"), np.zeros((2, 2, 3), np.float32))
