@@ -11,12 +11,7 @@
 #include "proxima/core/atomic_file.h"
 #include "proxima/core/error.h"
 
-#ifndef PROXIMA_COMMIT
-#define PROXIMA_COMMIT "unknown"
-#endif
-#ifndef PROXIMA_BUILD_TYPE
-#define PROXIMA_BUILD_TYPE "unknown"
-#endif
+#include "proxima_build_info.h"
 
 namespace proxima {
 
