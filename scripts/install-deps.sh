@@ -18,6 +18,8 @@ packages=(
   # `proxima view` (issue 12): the SDL2 window (optional at build time: without it the
   # viewer exits 2), and Xvfb + xauth so its screenshot tests run without a display.
   libsdl2-dev xvfb xauth
+  # `proxima sweep` over MPI ranks (PROXIMA_MPI) and its mpirun tests.
+  libopenmpi-dev openmpi-bin
 )
 for arg in "$@"; do
   case "$arg" in
