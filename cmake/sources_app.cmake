@@ -14,6 +14,7 @@ set(PROXIMA_APP_SOURCES
   apps/proxima/cmd_sample.cpp
   apps/proxima/cmd_scenes.cpp
   apps/proxima/cmd_shadows.cpp
+  apps/proxima/cmd_sweep.cpp
   apps/proxima/cmd_view.cpp
   apps/proxima/cmd_visibility.cpp
   apps/proxima/command.cpp
@@ -25,3 +26,6 @@ set(PROXIMA_APP_SOURCES
 # The window of `proxima view`: one of the two, by whether SDL2 is found.
 set(PROXIMA_APP_WINDOW_SDL_SOURCES apps/proxima/sdl/view_window_sdl.cpp)
 set(PROXIMA_APP_WINDOW_NONE_SOURCES apps/proxima/sdl/view_window_none.cpp)
+# The MPI transport of `proxima sweep`: one of the two, by whether MPI is found (PROXIMA_MPI).
+set(PROXIMA_APP_MPI_SOURCES apps/proxima/mpi/sweep_mpi.cpp)
+set(PROXIMA_APP_NO_MPI_SOURCES apps/proxima/mpi/sweep_no_mpi.cpp)

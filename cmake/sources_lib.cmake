@@ -93,6 +93,9 @@ set(PROXIMA_LIB_SOURCES
   src/study/temporal_reflect.cpp
   src/study/trace_bench.cpp
   src/study/visibility.cpp
+  src/sweep/item.cpp
+  src/sweep/manifest.cpp
+  src/sweep/sweep.cpp
   src/trace/direct_light.cpp
   src/trace/ray_batch.cpp
   src/trace/ray_scene.cpp

@@ -21,6 +21,8 @@ packages=(
   # The Python module (cmake/python.cmake, docs/python.md) and its pytest suite, for
   # Debian's /usr/bin/python3; matplotlib for examples/python.
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib
+  # `proxima sweep` over MPI ranks (PROXIMA_MPI) and its mpirun tests.
+  libopenmpi-dev openmpi-bin
 )
 for arg in "$@"; do
   case "$arg" in

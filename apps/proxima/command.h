@@ -84,5 +84,6 @@ Command register_view(CLI::App& root);
 Command register_bench_view(CLI::App& bench);  // `bench view`, cmd_bench_view.cpp
 Command register_gibr(CLI::App& root);
 Command register_results(CLI::App& root);  // cmd_results.cpp
+Command register_sweep(CLI::App& root);    // cmd_sweep.cpp
 
 }  // namespace proxima::cli

@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
       cli::register_view(root),
       cli::register_gibr(root),
       cli::register_results(root),
+      cli::register_sweep(root),
   };
   try {
     root.parse(argc, argv);

@@ -160,7 +160,10 @@ struct Codec<std::vector<E>> {
   static constexpr const char* type = "string";
   static OptionValue to(const std::vector<E>& list) {
     std::string text;
-    for (E e : list) text += (text.empty() ? "" : ",") + std::get<std::string>(Codec<E>::to(e));
+    for (E e : list) {
+      if (!text.empty()) text += ',';
+      text += std::get<std::string>(Codec<E>::to(e));
+    }
     return text;
   }
   static std::vector<E> from(const OptionValue& v, const std::string& name) {

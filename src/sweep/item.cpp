@@ -1,0 +1,188 @@
+#include "proxima/sweep/item.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <system_error>
+#include <variant>
+
+#include <nlohmann/json.hpp>
+
+#include "proxima/core/atomic_file.h"
+#include "proxima/core/error.h"
+#include "proxima/core/parallel.h"
+#include "proxima/core/timer.h"
+#include "proxima/eval/results.h"
+#include "proxima/scene/load.h"
+
+namespace proxima::sweep {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// JSON of an option value; infinities as "inf" / "-inf" (JSON has none).
+json value_json(const study::OptionValue& v) {
+  return std::visit(
+      [&](const auto& x) -> json {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, double>)
+          if (std::isinf(x)) return study::option_text(v);
+        return x;
+      },
+      v);
+}
+
+// What identifies an item's work: a stored item counts as finished only for the same one.
+json item_identity(const SweepItem& item) {
+  json options = json::object();
+  for (const auto& [name, value] : study::resolved_options(item.study, item.options)) options[name] = value_json(value);
+  return {{"id", item.id}, {"scene", item.scene}, {"study", item.study}, {"options", options}};
+}
+
+// The item as a command-like line for its results.json: study, scene, the options given.
+std::vector<std::string> item_command(const SweepItem& item) {
+  std::vector<std::string> c{"study=" + item.study, "scene=" + item.scene};
+  for (const auto& [name, value] : item.options) c.push_back(name + "=" + study::option_text(value));
+  return c;
+}
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path.string() + ": cannot read");
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void write_bytes(const fs::path& path, const std::string& bytes) {
+  fs::create_directories(path.parent_path());
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+}
+
+ItemFiles read_dir(const fs::path& dir) {
+  ItemFiles files;
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) files.files.emplace_back(fs::relative(e.path(), dir).generic_string(), read_bytes(e.path()));
+  std::sort(files.files.begin(), files.files.end());
+  return files;
+}
+
+void put_u64(std::string& out, uint64_t v) { out.append(reinterpret_cast<const char*>(&v), sizeof v); }
+
+uint64_t get_u64(std::string_view in, size_t& at) {
+  if (in.size() - at < sizeof(uint64_t)) throw std::runtime_error("sweep: truncated item pack");
+  uint64_t v;
+  std::memcpy(&v, in.data() + at, sizeof v);
+  at += sizeof v;
+  return v;
+}
+
+std::string get_bytes(std::string_view in, size_t& at) {
+  const uint64_t n = get_u64(in, at);
+  if (in.size() - at < n) throw std::runtime_error("sweep: truncated item pack");
+  std::string s(in.substr(at, n));
+  at += n;
+  return s;
+}
+
+ItemStatus status_of(const json& record) {
+  ItemStatus s;
+  s.state = record.value("status", std::string()) == "ok" ? ItemState::Ok : ItemState::Failed;
+  s.error = record.value("error", std::string());
+  s.seconds = record.value("seconds", 0.0);
+  return s;
+}
+
+}  // namespace
+
+std::string pack_item(const ItemFiles& files) {
+  std::string out;
+  put_u64(out, files.files.size());
+  for (const auto& [name, bytes] : files.files) {
+    put_u64(out, name.size());
+    out += name;
+    put_u64(out, bytes.size());
+    out += bytes;
+  }
+  return out;
+}
+
+ItemFiles unpack_item(std::string_view packed) {
+  size_t at = 0;
+  ItemFiles files;
+  const uint64_t n = get_u64(packed, at);
+  for (uint64_t i = 0; i < n; ++i) {
+    std::string name = get_bytes(packed, at);
+    std::string bytes = get_bytes(packed, at);
+    if (name.empty() || name.front() == '/' || name.find("..") != std::string::npos)
+      throw std::runtime_error("sweep: bad file name in item pack: " + name);
+    files.files.emplace_back(std::move(name), std::move(bytes));
+  }
+  if (at != packed.size()) throw std::runtime_error("sweep: trailing bytes in item pack");
+  return files;
+}
+
+ItemFiles run_item(const SweepItem& item, const fs::path& scratch) {
+  const fs::path dir = scratch / item.id;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  json record = item_identity(item);
+  Stopwatch watch;
+  try {
+    const Scene scene = load_scene(item.scene);
+    Results results = study::run_study(item.study, scene, item.options, study::StudyOutput{dir});
+    results.command = item_command(item);
+    results.threads = active_threads();
+    write_results_json(dir / "results.json", results);
+    record["status"] = "ok";
+  } catch (const std::exception& e) {
+    // Nothing half-written: a failed item is its record alone.
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    record["status"] = "failed";
+    record["error"] = e.what();
+  }
+  record["seconds"] = watch.elapsed_ms() / 1000.0;
+  write_text_file(dir / "item.json", record.dump(2) + "\n");
+  ItemFiles files = read_dir(dir);
+  fs::remove_all(dir);
+  return files;
+}
+
+void store_item(const fs::path& out, const SweepItem& item, const ItemFiles& files) {
+  const fs::path items = out / "items";
+  const fs::path final_dir = items / item.id;
+  const fs::path tmp = items / ("." + item.id + ".tmp");
+  fs::remove_all(tmp);
+  fs::create_directories(tmp);
+  for (const auto& [name, bytes] : files.files) write_bytes(tmp / name, bytes);
+  fs::remove_all(final_dir);
+  fs::rename(tmp, final_dir);
+}
+
+ItemStatus stored_item(const fs::path& out, const SweepItem& item) {
+  std::ifstream in(out / "items" / item.id / "item.json");
+  if (!in) return {};
+  const json record = json::parse(in, nullptr, false);
+  if (record.is_discarded() || !record.is_object()) return {};
+  const json identity = item_identity(item);
+  for (const auto& [key, value] : identity.items())
+    if (!record.contains(key) || record[key] != value) return {};
+  return status_of(record);
+}
+
+ItemStatus item_status(const ItemFiles& files) {
+  for (const auto& [name, bytes] : files.files)
+    if (name == "item.json") {
+      const json record = json::parse(bytes, nullptr, false);
+      if (!record.is_discarded()) return status_of(record);
+    }
+  return {ItemState::Failed, "item.json missing", 0.0};
+}
+
+}  // namespace proxima::sweep
