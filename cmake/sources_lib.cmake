@@ -94,6 +94,7 @@ set(PROXIMA_LIB_SOURCES
   src/study/trace_bench.cpp
   src/study/visibility.cpp
   src/trace/direct_light.cpp
+  src/trace/ray_batch.cpp
   src/trace/ray_scene.cpp
   src/trace/reference_renderer.cpp
   src/viewer/bitmap_font.cpp

@@ -18,6 +18,9 @@ packages=(
   # `proxima view` (issue 12): the SDL2 window (optional at build time: without it the
   # viewer exits 2), and Xvfb + xauth so its screenshot tests run without a display.
   libsdl2-dev xvfb xauth
+  # The Python module (cmake/python.cmake, docs/python.md) and its pytest suite, for
+  # Debian's /usr/bin/python3; matplotlib for examples/python.
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib
 )
 for arg in "$@"; do
   case "$arg" in

@@ -47,7 +47,7 @@ uint8_t to_byte(float v) {
 // Devices and FIFOs would block or never end; only regular files are images.
 void check_regular_file(const fs::path& path) {
   std::error_code ec;
-  if (!fs::exists(path, ec)) fail_input(path.string() + ": no such file");
+  if (!fs::exists(path, ec)) fail_missing_file(path.string() + ": no such file");
   if (!fs::is_regular_file(path, ec)) fail_input(path.string() + ": not a regular file");
 }
 

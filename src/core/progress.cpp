@@ -48,6 +48,10 @@ void Progress::step(const std::string& what) {
 }
 
 void Progress::draw(const std::string& what) {
+  if (listener_) {
+    listener_({stage_, what, done_, steps_, watch_.elapsed_ms() / 1000.0});
+    return;
+  }
   // The step about to run is counted as not done yet.
   const std::string line = progress_line(stage_, what, done_, steps_, watch_.elapsed_ms() / 1000.0,
                                          terminal_ ? 24 : 0);
@@ -58,6 +62,11 @@ void Progress::draw(const std::string& what) {
 
 void Progress::end() {
   if (done_ < 0) return;
+  if (listener_) {
+    done_ = -1;  // closed first: a listener that throws leaves no stage open for the destructor
+    listener_({stage_, "done", steps_, steps_, watch_.elapsed_ms() / 1000.0});
+    return;
+  }
   const std::string line = progress_line(stage_, "done", steps_, steps_, watch_.elapsed_ms() / 1000.0,
                                          terminal_ ? 24 : 0);
   std::fprintf(out_, terminal_ ? "\r\033[K%s\n" : "%s\n", line.c_str());

@@ -507,8 +507,10 @@ void resolve_tile(const Frame& frame, const Tile& tile, const TileBuffer& buffer
       const size_t i = row + size_t(k);
       const uint32_t t = buffer.id[i];
       if (object_row) object_row[k] = t == kNoTriangle ? kNoObject : scene.triangle_object[t];
-      const float u = t == kNoTriangle ? 0.0f : buffer.u[i];
-      const float v = t == kNoTriangle ? 0.0f : buffer.v[i];
+      // The tile holds (u, v) only when an output needs them (not for objects alone).
+      const bool uv = t != kNoTriangle && !buffer.u.empty();
+      const float u = uv ? buffer.u[i] : 0.0f;
+      const float v = uv ? buffer.v[i] : 0.0f;
       if (bary_row) {
         bary_row[2 * k] = u;
         bary_row[2 * k + 1] = v;

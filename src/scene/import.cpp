@@ -472,7 +472,7 @@ void check_imported_meshes(const std::string& file, const aiScene& ai) {
 Scene import_assimp(const fs::path& path) {
   const std::string file = path.string();
   std::error_code ec;
-  if (!fs::exists(path, ec)) fail_input(file + ": no such file");
+  if (!fs::exists(path, ec)) fail_missing_file(file + ": no such file");
   if (!fs::is_regular_file(path, ec)) fail_input(file + ": not a regular file");
 
   check_extension(path);

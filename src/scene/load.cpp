@@ -28,7 +28,7 @@ Scene load_unsanitized(const std::string& name_or_path) {
     std::string names;
     for (const BuiltinSceneInfo& b : builtin_scenes())
       names += (names.empty() ? "" : ", ") + b.name;
-    fail_input("no such scene or file: " + name_or_path + " (built-in scenes: " + names + ")");
+    fail_missing_file("no such scene or file: " + name_or_path + " (built-in scenes: " + names + ")");
   }
   const std::string ext = lowercase_extension(path);
   return ext == ".json" ? load_scene_file(path) : import_mesh_file(path);

@@ -1,6 +1,8 @@
 #include "proxima/core/progress.h"
 
 #include <cstdio>
+#include <stdexcept>
+#include <vector>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -33,6 +35,39 @@ TEST(Progress, PlainLinesWhenNotATerminal) {
   EXPECT_NE(text.find("stage 0/2 a"), std::string::npos) << text;
   EXPECT_NE(text.find("stage 1/2 b"), std::string::npos) << text;
   EXPECT_NE(text.find("stage 2/2 done"), std::string::npos) << text;
+}
+
+TEST(Progress, ListenerHearsEveryStepAndTheEnd) {
+  std::vector<ProgressEvent> events;
+  {
+    Progress p([&](const ProgressEvent& e) { events.push_back(e); });
+    p.begin("stage", 2);
+    p.step("a");
+    p.step("b");
+  }  // the destructor ends the stage
+  ASSERT_EQ(events.size(), 3u);
+  EXPECT_EQ(events[0].stage, "stage");
+  EXPECT_EQ(events[0].what, "a");
+  EXPECT_EQ(events[0].done, 0);
+  EXPECT_EQ(events[1].done, 1);
+  EXPECT_EQ(events[2].what, "done");
+  EXPECT_EQ(events[2].done, 2);
+  EXPECT_EQ(events[2].total, 2);
+}
+
+TEST(Progress, ListenerExceptionPropagatesAndClosesTheStage) {
+  int calls = 0;
+  {
+    Progress p([&](const ProgressEvent&) {
+      ++calls;
+      throw std::runtime_error("stop");
+    });
+    p.begin("stage", 3);
+    EXPECT_THROW(p.step("a"), std::runtime_error);
+    EXPECT_THROW(p.end(), std::runtime_error);
+    p.end();  // closed: no further call
+  }  // nor from the destructor
+  EXPECT_EQ(calls, 2);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
 #include "proxima/core/rng.h"
+#include "proxima/scene/builtin_scenes.h"
 
 namespace proxima {
 namespace {
@@ -524,6 +525,26 @@ TEST(Rasterizer, KeepsAllHookGivesTheTestedResult) {
     EXPECT_TRUE(h->barycentric == tested.barycentric);
     EXPECT_TRUE(h->diffuse == tested.diffuse);
   }
+}
+
+// Object ids without barycentrics, normals or diffuse: the tiles then hold no (u, v).
+TEST(Rasterizer, ObjectIdsAloneFollowTheTriangleIds) {
+  const Scene scene = make_builtin_scene("cornell");
+  Camera cam = scene.cameras.at(0).camera;
+  cam.width = 96;
+  cam.height = 64;
+  RasterOptions objects_only;
+  objects_only.outputs = kRasterObject;
+  const RasterImages a = rasterize(scene, cam, objects_only);
+  const RasterImages b = rasterize(scene, cam);
+  ASSERT_EQ(a.object.pixel_count(), b.triangle.pixel_count());
+  size_t covered = 0;
+  for (size_t i = 0; i < a.object.data().size(); ++i) {
+    const uint32_t t = b.triangle.data()[i];
+    covered += t != kNoTriangle;
+    EXPECT_EQ(a.object.data()[i], t == kNoTriangle ? kNoObject : scene.triangle_object[t]) << i;
+  }
+  EXPECT_GT(covered, 0u);
 }
 
 }  // namespace

@@ -24,6 +24,11 @@ TEST(LoadTest, UnknownNameListsBuiltinScenes) {
     EXPECT_NE(msg.find(b.name), std::string::npos) << msg;
 }
 
+TEST(LoadTest, MissingFileIsMissingFileError) {
+  EXPECT_THROW(load_scene("/nonexistent/dir/scene.obj"), MissingFileError);
+  EXPECT_THROW(load_scene("/nonexistent/dir/scene.json"), MissingFileError);
+}
+
 TEST(LoadTest, BuiltinSceneByName) {
   const std::vector<BuiltinSceneInfo> builtins = builtin_scenes();
   ASSERT_FALSE(builtins.empty());

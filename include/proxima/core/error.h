@@ -15,4 +15,13 @@ class InputError : public std::runtime_error {
 
 [[noreturn]] inline void fail_input(const std::string& message) { throw InputError(message); }
 
+// Bad input that is a file which does not exist: exit code 2 like any InputError; the Python
+// module raises FileNotFoundError for it.
+class MissingFileError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+[[noreturn]] inline void fail_missing_file(const std::string& message) { throw MissingFileError(message); }
+
 }  // namespace proxima

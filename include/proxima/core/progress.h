@@ -4,7 +4,9 @@
 #pragma once
 
 #include <cstdio>
+#include <functional>
 #include <string>
+#include <utility>
 
 #include "proxima/core/timer.h"
 
@@ -18,12 +20,31 @@ std::string format_duration(double seconds);
 std::string progress_line(const std::string& stage, const std::string& what, int done, int total,
                           double elapsed_s, int bar_width);
 
+// One report of a Progress: step `done` of `total` of `stage` is about to run (`what`), or
+// the stage is over (done == total, what == "done").
+struct ProgressEvent {
+  std::string stage;
+  std::string what;
+  int done = 0;
+  int total = 0;
+  double elapsed_s = 0.0;
+};
+using ProgressListener = std::function<void(const ProgressEvent&)>;
+
 class Progress {
  public:
   // A bar when `out` is a terminal, plain lines otherwise.
   explicit Progress(std::FILE* out = stderr);
   Progress(std::FILE* out, bool terminal) : out_(out), terminal_(terminal) {}
-  ~Progress() { end(); }
+  // Reports every step and stage end to `listener` instead of a file (the Python module's
+  // progress callbacks). An exception from the listener propagates out of step()/end().
+  explicit Progress(ProgressListener listener) : out_(nullptr), terminal_(false), listener_(std::move(listener)) {}
+  ~Progress() {
+    try {
+      end();
+    } catch (...) {  // a listener's exception cannot leave a destructor
+    }
+  }
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
 
@@ -38,6 +59,7 @@ class Progress {
 
   std::FILE* out_;
   bool terminal_;
+  ProgressListener listener_;
   std::string stage_;
   int steps_ = 0, done_ = -1;  // done_ = -1: no stage open
   Stopwatch watch_;
