@@ -100,3 +100,28 @@ def test_temporal_bad_input(room):
         proxima.TemporalReflections(room, threshold=2.0)
     with pytest.raises(ValueError, match="edge-rule"):
         proxima.TemporalReflections(room, edge_rule="nope")
+
+
+def test_cluster_equals_study(room):
+    """One camera: the clusters, texels, triangles drawn and occlusion errors of the study
+    (`proxima reflect --method cluster --compare`) on the same camera and settings."""
+    w, h = 64, 48
+    r = proxima.cluster_reflections(room, room.camera(width=w, height=h), reference=True)
+    assert r["color"].shape == (h, w, 3) and r["color"].dtype == np.float32
+    assert r["reference"].shape == (h, w, 3) and r["reference"].dtype == np.float32
+    st = r["stats"]
+    assert st["clusters"] > 0 and st["reflective_samples"] > 0
+    # only the reflections differ: identical where the frame shows no reflective surface
+    assert np.count_nonzero(np.any(r["color"] != r["reference"], axis=-1)) <= st["reflective_samples"]
+    m = proxima.study.cluster_reflect(room, compare=True, width=w, height=h)["metrics"]
+    assert st["clusters"] == m["clusters_avg"]
+    assert st["texels"] == m["texels_avg"]
+    assert st["triangles_drawn"] == m["triangles_drawn_avg"]
+    assert st["shaded_texels"] == m["shaded_texels_avg"]
+    assert 100.0 * st["env_fallback_samples"] / st["reflective_samples"] == m["env_fallback_pct_avg"]
+    assert 100.0 * st["occlusion_error_samples"] / st["reflective_samples"] == m["occlusion_error_pct_avg"]
+
+
+def test_cluster_bad_input(room):
+    with pytest.raises(ValueError, match="--ss"):
+        proxima.cluster_reflections(room, room.camera(width=8, height=8), supersample=0)
