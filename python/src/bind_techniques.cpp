@@ -1,7 +1,8 @@
 // The techniques on arrays and cameras: env-map reflections (reflect/envmap_reflection.h)
 // with their maps built once per object and any number of cameras rendered from them, and
 // temporal reuse of reflections (reflect/temporal_reuse.h) as an object stepping frames, and
-// cluster reflections (reflect/cluster_reflection.h) per camera.
+// cluster reflections (reflect/cluster_reflection.h) per camera, and depth-image sampling
+// (depthimage/sampling.h) from any cameras.
 #include <memory>
 #include <mutex>
 #include <string>
@@ -11,6 +12,7 @@
 #include "bindings.h"
 #include "proxima/core/camera.h"
 #include "proxima/core/limits.h"
+#include "proxima/core/range_check.h"
 #include "proxima/raster/rasterizer.h"
 #include "proxima/reflect/cluster_reflection.h"
 #include "proxima/reflect/distance_cube_map.h"
@@ -18,6 +20,7 @@
 #include "proxima/reflect/envmap_reflection.h"
 #include "proxima/study/cluster_reflect.h"
 #include "proxima/study/envmap_reflect.h"
+#include "proxima/study/sampling.h"
 #include "proxima/study/temporal_reflect.h"
 #include "scene_handle.h"
 
@@ -363,12 +366,90 @@ void bind_cluster(py::module_& m) {
         "planar_samples; with reference occlusion_error_samples, occlusion_error_rays).");
 }
 
+py::dict sampling_views_py(const SceneHandle& handle, const std::string& camera, int width, int height,
+                           const std::string& views, float radius) {
+  study::SamplingOptions o;
+  o.camera.camera = camera;
+  o.width = width;
+  o.height = height;
+  o.views = parse_view_shape(views, "views");
+  o.radius = radius;
+  o.methods = {study::SamplingMethod::Conventional};
+  study::validate(o, handle.scene());
+  const study::SamplingViews v = study::sampling_views(handle.scene(), o);
+  py::dict out;
+  out["corners"] = v.corners;
+  out["centroid"] = v.centroid;
+  return out;
+}
+
+py::list sample_depth_images_py(const SceneHandle& handle, const std::vector<Camera>& cameras,
+                                const std::string& method, int layers, bool shade) {
+  const study::SamplingMethod m = study::parse_sampling_method(method, "method");
+  if (cameras.empty() || cameras.size() > 64) fail_input("cameras: expected 1..64 cameras");
+  if (m == study::SamplingMethod::Peeling) {
+    if (cameras.size() != 1) fail_input("cameras: peeling samples from one camera");
+    require_in_range(layers, 1, 64, "layers");
+  }
+  for (const Camera& c : cameras) {
+    validate_camera(c, "cameras");
+    check_image_budget("cameras", uint64_t(c.width), uint64_t(c.height), 16);
+  }
+  std::vector<DepthImage> images;
+  {
+    py::gil_scoped_release release;
+    const auto lock = handle.read_lock();
+    const Scene& scene = handle.scene();
+    switch (m) {
+      case study::SamplingMethod::Conventional: images = sample_conventional(scene, cameras, shade); break;
+      case study::SamplingMethod::Peeling: images = sample_peeling(scene, cameras[0], layers, shade); break;
+      case study::SamplingMethod::NrrPixel:
+        images = sample_nrr(scene, cameras, Redundancy::Pixel, &handle.rays(), shade);
+        break;
+      case study::SamplingMethod::NrrVisibility:
+        images = sample_nrr(scene, cameras, Redundancy::Visibility, &handle.rays(), shade);
+        break;
+    }
+  }
+  py::list out;
+  for (DepthImage& image : images) {
+    py::dict d;
+    d["camera"] = image.camera;
+    d["depth"] = image_array(std::move(image.depth));
+    d["id"] = id_image_array(std::move(image.triangle));
+    if (shade) {
+      d["normal"] = image_array(std::move(image.normal));
+      d["color"] = image_array(std::move(image.color));
+    }
+    out.append(d);
+  }
+  return out;
+}
+
+void bind_sampling(py::module_& m) {
+  m.def("sampling_views", &sampling_views_py, py::arg("scene"), py::kw_only(), py::arg("camera") = "",
+        py::arg("width") = 1024, py::arg("height") = 1024, py::arg("views") = "triangle", py::arg("radius") = 0.0f,
+        "The view set of `proxima sample` (docs/depthimage.md): centred on the scene camera `camera` (name or "
+        "index; '' = the first) at width × height, views 'segment', 'triangle' or 'rectangle', corners `radius` "
+        "m from the centre (0 = 8 % of the distance to the scene's centre). Returns a dict: corners (list of "
+        "Camera: conventional and NRR sample from these), centroid (Camera: peeling samples from it).");
+  m.def("sample_depth_images", &sample_depth_images_py, py::arg("scene"), py::arg("cameras"),
+        py::arg("method") = "nrr-pixel", py::kw_only(), py::arg("layers") = 0, py::arg("shade") = true,
+        "Depth images of the scene (rest pose, back faces culled) by `method`: 'conventional' (one per camera), "
+        "'nrr-pixel' / 'nrr-visibility' (non-redundant rendering over the cameras in order: image i keeps "
+        "only fragments not redundant with images 0..i−1), 'peeling' (`layers` layers from the one camera). "
+        "GIL released. Returns a list of dicts, one per image: camera, depth (H×W float32, −z_camera in m, "
+        "+inf where empty), id (H×W int32 triangle id, −1 where empty), and with shade normal (H×W×3 float32, "
+        "unit world normal facing the camera) and color (H×W×3 float32, linear direct light without shadows).");
+}
+
 }  // namespace
 
 void bind_techniques(py::module_& m) {
   bind_envmap(m);
   bind_temporal(m);
   bind_cluster(m);
+  bind_sampling(m);
 }
 
 }  // namespace proxima::python

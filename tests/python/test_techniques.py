@@ -125,3 +125,37 @@ def test_cluster_equals_study(room):
 def test_cluster_bad_input(room):
     with pytest.raises(ValueError, match="--ss"):
         proxima.cluster_reflections(room, room.camera(width=8, height=8), supersample=0)
+
+
+@pytest.mark.parametrize("method", ["conventional", "nrr-pixel", "peeling"])
+def test_depth_images_equal_study_files(cornell, tmp_path, method):
+    """The depth and id images equal, bit for bit, the EXRs the sampling study writes for the
+    same view set."""
+    w = h = 48
+    views = proxima.sampling_views(cornell, width=w, height=h)
+    assert len(views["corners"]) == 3
+    if method == "peeling":
+        images = proxima.sample_depth_images(cornell, [views["centroid"]], method, layers=3)
+    else:
+        images = proxima.sample_depth_images(cornell, views["corners"], method)
+    assert len(images) == 3
+    r = proxima.study.sampling(cornell, out_dir=tmp_path, method=method, width=w, height=h, frames=4, reps=1)
+    for i, image in enumerate(images):
+        assert image["depth"].shape == (h, w) and image["depth"].dtype == np.float32
+        assert image["id"].shape == (h, w) and image["id"].dtype == np.int32
+        assert image["color"].shape == (h, w, 3) and image["normal"].shape == (h, w, 3)
+        depth_file = next(f for role, f in r["images"].items() if role.endswith(f"{i}_depth"))
+        id_file = next(f for role, f in r["images"].items() if role.endswith(f"{i}_id"))
+        assert np.array_equal(proxima.read_exr(str(tmp_path / depth_file)), image["depth"])
+        assert np.array_equal(proxima.read_exr(str(tmp_path / id_file)), image["id"].astype(np.float32))
+    assert (images[0]["id"] >= 0).any()
+
+
+def test_depth_images_bad_input(cornell):
+    cam = cornell.camera(width=8, height=8)
+    with pytest.raises(ValueError, match="method"):
+        proxima.sample_depth_images(cornell, [cam], "nope")
+    with pytest.raises(ValueError, match="layers"):
+        proxima.sample_depth_images(cornell, [cam], "peeling")
+    with pytest.raises(ValueError, match="views"):
+        proxima.sampling_views(cornell, views="nope")
