@@ -3,6 +3,7 @@
 // (study/catalog.h): one per entry, its keyword options and docstring from the entry's
 // option table, so a new study or option needs no binding code.
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -90,6 +91,18 @@ py::dict run(const std::string& name, const SceneHandle& handle, const std::opti
   return results_dict(results);
 }
 
+// A default as Python writes it: 'text', True / False, numbers to float precision.
+std::string default_text(const study::OptionValue& value) {
+  if (const auto* text = std::get_if<std::string>(&value)) return "'" + *text + "'";
+  if (const auto* b = std::get_if<bool>(&value)) return *b ? "True" : "False";
+  if (const auto* d = std::get_if<double>(&value); d && std::isfinite(*d)) {
+    char text[32];  // the float fields' precision: 0.3, not 0.30000001192092896
+    std::snprintf(text, sizeof text, "%.7g", *d);
+    return text;
+  }
+  return study::option_text(value);
+}
+
 // The docstring of one study: its summary, the call, then one line per option with its
 // type, default and meaning.
 std::string study_doc(const study::StudyInfo& info) {
@@ -99,7 +112,7 @@ std::string study_doc(const study::StudyInfo& info) {
                     "in out_dir; empty when out_dir is None, which writes nothing). progress(stage, what, done, "
                     "total) is called as the study advances. Runs with the GIL released.\n\nOptions:\n";
   for (const study::OptionInfo& o : info.options) {
-    doc += "  " + o.name + " (" + o.type + ", default " + study::option_text(o.default_value) + "): " + o.doc;
+    doc += "  " + o.name + " (" + o.type + ", default " + default_text(o.default_value) + "): " + o.doc;
     if (!o.choices.empty()) {
       doc += " [";
       for (size_t i = 0; i < o.choices.size(); ++i) doc += (i ? ", " : "") + o.choices[i];
