@@ -1,10 +1,455 @@
-// The techniques on arrays and cameras (env-map and cluster reflections, temporal reuse,
-// depth-image sampling, reconstruction and soft shadows, visibility maps, GIBR).
+// The techniques on arrays and cameras: env-map reflections (reflect/envmap_reflection.h)
+// with their maps built once per object and any number of cameras rendered from them, and
+// temporal reuse of reflections (reflect/temporal_reuse.h) as an object stepping frames, and
+// cluster reflections (reflect/cluster_reflection.h) per camera, and depth-image sampling
+// (depthimage/sampling.h) from any cameras.
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
 #include "arrays.h"
 #include "bindings.h"
+#include "proxima/core/camera.h"
+#include "proxima/core/limits.h"
+#include "proxima/core/range_check.h"
+#include "proxima/raster/rasterizer.h"
+#include "proxima/reflect/cluster_reflection.h"
+#include "proxima/reflect/distance_cube_map.h"
+#include "proxima/reflect/envmap_lookup.h"
+#include "proxima/reflect/envmap_reflection.h"
+#include "proxima/study/cluster_reflect.h"
+#include "proxima/study/envmap_reflect.h"
+#include "proxima/study/sampling.h"
+#include "proxima/study/temporal_reflect.h"
+#include "scene_handle.h"
 
 namespace proxima::python {
 
-void bind_techniques(py::module_& /*m*/) {}
+namespace {
+
+// The maps of every env-map method around the reflectors' center, built from the scene's
+// rest pose and materials at construction, and the lookup settings of the study's flags.
+class EnvmapReflections {
+ public:
+  EnvmapReflections(std::shared_ptr<SceneHandle> handle, const study::EnvmapReflectOptions& o)
+      : handle_(std::move(handle)) {
+    study::EnvmapReflectOptions all = o;
+    all.compare = true;  // every map: the budget check covers the layers too
+    study::validate(all);
+    const Scene& scene = handle_->scene();
+    reflectors_ = reflective_objects(scene);
+    if (reflectors_.empty()) fail_input("scene: '" + scene.name + "' has no reflective object");
+    py::gil_scoped_release release;
+    const auto lock = handle_->read_lock();
+    const RayScene& rays = handle_->rays();
+    center_ = projection_center(scene, reflectors_);
+    DistanceCubeMapOptions mo;
+    mo.resolution = o.cube_size;
+    mo.area_light_samples = o.light_samples;
+    mo.seed = o.seed;
+    mo.exclude = reflectors_;
+    map_ = render_distance_cube_map(scene, rays, center_, mo);
+    average_distance_ = average_distance(map_, glm::radians(o.angle_step_deg));
+    DistanceCubeLayerOptions lo;
+    lo.layers = o.layers;
+    lo.viewer_radius = viewer_radius(scene, reflectors_, center_);
+    layers_ = render_distance_cube_layers(scene, rays, center_, mo, lo);
+    inputs_ = study::envmap_inputs(scene, o);
+  }
+
+  py::dict render(const Camera& camera, const std::string& method) const {
+    EnvmapInputs in = inputs_;
+    in.method = parse_envmap_method(method, "method");
+    in.map = &map_;
+    in.average_distance = average_distance_;
+    in.layers = layers_;
+    validate_camera(camera, "camera");
+    check_image_budget("camera", uint64_t(camera.width), uint64_t(camera.height), 8);
+    ReflectorPixels pixels;
+    EnvmapFrame frame;
+    {
+      py::gil_scoped_release release;
+      const auto lock = handle_->read_lock();
+      pixels = rasterize_reflector_pixels(handle_->scene(), camera, reflectors_);
+      frame = shade_reflector_pixels(handle_->scene(), handle_->rays(), camera, pixels, in);
+    }
+    py::dict stats;
+    stats["pixels"] = frame.stats.pixels;
+    stats["lookups"] = frame.stats.lookups;
+    stats["map_samples"] = frame.stats.map_samples;
+    stats["edge_lookups"] = frame.stats.edge_lookups;
+    stats["fallback_lookups"] = frame.stats.fallback_lookups;
+    py::dict out;
+    out["color"] = image_array(std::move(frame.color));
+    out["object"] = id_image_array(std::move(frame.object));
+    out["triangle"] = id_image_array(std::move(pixels.triangle));
+    out["stats"] = stats;
+    return out;
+  }
+
+  const std::vector<uint32_t>& reflectors() const { return reflectors_; }
+  vec3 center() const { return center_; }
+  float average_distance_m() const { return average_distance_; }
+  float search_length_m() const { return inputs_.rectify.D; }
+  size_t layer_count() const { return layers_.size(); }
+
+ private:
+  std::shared_ptr<SceneHandle> handle_;
+  std::vector<uint32_t> reflectors_;
+  vec3 center_{0.0f};
+  DistanceCubeMap map_;
+  float average_distance_ = kDistanceInf;
+  std::vector<DistanceCubeMap> layers_;
+  EnvmapInputs inputs_;
+};
+
+std::unique_ptr<EnvmapReflections> make_envmap(std::shared_ptr<SceneHandle> scene, int cube_size, int light_samples,
+                                               int glossy_rays, uint64_t seed, float d_e, float distance,
+                                               float angle_step_deg, const std::string& edge, int layers,
+                                               int march_steps) {
+  study::EnvmapReflectOptions o;
+  o.cube_size = cube_size;
+  o.light_samples = light_samples;
+  o.glossy_rays = glossy_rays;
+  o.seed = seed;
+  o.d_e = d_e;
+  o.distance = distance;
+  o.angle_step_deg = angle_step_deg;
+  o.edge = edge;
+  o.layers = layers;
+  o.march_steps = march_steps;
+  return std::make_unique<EnvmapReflections>(std::move(scene), o);
+}
+
+void bind_envmap(py::module_& m) {
+  const study::EnvmapReflectOptions d;
+  py::class_<EnvmapReflections>(
+      m, "EnvmapReflections",
+      "Reflections through environment maps with distance (Wang et al. 2012, docs/envmap.md): the distance "
+      "cube map (and its average distance) and the layered maps around the center of the scene's reflective "
+      "objects, built once from the scene's rest pose and its materials at construction; render() shades the "
+      "reflector pixels of any camera with one method. The options are `proxima reflect`'s flags: cube_size "
+      "(face side, texels), light_samples (n×n per area light), glossy_rays (lookups per glossy lobe), seed, "
+      "d_e (rectification tolerance, m), distance (search length D, m; 0 = the scene's diagonal), "
+      "angle_step_deg (step of the average distance), edge ('black' or 'fallback'), layers, march_steps.")
+      .def(py::init(&make_envmap), py::arg("scene"), py::kw_only(), py::arg("cube_size") = d.cube_size,
+           py::arg("light_samples") = d.light_samples, py::arg("glossy_rays") = d.glossy_rays,
+           py::arg("seed") = d.seed, py::arg("d_e") = d.d_e, py::arg("distance") = d.distance,
+           py::arg("angle_step_deg") = d.angle_step_deg, py::arg("edge") = d.edge, py::arg("layers") = d.layers,
+           py::arg("march_steps") = d.march_steps)
+      .def("render", &EnvmapReflections::render, py::arg("camera"), py::arg("method") = "rectified",
+           "Shades the reflector pixels seen by `camera` with `method` ('envmap', 'rectified', 'average' or "
+           "'layered'); GIL released. Returns a dict: color (H×W×3 float32 linear RGB, the reflector pixels' "
+           "radiance, 0 elsewhere), triangle (H×W int32, the rasterized reflector triangle, −1 on other "
+           "pixels), object (H×W int32, the object the pixel's first successful lookup found, −1 elsewhere "
+           "and where every lookup missed), stats (dict: pixels, lookups, map_samples, edge_lookups, "
+           "fallback_lookups). The method's frame in `proxima reflect` is the reference outside the "
+           "reflector pixels and this color on them.")
+      .def_property_readonly("reflectors", &EnvmapReflections::reflectors,
+                             "Object ids of the reflective objects (specular > 0), which the maps exclude.")
+      .def_property_readonly(
+          "center", [](const EnvmapReflections& e) { return py::make_tuple(e.center().x, e.center().y, e.center().z); },
+          "Projection center of the maps (world, m): the center of the reflectors' bounds.")
+      .def_property_readonly("average_distance_m", &EnvmapReflections::average_distance_m,
+                             "The average distance d̄ of the map (m), the 'average' method's.")
+      .def_property_readonly("search_length_m", &EnvmapReflections::search_length_m, "The search length D (m).")
+      .def_property_readonly("layer_count", &EnvmapReflections::layer_count, "Layers of the layered maps.");
+}
+
+// Temporal reuse along any sequence of cameras: the state (key frame, offsets, buffers)
+// lives in the object, each step() renders one frame. The scene's rest pose is used.
+class TemporalReflections {
+ public:
+  TemporalReflections(std::shared_ptr<SceneHandle> handle, const study::TemporalReflectOptions& o)
+      : handle_(std::move(handle)), reflection_(study::reflection_options(o)), temporal_(study::temporal_options(o)) {
+    study::validate(o);
+    if (reflective_objects(handle_->scene()).empty())
+      fail_input("scene: '" + handle_->scene().name + "' has no reflective object");
+  }
+
+  py::dict step(const Camera& camera) {
+    validate_camera(camera, "camera");
+    check_image_budget("camera", uint64_t(camera.width), uint64_t(camera.height), 16);
+    ImageF color;
+    ImageU8 reuse(camera.width, camera.height, 1);
+    ImageU8 reflective(camera.width, camera.height, 1);
+    TemporalFrameStats st;
+    {
+      py::gil_scoped_release release;
+      const std::lock_guard<std::mutex> stepping(mutex_);  // one frame at a time per state
+      const auto lock = handle_->read_lock();
+      const Scene& scene = handle_->scene();
+      const ReflectionFrame frame = prepare_reflection_frame(scene, camera, reflection_);
+      temporal_reflections_into(scene, handle_->rays(), frame, state_, temporal_, reflected_, &st, &flags_);
+      color = compose_reflections(frame, reflected_);
+      // supersample 1: a sample's G-buffer pixel is the output pixel
+      for (size_t i = 0; i < frame.sample_count(); ++i) {
+        reuse.data()[frame.pixel[i]] = flags_[i];
+        reflective.data()[frame.pixel[i]] = 1;
+      }
+      ++frames_;
+    }
+    py::dict stats;
+    stats["key"] = st.key;
+    stats["reflective"] = st.reflective;
+    stats["recomputed"] = st.recomputed;
+    stats["rays"] = st.rays;
+    stats["traced_rays"] = st.traced_rays;
+    stats["disoccluded"] = st.disoccluded;
+    stats["unreliable"] = st.unreliable;
+    stats["curved"] = st.curved;
+    stats["edge"] = st.edge;
+    stats["invalid_offsets"] = st.invalid_offsets;
+    stats["match_steps"] = st.match_steps;
+    stats["recompute_fraction"] = st.recompute_fraction();
+    stats["work"] = st.work;
+    stats["reflection_ms"] = st.reflection_ms();
+    py::dict out;
+    out["color"] = image_array(std::move(color));
+    out["reflective"] = image_array<bool>(std::move(reflective));
+    out["reuse"] = image_array(std::move(reuse));
+    out["stats"] = stats;
+    return out;
+  }
+
+  int frames() const { return frames_; }
+
+ private:
+  std::shared_ptr<SceneHandle> handle_;
+  ReflectionOptions reflection_;
+  TemporalOptions temporal_;
+  std::mutex mutex_;
+  TemporalState state_;
+  std::vector<vec3> reflected_;
+  std::vector<uint8_t> flags_;
+  int frames_ = 0;
+};
+
+std::unique_ptr<TemporalReflections> make_temporal(std::shared_ptr<SceneHandle> scene, float threshold,
+                                                   int light_samples, int glossy_rays, uint64_t seed,
+                                                   float stretch_limit, float spread_limit, float depth_discontinuity,
+                                                   float curved_contrast, float edge_contrast,
+                                                   const std::string& edge_rule, bool recompute_splats,
+                                                   float blend_error, float keyframe_cost, bool match_extrapolate,
+                                                   float lobe_seed_cell) {
+  study::TemporalReflectOptions o;
+  o.path = "-";  // the caller's cameras take the path's place; validate() asks for one
+  o.threshold = threshold;
+  o.light_samples = light_samples;
+  o.glossy_rays = glossy_rays;
+  o.seed = seed;
+  o.stretch_limit = stretch_limit;
+  o.spread_limit = spread_limit;
+  o.depth_discontinuity = depth_discontinuity;
+  o.curved_contrast = curved_contrast;
+  o.edge_contrast = edge_contrast;
+  o.edge_rule = edge_rule;
+  o.recompute_splats = recompute_splats;
+  o.blend_error = blend_error;
+  o.keyframe_cost = keyframe_cost;
+  o.match_extrapolate = match_extrapolate;
+  o.lobe_seed_cell = lobe_seed_cell;
+  return std::make_unique<TemporalReflections>(std::move(scene), o);
+}
+
+void bind_temporal(py::module_& m) {
+  const study::TemporalReflectOptions d;
+  py::class_<TemporalReflections>(
+      m, "TemporalReflections",
+      "Temporal reuse of reflections (thesis ch. 5, docs/temporal.md) as a stateful object: step(camera) renders "
+      "the next frame, reusing the last key frame's reflections where it can and tracing the rest; the key-frame "
+      "policy decides when a frame is traced in full. The options are `proxima reflect --method temporal`'s "
+      "flags without --, '-' → '_' (threshold, light_samples, glossy_rays, seed, stretch_limit, spread_limit, "
+      "depth_discontinuity, curved_contrast, edge_contrast, edge_rule, recompute_splats, blend_error, "
+      "keyframe_cost, match_extrapolate, lobe_seed_cell). The scene's rest pose is used; one sample per pixel.")
+      .def(py::init(&make_temporal), py::arg("scene"), py::kw_only(), py::arg("threshold") = d.threshold,
+           py::arg("light_samples") = d.light_samples, py::arg("glossy_rays") = d.glossy_rays,
+           py::arg("seed") = d.seed, py::arg("stretch_limit") = d.stretch_limit,
+           py::arg("spread_limit") = d.spread_limit, py::arg("depth_discontinuity") = d.depth_discontinuity,
+           py::arg("curved_contrast") = d.curved_contrast, py::arg("edge_contrast") = d.edge_contrast,
+           py::arg("edge_rule") = d.edge_rule, py::arg("recompute_splats") = d.recompute_splats,
+           py::arg("blend_error") = d.blend_error, py::arg("keyframe_cost") = d.keyframe_cost,
+           py::arg("match_extrapolate") = d.match_extrapolate, py::arg("lobe_seed_cell") = d.lobe_seed_cell)
+      .def("step", &TemporalReflections::step, py::arg("camera"),
+           "Renders the next frame from `camera`; GIL released (steps of one object run one at a time). Returns "
+           "a dict: color (H×W×3 float32 linear RGB, the frame: base + s·reflected), reflective (H×W bool, "
+           "pixels of a reflective surface), reuse (H×W uint8, the reuse flags of reflective pixels: 0 reused, "
+           "bit 0 disoccluded, bit 1 unreliable, bit 2 curved, bit 3 edge — flagged pixels were traced), stats "
+           "(dict: key, reflective, recomputed, rays, traced_rays, disoccluded, unreliable, curved, edge, "
+           "invalid_offsets, match_steps, recompute_fraction, work, reflection_ms).")
+      .def_property_readonly("frames", &TemporalReflections::frames, "Frames stepped so far.");
+}
+
+// Cluster reflections of one camera, and with `reference` Embree's answer for the same rays.
+py::dict cluster_reflections_py(const SceneHandle& handle, const Camera& camera, int supersample, int glossy_rays,
+                                int light_samples, uint64_t seed, int theta_bins, int phi_bins, float min_bin_scale,
+                                float resolution_scale, bool second_layer, int march_block, bool reference) {
+  study::ClusterReflectOptions o;
+  o.width = camera.width;
+  o.height = camera.height;
+  o.reflection.supersample = supersample;
+  o.reflection.glossy_rays = glossy_rays;
+  o.reflection.area_light_samples = light_samples;
+  o.reflection.seed = seed;
+  o.cluster.clustering.max_theta_bins = theta_bins;
+  o.cluster.clustering.max_phi_bins = phi_bins;
+  o.cluster.clustering.min_bin_scale = min_bin_scale;
+  o.cluster.resolution_scale = resolution_scale;
+  o.cluster.second_layer = second_layer;
+  o.cluster.march_block = march_block;
+  study::validate(o);
+  validate_camera(camera, "camera");
+  check_image_budget("camera", uint64_t(camera.width) * uint64_t(supersample),
+                     uint64_t(camera.height) * uint64_t(supersample), 24);
+  if (reflective_objects(handle.scene()).empty())
+    fail_input("scene: '" + handle.scene().name + "' has no reflective object");
+  ImageF color, traced_color;
+  ClusterFrameStats st;
+  size_t samples = 0;
+  {
+    py::gil_scoped_release release;
+    const auto lock = handle.read_lock();
+    const Scene& scene = handle.scene();
+    const std::vector<Bounds3> bounds = raster_object_bounds(scene);
+    const ReflectionFrame frame = prepare_reflection_frame(scene, camera, o.reflection, bounds);
+    TracedReflections traced;
+    if (reference) traced = trace_reflections(scene, handle.rays(), frame);
+    ClusterReflections c =
+        render_cluster_reflections(scene, frame, o.cluster, bounds, reference ? &traced : nullptr);
+    color = compose_reflections(frame, c.radiance);
+    if (reference) traced_color = compose_reflections(frame, traced.radiance);
+    st = c.stats;
+    samples = frame.sample_count();
+  }
+  py::dict stats;
+  stats["reflective_samples"] = samples;
+  stats["clusters"] = st.clusters;
+  stats["texels"] = st.texels;
+  stats["rays"] = st.rays;
+  stats["triangles_drawn"] = st.triangles_drawn;
+  stats["shaded_texels"] = st.shaded_texels;
+  stats["env_fallback_samples"] = st.env_fallback_samples;
+  stats["second_layer_texels"] = st.second_layer_texels;
+  stats["second_layer_rays"] = st.second_layer_rays;
+  stats["planar_samples"] = st.planar_samples;
+  if (reference) {
+    stats["occlusion_error_samples"] = st.occlusion_error_samples;
+    stats["occlusion_error_rays"] = st.occlusion_error_rays;
+  }
+  py::dict out;
+  out["color"] = image_array(std::move(color));
+  if (reference) out["reference"] = image_array(std::move(traced_color));
+  out["stats"] = stats;
+  return out;
+}
+
+void bind_cluster(py::module_& m) {
+  const study::ClusterReflectOptions d;
+  m.def("cluster_reflections", &cluster_reflections_py, py::arg("scene"), py::arg("camera"), py::kw_only(),
+        py::arg("supersample") = d.reflection.supersample, py::arg("glossy_rays") = d.reflection.glossy_rays,
+        py::arg("light_samples") = d.reflection.area_light_samples, py::arg("seed") = d.reflection.seed,
+        py::arg("theta_bins") = d.cluster.clustering.max_theta_bins,
+        py::arg("phi_bins") = d.cluster.clustering.max_phi_bins,
+        py::arg("min_bin_scale") = d.cluster.clustering.min_bin_scale,
+        py::arg("resolution_scale") = d.cluster.resolution_scale, py::arg("second_layer") = d.cluster.second_layer,
+        py::arg("march_block") = d.cluster.march_block, py::arg("reference") = false,
+        "Reflections from clustered depth images (docs/cluster_reflections.md) on one camera, the scene's rest "
+        "pose: the G-buffer at supersample×supersample samples per pixel, the reflective samples clustered, one "
+        "depth image per cluster, every reflection ray marched through its cluster's image. Options as "
+        "`proxima reflect --method cluster` (--ss = supersample, --gloss-rays, --light-samples, --seed, "
+        "--theta-bins, --phi-bins, --min-bin-scale, --resolution-scale, --second-layer, --march-block). "
+        "reference=True also traces the same rays with Embree. GIL released. Returns a dict: color (H×W×3 "
+        "float32, linear RGB, base + s·reflected box-filtered over the samples), reference (the same with "
+        "Embree's reflections, when asked), stats (dict: reflective_samples, clusters, texels, rays, "
+        "triangles_drawn, shaded_texels, env_fallback_samples, second_layer_texels, second_layer_rays, "
+        "planar_samples; with reference occlusion_error_samples, occlusion_error_rays).");
+}
+
+py::dict sampling_views_py(const SceneHandle& handle, const std::string& camera, int width, int height,
+                           const std::string& views, float radius) {
+  study::SamplingOptions o;
+  o.camera.camera = camera;
+  o.width = width;
+  o.height = height;
+  o.views = parse_view_shape(views, "views");
+  o.radius = radius;
+  o.methods = {study::SamplingMethod::Conventional};
+  study::validate(o, handle.scene());
+  const study::SamplingViews v = study::sampling_views(handle.scene(), o);
+  py::dict out;
+  out["corners"] = v.corners;
+  out["centroid"] = v.centroid;
+  return out;
+}
+
+py::list sample_depth_images_py(const SceneHandle& handle, const std::vector<Camera>& cameras,
+                                const std::string& method, int layers, bool shade) {
+  const study::SamplingMethod m = study::parse_sampling_method(method, "method");
+  if (cameras.empty() || cameras.size() > 64) fail_input("cameras: expected 1..64 cameras");
+  if (m == study::SamplingMethod::Peeling) {
+    if (cameras.size() != 1) fail_input("cameras: peeling samples from one camera");
+    require_in_range(layers, 1, 64, "layers");
+  }
+  for (const Camera& c : cameras) {
+    validate_camera(c, "cameras");
+    check_image_budget("cameras", uint64_t(c.width), uint64_t(c.height), 16);
+  }
+  std::vector<DepthImage> images;
+  {
+    py::gil_scoped_release release;
+    const auto lock = handle.read_lock();
+    const Scene& scene = handle.scene();
+    switch (m) {
+      case study::SamplingMethod::Conventional: images = sample_conventional(scene, cameras, shade); break;
+      case study::SamplingMethod::Peeling: images = sample_peeling(scene, cameras[0], layers, shade); break;
+      case study::SamplingMethod::NrrPixel:
+        images = sample_nrr(scene, cameras, Redundancy::Pixel, &handle.rays(), shade);
+        break;
+      case study::SamplingMethod::NrrVisibility:
+        images = sample_nrr(scene, cameras, Redundancy::Visibility, &handle.rays(), shade);
+        break;
+    }
+  }
+  py::list out;
+  for (DepthImage& image : images) {
+    py::dict d;
+    d["camera"] = image.camera;
+    d["depth"] = image_array(std::move(image.depth));
+    d["id"] = id_image_array(std::move(image.triangle));
+    if (shade) {
+      d["normal"] = image_array(std::move(image.normal));
+      d["color"] = image_array(std::move(image.color));
+    }
+    out.append(d);
+  }
+  return out;
+}
+
+void bind_sampling(py::module_& m) {
+  m.def("sampling_views", &sampling_views_py, py::arg("scene"), py::kw_only(), py::arg("camera") = "",
+        py::arg("width") = 1024, py::arg("height") = 1024, py::arg("views") = "triangle", py::arg("radius") = 0.0f,
+        "The view set of `proxima sample` (docs/depthimage.md): centred on the scene camera `camera` (name or "
+        "index; '' = the first) at width × height, views 'segment', 'triangle' or 'rectangle', corners `radius` "
+        "m from the centre (0 = 8 % of the distance to the scene's centre). Returns a dict: corners (list of "
+        "Camera: conventional and NRR sample from these), centroid (Camera: peeling samples from it).");
+  m.def("sample_depth_images", &sample_depth_images_py, py::arg("scene"), py::arg("cameras"),
+        py::arg("method") = "nrr-pixel", py::kw_only(), py::arg("layers") = 0, py::arg("shade") = true,
+        "Depth images of the scene (rest pose, back faces culled) by `method`: 'conventional' (one per camera), "
+        "'nrr-pixel' / 'nrr-visibility' (non-redundant rendering over the cameras in order: image i keeps "
+        "only fragments not redundant with images 0..i−1), 'peeling' (`layers` layers from the one camera). "
+        "GIL released. Returns a list of dicts, one per image: camera, depth (H×W float32, −z_camera in m, "
+        "+inf where empty), id (H×W int32 triangle id, −1 where empty), and with shade normal (H×W×3 float32, "
+        "unit world normal facing the camera) and color (H×W×3 float32, linear direct light without shadows).");
+}
+
+}  // namespace
+
+void bind_techniques(py::module_& m) {
+  bind_envmap(m);
+  bind_temporal(m);
+  bind_cluster(m);
+  bind_sampling(m);
+}
 
 }  // namespace proxima::python

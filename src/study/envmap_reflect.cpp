@@ -90,17 +90,10 @@ Maps build_maps(const Scene& scene, const RayScene& rays, const std::vector<uint
 }
 
 EnvmapInputs inputs_of(const Scene& scene, const Maps& maps, const EnvmapReflectOptions& o) {
-  EnvmapInputs in;
+  EnvmapInputs in = envmap_inputs(scene, o);
   in.map = &maps.map;
   in.average_distance = maps.average_distance;
   in.layers = maps.layers;
-  in.rectify.D = o.distance > 0.0f ? o.distance : scene_bounds(scene).diagonal();
-  in.rectify.d_e = o.d_e;
-  in.rectify.edge = o.edge == "fallback" ? EdgeRule::PlainFallback : EdgeRule::Black;
-  in.rectify.max_march_steps = o.march_steps;
-  in.area_light_samples = o.light_samples;
-  in.glossy_rays = o.glossy_rays;
-  in.seed = o.seed;
   return in;
 }
 
@@ -207,6 +200,19 @@ void report_method(const std::string& m, const EnvmapFrame& frame, double ms, co
 }
 
 }  // namespace
+
+EnvmapInputs envmap_inputs(const Scene& scene, const EnvmapReflectOptions& o) {
+  EnvmapInputs in;
+  in.method = parse_envmap_method(o.method == "reference" ? "rectified" : o.method);
+  in.rectify.D = o.distance > 0.0f ? o.distance : scene_bounds(scene).diagonal();
+  in.rectify.d_e = o.d_e;
+  in.rectify.edge = o.edge == "fallback" ? EdgeRule::PlainFallback : EdgeRule::Black;
+  in.rectify.max_march_steps = o.march_steps;
+  in.area_light_samples = o.light_samples;
+  in.glossy_rays = o.glossy_rays;
+  in.seed = o.seed;
+  return in;
+}
 
 void validate(const EnvmapReflectOptions& o) {
   if (!is_method(o.method))

@@ -57,23 +57,7 @@ std::string pct_text(double v) {
 }
 
 // The cameras of the view set: the corners V_i, and the centroid depth peeling uses.
-struct Views {
-  ViewSet set;
-  std::vector<Camera> corners;
-  Camera centroid;
-};
-
-Views make_views(const Scene& scene, const SamplingOptions& o) {
-  const Camera base = pick_camera(scene, o.camera, o.width, o.height);
-  const float focus = std::max(1e-3f, glm::length(scene_bounds(scene).center() - base.position));
-  Views v;
-  v.set = make_view_set(o.views, base, o.radius > 0.0f ? o.radius : 0.08f * focus, focus);
-  for (size_t i = 0; i < v.set.corners.size(); ++i) v.corners.push_back(corner_camera(v.set, i));
-  v.centroid = centroid_camera(v.set);
-  return v;
-}
-
-std::vector<DepthImage> sample(const Scene& scene, const RayScene& rays, const Views& v, SamplingMethod m) {
+std::vector<DepthImage> sample(const Scene& scene, const RayScene& rays, const SamplingViews& v, SamplingMethod m) {
   switch (m) {
     case SamplingMethod::Conventional: return sample_conventional(scene, v.corners, true);
     case SamplingMethod::Peeling: return sample_peeling(scene, v.centroid, int(v.corners.size()), true);
@@ -89,7 +73,7 @@ struct Tables {
   std::vector<std::variant<std::string, double>> available_row;
 };
 
-Tables make_tables(const Scene& scene, const SamplingOptions& o, const Views& v) {
+Tables make_tables(const Scene& scene, const SamplingOptions& o, const SamplingViews& v) {
   const std::string def = redundancy_name(metric_redundancy(o));
   const int n = int(v.corners.size());
   std::vector<std::string> view_columns{"method"};
@@ -151,6 +135,16 @@ void write_images(const StudyOutput& out, Results& results, SamplingMethod m, co
 
 }  // namespace
 
+SamplingViews sampling_views(const Scene& scene, const SamplingOptions& o) {
+  const Camera base = pick_camera(scene, o.camera, o.width, o.height);
+  const float focus = std::max(1e-3f, glm::length(scene_bounds(scene).center() - base.position));
+  SamplingViews v;
+  v.set = make_view_set(o.views, base, o.radius > 0.0f ? o.radius : 0.08f * focus, focus);
+  for (size_t i = 0; i < v.set.corners.size(); ++i) v.corners.push_back(corner_camera(v.set, i));
+  v.centroid = centroid_camera(v.set);
+  return v;
+}
+
 const char* sampling_method_name(SamplingMethod m) {
   switch (m) {
     case SamplingMethod::Conventional: return "conventional";
@@ -191,7 +185,7 @@ Redundancy metric_redundancy(const SamplingOptions& o) {
 
 Results run_sampling(const Scene& scene, const SamplingOptions& o, const StudyOutput& out, Progress*) {
   validate(o);
-  const Views views = make_views(scene, o);
+  const SamplingViews views = sampling_views(scene, o);
   const RayScene rays(scene);
 
   // Every method sampled, timed side by side (median of reps).

@@ -128,32 +128,6 @@ int age_bin(int age) {
   return b;
 }
 
-ReflectionOptions reflection_options(const TemporalReflectOptions& o) {
-  ReflectionOptions ro;
-  ro.supersample = 1;
-  ro.glossy_rays = o.glossy_rays;
-  ro.area_light_samples = o.light_samples;
-  ro.seed = o.seed;
-  ro.lobe_seed_cell = o.lobe_seed_cell;
-  return ro;
-}
-
-TemporalOptions temporal_options(const TemporalReflectOptions& o) {
-  TemporalOptions to;
-  to.keyframe_threshold = o.threshold;
-  to.warp.stretch_limit = o.stretch_limit;
-  to.warp.spread_limit = o.spread_limit;
-  to.warp.curved_contrast = o.curved_contrast;
-  to.warp.edge_contrast = o.edge_contrast;
-  to.warp.recompute_splats = o.recompute_splats;
-  to.warp.blend_error = o.blend_error;
-  to.keyframe_cost = o.keyframe_cost;
-  to.warp.edge_rule = parse_reflected_edge_rule(o.edge_rule, "--edge-rule");
-  to.warp.depth_discontinuity = o.depth_discontinuity;
-  to.match.extrapolate = o.match_extrapolate;
-  return to;
-}
-
 // Everything a run accumulates over its frames.
 struct TemporalSeries {
   Series mirror_temporal_mae, mirror_direct_mae;
@@ -500,6 +474,32 @@ TemporalFrame render_frame(const Scene& scene, const RayScene& rays, const Camer
 }
 
 }  // namespace
+
+ReflectionOptions reflection_options(const TemporalReflectOptions& o) {
+  ReflectionOptions ro;
+  ro.supersample = 1;
+  ro.glossy_rays = o.glossy_rays;
+  ro.area_light_samples = o.light_samples;
+  ro.seed = o.seed;
+  ro.lobe_seed_cell = o.lobe_seed_cell;
+  return ro;
+}
+
+TemporalOptions temporal_options(const TemporalReflectOptions& o) {
+  TemporalOptions to;
+  to.keyframe_threshold = o.threshold;
+  to.warp.stretch_limit = o.stretch_limit;
+  to.warp.spread_limit = o.spread_limit;
+  to.warp.curved_contrast = o.curved_contrast;
+  to.warp.edge_contrast = o.edge_contrast;
+  to.warp.recompute_splats = o.recompute_splats;
+  to.warp.blend_error = o.blend_error;
+  to.keyframe_cost = o.keyframe_cost;
+  to.warp.edge_rule = parse_reflected_edge_rule(o.edge_rule, "--edge-rule");
+  to.warp.depth_discontinuity = o.depth_discontinuity;
+  to.match.extrapolate = o.match_extrapolate;
+  return to;
+}
 
 void validate(const TemporalReflectOptions& o) {
   require_in_range(o.width, 1, kMaxImageSide, "--width");

@@ -12,6 +12,7 @@
 
 #include "proxima/core/progress.h"
 #include "proxima/eval/results.h"
+#include "proxima/reflect/envmap_reflection.h"
 #include "proxima/scene/camera_select.h"
 #include "proxima/scene/scene.h"
 #include "proxima/study/study.h"
@@ -46,6 +47,11 @@ void validate(const EnvmapReflectOptions& options);
 // The same, and what depends on the scene: the camera choice (--camera, --path, --frame)
 // and a reflective object to study (--scene). Callers check before writing anything.
 void validate(const EnvmapReflectOptions& options, const Scene& scene);
+
+// The lookup and sampling settings these options give (method, rectification, light and lobe
+// samples, seed), without the maps (EnvmapInputs::map, layers, average_distance are left
+// unset); "reference" gives Rectified. For callers that build the maps themselves.
+EnvmapInputs envmap_inputs(const Scene& scene, const EnvmapReflectOptions& options);
 
 // Renders the reference and the chosen methods on the camera of `options` and compares them.
 // Metrics (per method m): m_mae, m_env_mae, m_ms, m_with_build_ms, m_object_match_pct, and for

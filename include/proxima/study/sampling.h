@@ -56,6 +56,16 @@ void validate(const SamplingOptions& options, const Scene& scene);
 // The redundancy definition the metrics use: options.redundancy, or its default.
 Redundancy metric_redundancy(const SamplingOptions& options);
 
+// The view set of the options (centred on their camera, radius 8 % of the distance to the
+// scene's centre unless given) and its cameras: the corners' (conventional, NRR) and the
+// centroid's (peeling).
+struct SamplingViews {
+  ViewSet set;
+  std::vector<Camera> corners;
+  Camera centroid;
+};
+SamplingViews sampling_views(const Scene& scene, const SamplingOptions& options);
+
 // Runs the study. Metrics per method and image i: redundant_pct_<i>, occluded_pct_<i>,
 // useful_pct_<i>, then available_avg_pct, available_min_pct, time_ms (median ms to sample
 // all n images, shaded); with several methods each name carries the method's prefix

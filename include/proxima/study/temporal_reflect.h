@@ -18,6 +18,8 @@
 #include "proxima/core/math.h"
 #include "proxima/core/progress.h"
 #include "proxima/eval/results.h"
+#include "proxima/reflect/reflection_frame.h"
+#include "proxima/reflect/temporal_reuse.h"
 #include "proxima/scene/scene.h"
 #include "proxima/study/study.h"
 
@@ -75,6 +77,12 @@ void validate(const TemporalReflectOptions& options);
 // reflective object). run_temporal_reflect checks it first; a caller may check it before
 // creating the output directory.
 void validate(const TemporalReflectOptions& options, const Scene& scene);
+
+// The sampling and the reuse settings these options give (what run_temporal_reflect passes
+// to prepare_reflection_frame and temporal_reflections); for callers that step frames
+// themselves (the Python TemporalReflections).
+ReflectionOptions reflection_options(const TemporalReflectOptions& options);
+TemporalOptions temporal_options(const TemporalReflectOptions& options);
 
 // Runs the path on the scene as loaded (animated objects posed at each frame's time and
 // reused as they are), writes the images of one frame into `out`. Deterministic metrics
