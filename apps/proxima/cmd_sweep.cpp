@@ -52,7 +52,7 @@ Command register_sweep(CLI::App& root) {
   app->add_option("--threads", common.threads,
                   "worker threads per process (0 = all cores; under MPI: the node's cores / its ranks)")
       ->capture_default_str();
-  add_out_flag(app, common, true);
+  add_out_flag(app, common);
   add_limit_flags(app);
   return {app, [] { return run(manifest, common); }};
 }
