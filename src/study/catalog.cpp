@@ -242,7 +242,8 @@ struct Entry {
 template <typename O>
 O apply_options(const std::string& study, const std::vector<Field<O>>& fields, const OptionValues& values) {
   O o{};
-  for (const auto& [name, value] : values) {
+  for (const auto& [key, value] : values) {
+    const std::string& name = key;  // clang before 16 cannot capture a structured binding
     auto it = std::find_if(fields.begin(), fields.end(), [&](const Field<O>& f) { return f.info.name == name; });
     if (it == fields.end()) {
       std::string valid;
