@@ -60,6 +60,9 @@ void add_view_flags(CLI::App* app, GibrFlags& f) {
   app->add_option("--hole-radius", o.hole_radius,
                   "texels searched around a novel-view hole for the nearest sample, both mappings (0 = no fill)")
       ->capture_default_str();
+  app->add_option("--mixed-reach", o.mixed_reach,
+                  "a hole with only mixed samples within this many texels takes them first (0 = off)")
+      ->capture_default_str();
   app->add_option("--offpath", o.offpath, "meters the 'offpath' views are moved off the walk path")
       ->capture_default_str();
   app->add_option("--fps-repeat", o.fps_repeat, "timed renders of each novel view (median → novel_view_fps)")

@@ -447,7 +447,7 @@ Scene make_vis_colonnade() {
   // Along the room, 2.2 m from the columns, looking at the back wall and ahead.
   std::vector<vec3> pts;
   for (int i = 0; i <= 6; ++i) pts.push_back({0.8f + 1.05f * float(i), 1.5f, 3.4f});
-  s.camera_paths.push_back(walk_through(pts, 90, 65.0f, 1, vec3(0, -0.2f, -3.0f)));
+  s.camera_paths.push_back(walk_through(pts, 120, 65.0f, 1, vec3(0, -0.2f, -3.0f)));
   add_walk_start_camera(s);
   return s;
 }

@@ -492,6 +492,8 @@ Entry gibr_entry() {
   f.push_back(field<O>("k", "photographs blended per pixel, 1..64", &O::k));
   f.push_back(field<O>("novel_ss", "s×s samples per novel-view pixel, 0..8; 0 = supersample", &O::novel_ss));
   f.push_back(field<O>("hole_radius", "texels searched around a hole, 0..4096", &O::hole_radius));
+  f.push_back(field<O>("mixed_reach", "holes take a kMixed sample within this many texels first, 0..64",
+                       &O::mixed_reach));
   f.push_back(field<O>("offpath", "meters the offpath views move off the path, 0..1000", &O::offpath));
   f.push_back(field<O>("photo_images", "photos/photo_NNN.png (--no-photo-images clears it)", &O::photo_images));
   f.push_back(field<O>("fps_repeat", "timed renders per novel view (median), 1..1000", &O::fps_repeat));
