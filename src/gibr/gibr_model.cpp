@@ -83,6 +83,15 @@ void load_photos(const std::filesystem::path& camera_file, GibrModel& g, std::ve
   }
 }
 
+// Pixels within √2/2 + 1 px of a silhouette edge (the touched band widened by the bilinear
+// kernel of the undistortion) are mapped onto nothing.
+void drop_resampled_band(ImageU32& labels, const VisibilityMap& map) {
+  const ImageU8 band = silhouette_pixel_mask(map, std::sqrt(0.5) + 1.0);
+  for (int y = 0; y < labels.height(); ++y)
+    for (int x = 0; x < labels.width(); ++x)
+      if (band.at(x, y)) labels.at(x, y) = kNone;
+}
+
 // Pixels without an image (0 in `valid`, when not empty) are mapped onto nothing and unmixed
 // for nothing.
 void drop_invalid(ImageU32& labels, const ImageU8& valid) {
@@ -151,7 +160,11 @@ GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) 
       silhouettes[i] = double(map.stats.silhouette_edges);
       checks[i] = visibility::check_visibility_map(map, g.model, *g.rays, g.cameras[i]);
       labels[i] = vismap_pixel_polygons(map, o.exclude_boundaries, false);
-      if (o.unmix && !o.whole_pixels)
+      // An undistorted photograph is a bilinear resample: its pixels within 1 px of a touched
+      // one mix the silhouette's sides too, and no pixel averages the map's sample points.
+      const bool resampled = i < valid.size() && valid[i].width() > 0;
+      if (resampled) drop_resampled_band(labels[i], map);
+      if (o.unmix && !o.whole_pixels && !resampled)
         labels[i] = unmix_silhouette_pixels(map, labels[i], g.photos[i], o.supersample, o.exclude_boundaries,
                                             o.unmix_two_pass);
       if (i < valid.size()) drop_invalid(labels[i], valid[i]);
