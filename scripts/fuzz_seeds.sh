@@ -6,7 +6,7 @@
 set -euo pipefail
 dir=$1
 proxima=$2
-mkdir -p "$dir"/{scene_file,camera_path,obj,ply,gltf,png,jpeg,exr,winged_pair,results}
+mkdir -p "$dir"/{scene_file,camera_path,gibr_cameras,obj,ply,gltf,png,jpeg,exr,winged_pair,results}
 
 # ---- JSON scene files ---------------------------------------------------------
 cat >"$dir/scene_file/objects.json" <<'J'
@@ -45,6 +45,13 @@ cat >"$dir/camera_path/through.json" <<'J'
  "camera_paths": [{"frames": 5, "keys": [
    {"time": 0, "position": [0, 0, 0], "target": [0, 0, -1]},
    {"time": 1, "position": [0, 0, -2], "target": [0, 0, -1]}]}]}
+J
+cat >"$dir/gibr_cameras/cameras.json" <<'J'
+{"format": "proxima-cameras", "version": 1, "photos": [
+ {"image": "photo_000.png", "width": 64, "height": 48, "vfov_deg": 70, "position": [1, 1.6, 2],
+  "orientation": [1, 0, 0, 0], "near": 0.01, "far": 100},
+ {"image": "photo_001.png", "width": 32, "height": 24, "vfov_deg": 60, "position": [0, 1.5, 0],
+  "orientation": [0.92, 0, 0.38, 0], "k1": -0.15, "k2": 0.03, "exposure": 0.7}]}
 J
 
 # ---- meshes -------------------------------------------------------------------

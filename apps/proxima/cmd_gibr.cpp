@@ -31,6 +31,15 @@ void add_model_flags(CLI::App* app, gibr::GibrModelOptions& m) {
   app->add_flag("--whole-pixels", m.whole_pixels,
                 "visibility-map mapping without exact-visible texels: texels seen only in pixels not mapped onto "
                 "their polygon (silhouettes, creases) get no sample");
+  app->add_flag("--unmix-two-pass", m.unmix_two_pass,
+                "unmixing also takes a side's color from pixels unmixed for it (thin occluders)");
+  app->add_option("--photo-yaw", m.photo_yaw_deg, "photographs' view directions turned by up to ± this, degrees")
+      ->capture_default_str();
+  app->add_option("--photo-backoff", m.photo_backoff, "meters the photographs step back from the walk path")
+      ->capture_default_str();
+  app->add_option("--calibration-px", m.calibration_px,
+                  "calibration error: the mapping's cameras turned by this many pixels from the photographs' poses")
+      ->capture_default_str();
   app->add_flag("!--no-unmix", m.unmix,
                 "visibility-map mapping without unmixing silhouette pixels: exact-visible texels take colors only "
                 "from pixels wholly on their polygon");
@@ -50,6 +59,9 @@ void add_view_flags(CLI::App* app, GibrFlags& f) {
       ->capture_default_str();
   app->add_option("--hole-radius", o.hole_radius,
                   "texels searched around a novel-view hole for the nearest sample, both mappings (0 = no fill)")
+      ->capture_default_str();
+  app->add_option("--mixed-reach", o.mixed_reach,
+                  "a hole with only mixed samples within this many texels takes them first (0 = off)")
       ->capture_default_str();
   app->add_option("--offpath", o.offpath, "meters the 'offpath' views are moved off the walk path")
       ->capture_default_str();

@@ -22,6 +22,7 @@ GibrSceneDefaults gibr_scene_defaults(const std::string& scene, double scale) {
   if (scene == "floor" || scene == "building") return {0.03, 1.0};
   if (scene == "vcity") return {0.15, 6.0};
   if (scene == "maze") return {0.03, 1.0};
+  if (scene == "colonnade") return {0.02, 1.0};
   if (scene == "arena") return {0.05, 2.0};
   return {scale / 500.0, scale / 10.0};
 }
@@ -42,10 +43,27 @@ void check_options(const Scene& scene, const GibrModelOptions& o) {
   if (scene.camera_paths.empty()) fail_input("--scene: '" + scene.name + "' has no camera path");
   validate_camera(look_at({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 60, o.photo_width, o.photo_height),
                   "--photo-width/--photo-height");
+  if (!(o.photo_yaw_deg >= 0.0 && o.photo_yaw_deg <= 180.0)) fail_input("--photo-yaw: must be in 0..180 degrees");
+  if (!(o.photo_backoff >= 0.0 && o.photo_backoff <= 1000.0)) fail_input("--photo-backoff: must be in 0..1000 m");
+  if (!(o.calibration_px >= 0.0 && o.calibration_px <= 100.0)) fail_input("--calibration-px: must be in 0..100 px");
+}
+
+// The camera turned by `px` pixels (at the image center) about an axis in its image plane
+// whose direction is seeded: the photograph's pixels then land `px` off where the mapping
+// projects them.
+Camera miscalibrated(const Camera& c, double px, uint64_t seed) {
+  if (px <= 0.0) return c;
+  Pcg32 rng(seed, 29);
+  const double phi = 2.0 * 3.14159265358979323846 * double(rng.next_float());
+  const double angle = std::atan(px / double(focal_length_px(c)));
+  Camera out = c;
+  out.orientation = glm::normalize(c.orientation * glm::angleAxis(float(angle), vec3(float(std::cos(phi)),
+                                                                                     float(std::sin(phi)), 0.0f)));
+  return out;
 }
 
 // The camera file's cameras and images (linear RGB), each image checked against its camera.
-void load_photos(const std::filesystem::path& camera_file, GibrModel& g) {
+void load_photos(const std::filesystem::path& camera_file, GibrModel& g, std::vector<ImageU8>& valid) {
   const std::vector<CalibratedPhoto> photos = read_camera_file(camera_file);
   if (photos.empty()) fail_input(camera_file.string() + ": the camera file lists no photographs");
   for (const CalibratedPhoto& p : photos) {
@@ -55,9 +73,36 @@ void load_photos(const std::filesystem::path& camera_file, GibrModel& g) {
       fail_input(image.string() + ": " + std::to_string(linear.width()) + "×" + std::to_string(linear.height()) +
                  " pixels, but " + camera_file.string() + " gives its camera " + std::to_string(p.camera.width) +
                  "×" + std::to_string(p.camera.height));
+    ImageU8 ok;
+    if (p.k1 != 0.0 || p.k2 != 0.0) linear = undistort_photo(linear, p.camera, p.k1, p.k2, &ok);
+    if (p.exposure != 1.0)
+      for (float& v : linear.data()) v = float(double(v) / p.exposure);
     g.cameras.push_back(p.camera);
     g.photos.push_back(std::move(linear));
+    valid.push_back(std::move(ok));
   }
+}
+
+// Pixels within √2/2 + 1 px of a silhouette edge (the touched band widened by the bilinear
+// kernel of the undistortion) are mapped onto nothing.
+void drop_resampled_band(ImageU32& labels, const VisibilityMap& map) {
+  const ImageU8 band = silhouette_pixel_mask(map, std::sqrt(0.5) + 1.0);
+  for (int y = 0; y < labels.height(); ++y)
+    for (int x = 0; x < labels.width(); ++x)
+      if (band.at(x, y)) labels.at(x, y) = kNone;
+}
+
+// Pixels without an image (0 in `valid`, when not empty) are mapped onto nothing and unmixed
+// for nothing.
+void drop_invalid(ImageU32& labels, const ImageU8& valid) {
+  if (valid.width() == 0) return;
+  const int uc = unmix_channel(labels);
+  for (int y = 0; y < labels.height(); ++y)
+    for (int x = 0; x < labels.width(); ++x) {
+      if (valid.at(x, y)) continue;
+      labels.at(x, y) = kNone;
+      if (uc >= 0) labels.at(x, y, uc) = kNone;
+    }
 }
 
 }  // namespace
@@ -78,18 +123,23 @@ GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) 
   g.rays = std::make_unique<RayScene>(g.scene);
 
   Stopwatch w;
+  std::vector<ImageU8> valid;  // per camera-file photograph: empty, or 0 where undistortion had no source
   if (!o.camera_file.empty()) {
-    load_photos(o.camera_file, g);
+    load_photos(o.camera_file, g, valid);
   } else {
     PhotoPoseOptions ppo;
     ppo.count = o.photos;
     ppo.width = o.photo_width;
     ppo.height = o.photo_height;
     ppo.seed = o.seed;
+    ppo.yaw_deg = o.photo_yaw_deg;
+    ppo.backoff = o.photo_backoff;
     g.cameras = photo_poses(*g.rays, model_scene.camera_paths.front(), ppo, 0.01f, g.far);
     g.photos.resize(g.cameras.size());
-    for (size_t i = 0; i < g.cameras.size(); ++i)
+    for (size_t i = 0; i < g.cameras.size(); ++i) {
       g.photos[i] = render_photo(g.scene, *g.rays, g.cameras[i], o.supersample, derive_seed(o.seed, i, 1));
+      g.cameras[i] = miscalibrated(g.cameras[i], o.calibration_px, derive_seed(o.seed, i, 3));
+    }
   }
   g.stats.photos_ms = w.elapsed_ms();
 
@@ -110,8 +160,14 @@ GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) 
       silhouettes[i] = double(map.stats.silhouette_edges);
       checks[i] = visibility::check_visibility_map(map, g.model, *g.rays, g.cameras[i]);
       labels[i] = vismap_pixel_polygons(map, o.exclude_boundaries, false);
-      if (o.unmix && !o.whole_pixels)
-        labels[i] = unmix_silhouette_pixels(map, labels[i], g.photos[i], o.supersample, o.exclude_boundaries);
+      // An undistorted photograph is a bilinear resample: its pixels within 1 px of a touched
+      // one mix the silhouette's sides too, and no pixel averages the map's sample points.
+      const bool resampled = i < valid.size() && valid[i].width() > 0;
+      if (resampled) drop_resampled_band(labels[i], map);
+      if (o.unmix && !o.whole_pixels && !resampled)
+        labels[i] = unmix_silhouette_pixels(map, labels[i], g.photos[i], o.supersample, o.exclude_boundaries,
+                                            o.unmix_two_pass);
+      if (i < valid.size()) drop_invalid(labels[i], valid[i]);
       if (!o.whole_pixels) vis_maps[i] = std::move(map);
     }
   });
@@ -129,7 +185,10 @@ GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) 
   if (o.item_buffer) {
     w.restart();
     item_labels.resize(n);
-    for (size_t i = 0; i < n; ++i) item_labels[i] = itembuffer_pixel_polygons(g.scene, g.model, g.cameras[i]);
+    for (size_t i = 0; i < n; ++i) {
+      item_labels[i] = itembuffer_pixel_polygons(g.scene, g.model, g.cameras[i]);
+      if (i < valid.size()) drop_invalid(item_labels[i], valid[i]);
+    }
     g.stats.itembuffer_ms = w.elapsed_ms();
   }
   // Phase 3: radiance maps.

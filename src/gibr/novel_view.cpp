@@ -298,7 +298,21 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
       return;
     }
     const auto search = options.fast ? &nearest_sample : &nearest_sample_plain;
-    bool got = best && search(*best, ci, cj, options.hole_radius, kExtrapolated, color);
+    bool got = false;
+    // A texel seen only in slivers along silhouettes (no clean sample within mixed_reach texels
+    // in any layer, a mixed one there): its own photographs' mixed color, nearer than any
+    // clean sample the wide search below would bring from elsewhere on the polygon. Layers
+    // without mixed samples (the item buffer's) never take this branch.
+    if (options.mixed_reach > 0) {
+      bool any_mixed = false, clean_near = false;
+      for (uint32_t o = offset[p]; o < offset[p + 1]; ++o) any_mixed = any_mixed || ranked[o].layer->mixed > 0;
+      vec3 unused;
+      for (uint32_t o = offset[p]; any_mixed && !clean_near && o < offset[p + 1]; ++o)
+        clean_near = search(*ranked[o].layer, ci, cj, options.mixed_reach, kExtrapolated, unused);
+      for (uint32_t o = offset[p]; any_mixed && !clean_near && !got && o < offset[p + 1]; ++o)
+        got = ranked[o].layer->mixed > 0 && search(*ranked[o].layer, ci, cj, options.mixed_reach, kMixed, color);
+    }
+    if (!got) got = best && search(*best, ci, cj, options.hole_radius, kExtrapolated, color);
     // Then the other photographs that saw P, closest direction first; last, the
     // mixed samples of texels no photograph saw in a pixel wholly on P.
     for (uint32_t o = offset[p]; !got && o < offset[p + 1]; ++o)

@@ -80,6 +80,12 @@ std::vector<Camera> photo_poses(const RayScene& rays, const CameraPath& path, co
       if (rays.occluded(r)) pos = base.position;
     }
     const vec3 f = camera_forward(base);
+    if (o.backoff > 0.0) {
+      float back = float(o.backoff);
+      for (int halved = 0; back > 0.0f && rays.occluded(Ray{pos, -f, 0.0f, back + 0.05f}); ++halved)
+        back = halved < 4 ? 0.5f * back : 0.0f;
+      pos -= back * f;
+    }
     const float yaw = glm::radians(uniform(-o.yaw_deg, o.yaw_deg));
     const float pitch = std::clamp(std::asin(std::clamp(f.y, -1.0f, 1.0f)) + glm::radians(uniform(-o.pitch_deg, o.pitch_deg)),
                                    -1.3f, 1.3f);
@@ -122,6 +128,71 @@ ImageF render_photo(const Scene& scene, const RayScene& rays, const Camera& came
   return render_reference(scene, rays, camera, photo_render_options(supersample, seed));
 }
 
+namespace {
+
+// Pixel ↔ normalized image coordinates of a pinhole camera (principal point at the center).
+struct Pinhole {
+  double f, cx, cy;
+  explicit Pinhole(const Camera& c) : f(focal_length_px(c)), cx(0.5 * c.width), cy(0.5 * c.height) {}
+};
+
+double radial(double k1, double k2, double r2) { return 1.0 + k1 * r2 + k2 * r2 * r2; }
+
+// Bilinear sample of pixel position (px, py) (pixel centers at +0.5); false outside the image.
+bool bilinear(const ImageF& img, double px, double py, vec3& out) {
+  const double sx = px - 0.5, sy = py - 0.5;
+  if (!(sx >= -0.5 && sy >= -0.5 && sx <= img.width() - 0.5 && sy <= img.height() - 0.5)) return false;
+  const int x0 = int(std::floor(sx)), y0 = int(std::floor(sy));
+  const double fx = sx - x0, fy = sy - y0;
+  out = vec3(0.0f);
+  for (int k = 0; k < 4; ++k) {
+    const int x = std::clamp(x0 + (k & 1), 0, img.width() - 1), y = std::clamp(y0 + (k >> 1), 0, img.height() - 1);
+    const double w = ((k & 1) ? fx : 1.0 - fx) * ((k >> 1) ? fy : 1.0 - fy);
+    for (int c = 0; c < 3; ++c) out[c] += float(w) * img.at(x, y, c);
+  }
+  return true;
+}
+
+// Every pixel of the result sampled from `image` at the position `source` gives (false: black).
+template <typename F>
+ImageF resample(const ImageF& image, F&& source, ImageU8* valid) {
+  ImageF out(image.width(), image.height(), 3, 0.0f);
+  if (valid) *valid = ImageU8(image.width(), image.height(), 1, 0);
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) {
+      const glm::dvec2 s = source(x + 0.5, y + 0.5);
+      vec3 c;
+      if (!bilinear(image, s.x, s.y, c)) continue;
+      for (int k = 0; k < 3; ++k) out.at(x, y, k) = c[k];
+      if (valid) valid->at(x, y) = 1;
+    }
+  return out;
+}
+
+}  // namespace
+
+ImageF undistort_photo(const ImageF& image, const Camera& camera, double k1, double k2, ImageU8* valid) {
+  const Pinhole p(camera);
+  return resample(image, [&](double px, double py) {
+    const double x = (px - p.cx) / p.f, y = (py - p.cy) / p.f, s = radial(k1, k2, x * x + y * y);
+    return glm::dvec2(p.cx + p.f * x * s, p.cy + p.f * y * s);
+  }, valid);
+}
+
+ImageF distort_photo(const ImageF& image, const Camera& camera, double k1, double k2) {
+  const Pinhole p(camera);
+  return resample(image, [&](double px, double py) {
+    const double xd = (px - p.cx) / p.f, yd = (py - p.cy) / p.f;
+    double x = xd, y = yd;
+    for (int it = 0; it < 50; ++it) {
+      const double s = radial(k1, k2, x * x + y * y);
+      x = xd / s;
+      y = yd / s;
+    }
+    return glm::dvec2(p.cx + p.f * x, p.cy + p.f * y);
+  }, nullptr);
+}
+
 void write_camera_file(const std::filesystem::path& path, const std::vector<CalibratedPhoto>& photos) {
   nlohmann::json j;
   j["format"] = "proxima-cameras";
@@ -137,9 +208,38 @@ void write_camera_file(const std::filesystem::path& path, const std::vector<Cali
                            {"orientation", {c.orientation.w, c.orientation.x, c.orientation.y, c.orientation.z}},
                            {"near", c.near},
                            {"far", c.far}});
+    if (p.k1 != 0.0 || p.k2 != 0.0) {
+      j["photos"].back()["k1"] = p.k1;
+      j["photos"].back()["k2"] = p.k2;
+    }
+    if (p.exposure != 1.0) j["photos"].back()["exposure"] = p.exposure;
   }
   write_text_file(path, j.dump(1) + "\n");
 }
+
+namespace {
+
+// The optional k1, k2 and exposure of one photograph: finite, |k| ≤ 1, the distortion
+// monotonic (r (1 + k1 r² + k2 r⁴) increasing) out to the image corners, exposure > 0.
+void read_lens(const nlohmann::json& p, CalibratedPhoto& c, const std::filesystem::path& path) {
+  c.k1 = p.value("k1", 0.0);
+  c.k2 = p.value("k2", 0.0);
+  c.exposure = p.value("exposure", 1.0);
+  const std::string where = "camera file " + path.string() + ": photograph '" + c.image + "': ";
+  if (!std::isfinite(c.k1) || !std::isfinite(c.k2) || std::abs(c.k1) > 1.0 || std::abs(c.k2) > 1.0)
+    fail_input(where + "k1 and k2 must be finite numbers in [-1, 1]");
+  if (!std::isfinite(c.exposure) || !(c.exposure > 0.0)) fail_input(where + "exposure must be a number > 0");
+  const double f = focal_length_px(c.camera);
+  const double rmax2 = (0.25 * c.camera.width * c.camera.width + 0.25 * c.camera.height * c.camera.height) / (f * f);
+  // d/dr [r (1 + k1 r² + k2 r⁴)] = 1 + 3 k1 r² + 5 k2 r⁴ > 0 on [0, rmax].
+  for (int s = 0; s <= 64; ++s) {
+    const double r2 = rmax2 * s / 64.0;
+    if (!(1.0 + 3.0 * c.k1 * r2 + 5.0 * c.k2 * r2 * r2 > 0.0))
+      fail_input(where + "k1, k2 fold the image (distortion not monotonic out to the corners)");
+  }
+}
+
+}  // namespace
 
 std::vector<CalibratedPhoto> read_camera_file(const std::filesystem::path& path) {
   std::ifstream in(path);
@@ -163,6 +263,7 @@ std::vector<CalibratedPhoto> read_camera_file(const std::filesystem::path& path)
       c.camera.near = p.value("near", 0.01f);
       c.camera.far = p.value("far", 1000.0f);
       validate_camera(c.camera, ("camera file " + path.string()).c_str());
+      read_lens(p, c, path);
       out.push_back(std::move(c));
     }
   } catch (const nlohmann::json::exception& e) {

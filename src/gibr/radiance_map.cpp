@@ -143,7 +143,7 @@ ImageU32 vismap_pixel_polygons(const VisibilityMap& map, bool exclude_all_bounda
 }
 
 ImageU32 unmix_silhouette_pixels(const VisibilityMap& map, const ImageU32& labels, const ImageF& photo, int samples,
-                                 bool exclude_all_boundaries) {
+                                 bool exclude_all_boundaries, bool two_pass) {
   const int W = map.width, H = map.height;
   const int L = labels.channels();
   if (labels.width() != W || labels.height() != H || (L != 1 && L != kRecordChannels) || photo.width() != W ||
@@ -165,42 +165,55 @@ ImageU32 unmix_silhouette_pixels(const VisibilityMap& map, const ImageU32& label
   const ImageU32 fine = rasterize_map(scaled_map(map, samples));
   const int n = samples * samples;
   std::vector<std::pair<uint32_t, int>> sides;  // polygon (kNone = background), samples
-  for (int y = 0; y < H; ++y)
-    for (int x = 0; x < W; ++x) {
-      if (!touched.at(x, y)) continue;
-      sides.clear();
-      for (int s = 0; s < n; ++s) {
-        const uint32_t q = fine.at(x * samples + s % samples, y * samples + s / samples);
-        auto it = std::find_if(sides.begin(), sides.end(), [&](const auto& e) { return e.first == q; });
-        if (it == sides.end()) sides.push_back({q, 1});
-        else ++it->second;
-      }
-      // P: the first side (in sample order) with at least half the samples; not the background.
-      const auto P = std::find_if(sides.begin(), sides.end(), [&](const auto& e) { return 2 * e.second >= n; });
-      if (P == sides.end() || P->first == kNone) continue;
-      vec3 c = rgb_at(photo, x, y);
-      bool known = true;
-      for (const auto& [q, count] : sides) {
-        if (q == P->first) continue;
-        // The other side's color: the nearest pixel within 2 px wholly on it (first in row order).
-        double best = 4.0 + 1e-9;
-        vec3 cq(0.0f);
+  // Pixel (x, y) unmixed for its majority polygon: false when it has none or another side's
+  // color is unknown. A side's color is the nearest pixel within 2 px wholly on it — or, with
+  // `second` (thin occluders: no pixel wholly on them), the nearest pixel unmixed for it in the
+  // first pass (`first`: that pass's result; its colors only, so no chains of unmixing).
+  auto unmix_pixel = [&](int x, int y, const ImageU32* first, uint32_t& polygon, uint32_t& packed) {
+    sides.clear();
+    for (int s = 0; s < n; ++s) {
+      const uint32_t q = fine.at(x * samples + s % samples, y * samples + s / samples);
+      auto it = std::find_if(sides.begin(), sides.end(), [&](const auto& e) { return e.first == q; });
+      if (it == sides.end()) sides.push_back({q, 1});
+      else ++it->second;
+    }
+    // P: the first side (in sample order) with at least half the samples; not the background.
+    const auto P = std::find_if(sides.begin(), sides.end(), [&](const auto& e) { return 2 * e.second >= n; });
+    if (P == sides.end() || P->first == kNone) return false;
+    vec3 c = rgb_at(photo, x, y);
+    for (const auto& [q, count] : sides) {
+      if (q == P->first) continue;
+      // The other side's color: the nearest pixel within 2 px wholly on it (first in row order).
+      double best = 4.0 + 1e-9;
+      vec3 cq(0.0f);
+      for (int yy = std::max(0, y - 2); yy <= std::min(H - 1, y + 2); ++yy)
+        for (int xx = std::max(0, x - 2); xx <= std::min(W - 1, x + 2); ++xx) {
+          const double dd = double((xx - x) * (xx - x) + (yy - y) * (yy - y));
+          if (dd >= best) continue;
+          if (!on_any_edge.at(xx, yy) && centers.at(xx, yy) == q) best = dd, cq = rgb_at(photo, xx, yy);
+        }
+      if (best > 4.0 && first && q != kNone) {
         for (int yy = std::max(0, y - 2); yy <= std::min(H - 1, y + 2); ++yy)
           for (int xx = std::max(0, x - 2); xx <= std::min(W - 1, x + 2); ++xx) {
-            if (on_any_edge.at(xx, yy) || centers.at(xx, yy) != q) continue;
             const double dd = double((xx - x) * (xx - x) + (yy - y) * (yy - y));
-            if (dd < best) best = dd, cq = rgb_at(photo, xx, yy);
+            if (dd < best && dd > 0.0 && first->at(xx, yy, L) == q) best = dd, cq = unpack_srgb8(first->at(xx, yy, L + 1));
           }
-        if (best > 4.0) {
-          known = false;
-          break;
-        }
-        c -= (float(count) / float(n)) * cq;
       }
-      if (!known) continue;
-      out.at(x, y, L) = P->first;
-      out.at(x, y, L + 1) = pack_srgb8(c * (float(n) / float(P->second)));  // pack_srgb8 clamps to [0, 1]
+      if (best > 4.0) return false;
+      c -= (float(count) / float(n)) * cq;
     }
+    polygon = P->first;
+    packed = pack_srgb8(c * (float(n) / float(P->second)));  // pack_srgb8 clamps to [0, 1]
+    return true;
+  };
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x)
+      if (touched.at(x, y)) unmix_pixel(x, y, nullptr, out.at(x, y, L), out.at(x, y, L + 1));
+  if (!two_pass) return out;
+  const ImageU32 first = out;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x)
+      if (touched.at(x, y) && first.at(x, y, L) == kNone) unmix_pixel(x, y, &first, out.at(x, y, L), out.at(x, y, L + 1));
   return out;
 }
 

@@ -646,6 +646,8 @@ constexpr Entry kScenes[] = {
     {"floor", "visibility test: office floor, 60 offices, ~1,750 polygons", make_vis_floor},
     {"building", "visibility test: 5 office floors with a stairwell, ~9,700 polygons (proxima visibility --floors N)",
      [] { return make_vis_building(5); }},
+    {"colonnade", "visibility test: thin columns and a railing in front of a textured wall, 57 polygons",
+     make_vis_colonnade},
     {"level-small", "visibility test: brush-built game level, 3x3 rooms x 2 storeys, no detail brushes, ~2.7k triangles",
      [] { return make_level(level_options("level-small")); }},
     {"level-medium", "visibility test: brush-built game level, 4x3 rooms x 2 storeys, ~6.1k triangles",

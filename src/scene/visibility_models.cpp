@@ -425,8 +425,35 @@ Scene make_vis_building(int floors) {
   return s;
 }
 
+Scene make_vis_colonnade() {
+  Scene s;
+  s.name = "colonnade";
+  const uint32_t room = add_gray(s, "room", {0.8f, 0.75f, 0.6f});
+  const uint32_t stone = add_gray(s, "columns", {0.45f, 0.5f, 0.6f});
+  const uint32_t rail = add_gray(s, "railing", {0.3f, 0.25f, 0.2f});
+  // A room x 0..8, z 0..4, 3 m high; the textured back wall (z = 0) seen through a row of
+  // 12 cm columns (z = 1.4, every 0.8 m) and a 6 cm railing bar in front of them (z = 1.0).
+  const float h = 3.0f, L = 8.0f, D = 4.0f;
+  quad(s, {0, 0, D}, {L, 0, 0}, {0, 0, -D}, room, "floor");
+  quad(s, {0, h, 0}, {L, 0, 0}, {0, 0, D}, room, "ceiling");
+  wall(s, {0, 0, 0}, {L, 0, 0}, 0, h, room, "back");
+  wall(s, {L, 0, D}, {0, 0, D}, 0, h, room, "front");
+  wall(s, {0, 0, D}, {0, 0, 0}, 0, h, room, "left");
+  wall(s, {L, 0, 0}, {L, 0, D}, 0, h, room, "right");
+  for (int i = 0; i < 9; ++i)
+    box(s, {0.8f * float(i + 1), 0, 1.4f}, {0.12f, 2.6f, 0.12f}, 0.0f, stone, "column_" + std::to_string(i));
+  box(s, {4.0f, 0.9f, 1.0f}, {7.4f, 0.06f, 0.06f}, 0.0f, rail, "railing", true);
+  lights(s, {4.0f, 2.8f, 3.0f});
+  // Along the room, 2.2 m from the columns, looking at the back wall and ahead.
+  std::vector<vec3> pts;
+  for (int i = 0; i <= 6; ++i) pts.push_back({0.8f + 1.05f * float(i), 1.5f, 3.4f});
+  s.camera_paths.push_back(walk_through(pts, 120, 65.0f, 1, vec3(0, -0.2f, -3.0f)));
+  add_walk_start_camera(s);
+  return s;
+}
+
 bool is_visibility_model(const std::string& name) {
-  for (const char* m : {"rooms", "maze", "arena", "vcity", "floor", "building"})
+  for (const char* m : {"rooms", "maze", "arena", "vcity", "floor", "building", "colonnade"})
     if (name == m) return true;
   return name.rfind("building:", 0) == 0 || is_level_scene(name);
 }

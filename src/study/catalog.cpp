@@ -481,11 +481,20 @@ Entry gibr_entry() {
                        &M::exclude_boundaries));
   f.push_back(field<O>("whole_pixels", "vismap mapping without exact-visible texels", &O::model, &M::whole_pixels));
   f.push_back(field<O>("unmix", "unmix silhouette pixels (--no-unmix clears it)", &O::model, &M::unmix));
+  f.push_back(field<O>("unmix_two_pass", "unmix thin occluders' pixels from the first pass's colors", &O::model,
+                       &M::unmix_two_pass));
+  f.push_back(field<O>("photo_yaw", "photographs' view directions turned by up to ± this, degrees, 0..180", &O::model,
+                       &M::photo_yaw_deg));
+  f.push_back(field<O>("photo_backoff", "meters the photographs step back, 0..1000", &O::model, &M::photo_backoff));
+  f.push_back(field<O>("calibration_px", "mapping cameras turned by this many pixels, 0..100", &O::model,
+                       &M::calibration_px));
   f.push_back(field<O>("views", "novel views: path, offpath or photos", &O::views));
   f.push_back(field<O>("frames", "novel views rendered and compared, 1..10000", &O::frames));
   f.push_back(field<O>("k", "photographs blended per pixel, 1..64", &O::k));
   f.push_back(field<O>("novel_ss", "s×s samples per novel-view pixel, 0..8; 0 = supersample", &O::novel_ss));
   f.push_back(field<O>("hole_radius", "texels searched around a hole, 0..4096", &O::hole_radius));
+  f.push_back(field<O>("mixed_reach", "holes take a kMixed sample within this many texels first, 0..64",
+                       &O::mixed_reach));
   f.push_back(field<O>("offpath", "meters the offpath views move off the path, 0..1000", &O::offpath));
   f.push_back(field<O>("photo_images", "photos/photo_NNN.png (--no-photo-images clears it)", &O::photo_images));
   f.push_back(field<O>("fps_repeat", "timed renders per novel view (median), 1..1000", &O::fps_repeat));

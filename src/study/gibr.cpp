@@ -320,6 +320,7 @@ void validate(const GibrOptions& o) {
   require_in_range(o.frames, 1, 10000, "--frames");
   require_in_range(o.novel_ss, 0, 8, "--novel-ss");
   require_in_range(o.hole_radius, 0, 4096, "--hole-radius");
+  require_in_range(o.mixed_reach, 0, 64, "--mixed-reach");
   if (!(o.offpath >= 0.0 && o.offpath <= 1e3)) fail_input("--offpath: must be a distance in meters ≥ 0");
   require_in_range(o.fps_repeat, 1, 1000, "--fps-repeat");
   require_in_range(o.k, 1, 64, "--k");
@@ -341,6 +342,7 @@ Results run_gibr(const Scene& model_scene, const GibrOptions& o, const StudyOutp
   Renderer r;
   r.nvo.k = o.k;
   r.nvo.hole_radius = o.hole_radius;
+  r.nvo.mixed_reach = o.mixed_reach;
   r.nvo.supersample = o.novel_ss > 0 ? o.novel_ss : o.model.supersample;
   r.nvo1 = r.nvo;
   r.nvo1.supersample = 1;

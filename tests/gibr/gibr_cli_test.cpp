@@ -30,7 +30,8 @@ TEST(GibrCli, BadFlagsExitTwoNamingTheFlagAndWriteNothing) {
   TempDir dir;
   const auto out = dir.path / "never";
   for (const char* args : {"--photos 0", "--views sideways", "--texel -1", "--texel 1e-6", "--k 0", "--supersample 9",
-                           "--frames 0", "--novel-ss 9", "--hole-radius -1", "--offpath -1", "--scene no-such-scene", "--photo-width 0", "--threads -1"}) {
+                           "--frames 0", "--novel-ss 9", "--hole-radius -1", "--offpath -1", "--scene no-such-scene", "--photo-width 0", "--threads -1",
+                           "--calibration-px -1", "--photo-yaw 200", "--photo-backoff -1", "--mixed-reach 65"}) {
     RunResult r = run_cli(std::string("gibr ") + args + " --out " + out.string());
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
     const std::string flag = std::string(args).substr(0, std::string(args).find(' '));

@@ -40,11 +40,22 @@ struct GibrModelOptions {
   bool exclude_boundaries = false;      // vismap_pixel_polygons' option
   bool whole_pixels = false;            // vismap_pixel_polygons without the sub-pixel record
   bool unmix = true;                    // unmix_silhouette_pixels (needs the sub-pixel record)
+  bool unmix_two_pass = false;          // unmix_silhouette_pixels' two_pass (thin occluders)
   bool item_buffer = false;             // also map through item buffers (the baseline)
+  // Regimes of the sweep (docs/gibr.md): the photographs' poses (photo_poses' yaw range and
+  // backoff) and a calibration error — the cameras the mapping uses are the poses the
+  // photographs were taken from turned by `calibration_px` pixels (at the image center) in a
+  // seeded direction per photograph, as a real calibration is off by a pixel or two.
+  double photo_yaw_deg = 30.0;          // ±yaw of the photographs' view directions, 0..180
+  double photo_backoff = 0.0;           // meters the photographs step back, 0..1000
+  double calibration_px = 0.0;          // 0..100
   uint64_t seed = 1;
   // Non-empty: the photographs are the images of this camera file (photo_set.h; e.g. real
   // photographs of the model), not rendered; `photos`, `photo_width` / `photo_height` are
   // then unused and `supersample` only tells the unmixing how finely the images average.
+  // Each image is undistorted with its camera's k1, k2 and divided by its exposure as it is
+  // loaded (photo_set.h); pixels the undistortion has no source for are mapped by neither
+  // mapping.
   std::filesystem::path camera_file;
 };
 
@@ -68,7 +79,7 @@ struct GibrModel {
   visibility::WingedPair winged_pair;   // phase 1
   double texel = 0.0, far = 0.0;        // texel size used; far plane of every camera
   std::vector<Camera> cameras;          // per photograph
-  std::vector<ImageF> photos;           // linear RGB
+  std::vector<ImageF> photos;           // linear RGB (camera-file photographs undistorted and equalized)
   RadianceMaps maps;                    // visibility-map mapping (phase 3)
   RadianceMaps item_maps;               // item-buffer mapping; empty unless options.item_buffer
   GibrModelStats stats;

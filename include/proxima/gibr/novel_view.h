@@ -40,6 +40,9 @@ namespace proxima::gibr {
 struct NovelViewOptions {
   int k = 3;             // photographs blended per pixel, ≥ 1
   int hole_radius = 32;  // texels searched around a hole
+  // Texels: a hole with a kMixed sample but no sample with alpha ≥ kExtrapolated within this
+  // reach (in any layer) takes the nearest kMixed one within it before the wide search; 0 = off.
+  int mixed_reach = 0;
   int supersample = 1;   // s×s samples per pixel (antialiasing), 1..8 (InputError otherwise)
   // false: the plain path — a pass over the layers per sample kind, every hole searched
   // afresh ring by ring over whole squares; the same bits, for tests and benchmarks of the

@@ -37,6 +37,7 @@ struct PhotoPoseOptions {
   double jitter = 0.2;       // meters: position offset (uniform in a cube of this half-size)
   double yaw_deg = 30.0;     // view direction turned by uniform ±yaw about +Y
   double pitch_deg = 10.0;   // and tilted by uniform ±pitch
+  double backoff = 0.0;      // meters moved back against the view direction (shortened where blocked)
   uint64_t seed = 1;
 };
 
@@ -65,13 +66,29 @@ ReferenceOptions photo_render_options(int supersample, uint64_t seed);
 struct CalibratedPhoto {
   std::string image;  // file name, relative to the camera file's directory
   Camera camera;
+  // Lens and exposure (docs/gibr.md): radial distortion of the normalized image coordinates,
+  // x_d = x (1 + k1 r² + k2 r⁴); exposure = the image's linear value / the scene's radiance.
+  double k1 = 0.0, k2 = 0.0, exposure = 1.0;
 };
+
+// The pinhole photograph of `camera` from a photograph taken through a lens with radial
+// distortion (k1, k2): each pixel center's normalized coordinates distorted and the image
+// sampled there (bilinear, linear RGB). `valid` (optional) gets 1 per pixel whose distorted
+// position lies inside the image, 0 (and black) elsewhere.
+ImageF undistort_photo(const ImageF& image, const Camera& camera, double k1, double k2, ImageU8* valid = nullptr);
+// The inverse: what a lens with (k1, k2) makes of the pinhole photograph `image` (each pixel's
+// undistorted position by fixed-point iteration, then bilinear; outside → black). For tests
+// and for making distorted photographs of synthetic scenes.
+ImageF distort_photo(const ImageF& image, const Camera& camera, double k1, double k2);
 
 // Camera file (docs/gibr.md):
 // {"format": "proxima-cameras", "version": 1, "photos": [{"image": "photo_000.png",
 //  "width": 320, "height": 240, "vfov_deg": 60, "position": [x, y, z],
-//  "orientation": [w, x, y, z], "near": 0.01, "far": 1000}]}
-// orientation = camera → world rotation (camera looks down −Z, +Y up), as core/camera.h.
+//  "orientation": [w, x, y, z], "near": 0.01, "far": 1000, "k1": 0, "k2": 0, "exposure": 1}]}
+// orientation = camera → world rotation (camera looks down −Z, +Y up), as core/camera.h;
+// k1, k2, exposure optional (defaults 0, 0, 1; written only when they differ). k1, k2 must
+// be finite, |k| ≤ 1, and keep the distortion monotonic over the image (InputError otherwise);
+// exposure finite and > 0.
 void write_camera_file(const std::filesystem::path& path, const std::vector<CalibratedPhoto>& photos);
 // InputError naming the file for a missing or malformed file or an invalid camera.
 std::vector<CalibratedPhoto> read_camera_file(const std::filesystem::path& path);

@@ -142,8 +142,11 @@ ImageU32 vismap_pixel_polygons(const visibility::VisibilityMap& map, bool exclud
 // pack_srgb8(c_P).
 // (For a box-filtered camera α would be P's area of the pixel; the synthetic photographs
 // average point samples, so their α is the share of samples.)
+// With `two_pass`, a side with no pixel wholly on it within 2 px (a thin occluder, a jamb
+// seen edge-on) takes its color from the nearest pixel within 2 px unmixed for it in a first
+// pass, and pixels the first pass could not unmix are tried again (first-pass colors only).
 ImageU32 unmix_silhouette_pixels(const visibility::VisibilityMap& map, const ImageU32& labels, const ImageF& photo,
-                                 int samples, bool exclude_all_boundaries = false);
+                                 int samples, bool exclude_all_boundaries = false, bool two_pass = false);
 
 // First of unmix_silhouette_pixels' two channels in labels (1 + 2 or kRecordChannels + 2
 // channels), −1 for labels without them.

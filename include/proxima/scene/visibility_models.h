@@ -29,9 +29,12 @@ Scene make_vis_vcity();
 Scene make_vis_floor();
 // floors in [1, 64]; throws InputError otherwise.
 Scene make_vis_building(int floors = 5);
+// Thin occluders in front of a wall: a room whose back wall is seen through a row of thin
+// columns and a railing bar (GIBR's silhouette test scene, docs/gibr.md), 57 polygons.
+Scene make_vis_colonnade();
 
 // True for the names of the models above (rooms, maze, arena, vcity, floor, building,
-// building:N) and the brush-built levels (level-*, scene/level_scenes.h): the scenes the
+// building:N, colonnade) and the brush-built levels (level-*, scene/level_scenes.h): the scenes the
 // exact-visibility pipeline (and GIBR) is made for.
 bool is_visibility_model(const std::string& scene_name);
 

@@ -37,6 +37,7 @@ struct GibrOptions {
   int k = 3;                          // --k: photographs blended per pixel, 1..64
   int novel_ss = 0;                   // --novel-ss: s×s samples per novel-view pixel, 0..8; 0 = model.supersample
   int hole_radius = gibr::NovelViewOptions{}.hole_radius;  // --hole-radius: texels searched around a hole, 0..4096
+  int mixed_reach = gibr::NovelViewOptions{}.mixed_reach;  // --mixed-reach: local mixed samples first for holes, 0..64
   double offpath = 0.5;               // --offpath: meters the Offpath views move off the path, 0..1000
   bool photo_images = true;           // --no-photo-images clears it: photos/photo_NNN.png
   int fps_repeat = 3;                 // --fps-repeat: timed renders per novel view (median → novel_view_fps), 1..1000
