@@ -34,38 +34,41 @@ const char* const kCauseNames[kOcclusionCauses] = {"none", "behind_near_plane", 
 // Metric names of the SsrOutcome values.
 const char* const kSsrOutcomeNames[5] = {"hit", "hidden", "offscreen", "step_limit", "exhausted"};
 
-// Output-resolution image of the SSR fallback: per pixel, red by the share of its samples'
-// rays' radiance that came from the fallback (1 − confidence), over a dimmed `color`.
-ImageF ssr_fallback_image(const ReflectionFrame& frame, const SsrReflections& ssr, const ImageF& color) {
+// Output-resolution image of the samples: per sample the color `of(i)`, over a dimmed `color`
+// (each of a pixel's k×k samples covers its share).
+template <typename SampleColor>
+ImageF sample_overlay(const ReflectionFrame& frame, const ImageF& color, SampleColor&& of) {
   ImageF out = color;
   for (float& v : out.data()) v *= 0.3f;
   const int sw = frame.sample_camera.width, k = frame.supersample;
   const float share = 1.0f / float(k * k);
   for (size_t i = 0; i < frame.sample_count(); ++i) {
-    const float fb = 1.0f - ssr.confidence[i];
-    const vec3 c = fb * vec3(1, 0, 0) + (1.0f - fb) * vec3(0.2f, 0.6f, 1.0f);
+    const vec3 c = of(i);
     const int x = int(frame.pixel[i] % uint32_t(sw)) / k, y = int(frame.pixel[i] / uint32_t(sw)) / k;
     for (int ch = 0; ch < 3; ++ch) out.at(x, y, ch) += share * (c[ch] - 0.3f * color.at(x, y, ch));
   }
   return out;
 }
 
-// Output-resolution image of the samples: clusters in hashed colors, flagged samples red
-// (environment fallback) and yellow (occlusion error), over a dimmed `color`.
+// Clusters in hashed colors, flagged samples red (environment fallback) and yellow
+// (occlusion error).
 ImageF cluster_image(const ReflectionFrame& frame, const ClusterReflections& cr, const ImageF& color) {
-  ImageF out = color;
-  for (float& v : out.data()) v *= 0.3f;
-  const int sw = frame.sample_camera.width, k = frame.supersample;
-  const float share = 1.0f / float(k * k);
-  for (size_t i = 0; i < frame.sample_count(); ++i) {
+  return sample_overlay(frame, color, [&](size_t i) {
     uint64_t h = mix64(cr.cluster[i]);
     vec3 c(float(h & 255) / 255.0f, float((h >> 8) & 255) / 255.0f, float((h >> 16) & 255) / 255.0f);
     if (cr.flags[i] & kEnvFallback) c = vec3(1, 0, 0);
     if (cr.flags[i] & kOcclusionError) c = vec3(1, 1, 0);
-    const int x = int(frame.pixel[i] % uint32_t(sw)) / k, y = int(frame.pixel[i] / uint32_t(sw)) / k;
-    for (int ch = 0; ch < 3; ++ch) out.at(x, y, ch) += share * (c[ch] - 0.3f * color.at(x, y, ch));
-  }
-  return out;
+    return c;
+  });
+}
+
+// The SSR fallback: red by the share of a sample's rays' radiance that came from the
+// fallback (1 − confidence), blue where SSR answered alone.
+ImageF ssr_fallback_image(const ReflectionFrame& frame, const SsrReflections& ssr, const ImageF& color) {
+  return sample_overlay(frame, color, [&](size_t i) {
+    const float fb = 1.0f - ssr.confidence[i];
+    return fb * vec3(1, 0, 0) + (1.0f - fb) * vec3(0.2f, 0.6f, 1.0f);
+  });
 }
 
 // The frames to render: one (the scene camera --camera, or --path with --frame), or the

@@ -37,7 +37,7 @@ TEST(ReflectCli, BadInputExitsTwoNamingTheFlag) {
   TempDir dir;
   const std::string out = " --out " + (dir.path / "never").string();
   for (auto [args, flag] : {std::pair{"--method mirror", "--method: 'mirror' is not one of envmap, rectified, "
-                                                         "average, layered, reference, cluster, temporal"},
+                                                         "average, layered, boxprobe, reference, cluster, ssr, temporal"},
                             std::pair{"--d-e 0", "--d-e"}, std::pair{"--edge grey", "--edge"},
                             std::pair{"--cube-size 0", "--cube-size"}, std::pair{"--threads -1", "--threads"},
                             std::pair{"--scene cornell-nope", "cornell-nope"},

@@ -9,6 +9,8 @@
 #include "proxima/eval/image_error.h"
 #include "proxima/reflect/box_probe.h"
 #include "proxima/reflect/envmap_reflection.h"
+#include "proxima/scene/load.h"
+#include "proxima/study/cluster_reflect.h"
 #include "reflect_test_scenes.h"
 #include "test_util.h"
 
@@ -45,15 +47,15 @@ Scene mirror_before_wall() {
   return s;
 }
 
-struct Run {
+struct SsrRun {
   ReflectionFrame frame;
   TracedReflections traced;
   SsrReflections ssr;
   double mae = 0.0;  // SSR vs Embree on the same rays, 0–255, over the reflective pixels
 };
 
-Run run(const Scene& scene, const Camera& cam, const SsrFallback& fallback) {
-  Run r;
+SsrRun run(const Scene& scene, const Camera& cam, const SsrFallback& fallback) {
+  SsrRun r;
   const RayScene rays(scene);
   ReflectionOptions ro;
   ro.area_light_samples = 1;
@@ -70,9 +72,12 @@ Run run(const Scene& scene, const Camera& cam, const SsrFallback& fallback) {
 TEST(SsrReflection, PlanarMirrorWithEverythingOnScreenIsWithinMae1OfEmbree) {
   const Scene scene = mirror_before_wall();
   const Camera cam = look_at(vec3(0.0f), vec3(0.0f, -0.15f, -1.0f), vec3(0, 1, 0), 60.0f, 128, 128);
-  const Run r = run(scene, cam, {});
+  const SsrRun r = run(scene, cam, {});
   ASSERT_GT(r.frame.sample_count(), 2000u);
   const SsrStats& st = r.ssr.stats;
+  RecordProperty("ssr_mae", std::to_string(r.mae));
+  RecordProperty("fallback_samples", std::to_string(st.fallback_samples) + " of " + std::to_string(st.samples));
+  RecordProperty("steps_per_ray", std::to_string(double(st.steps) / double(st.rays)));
   EXPECT_LT(r.mae, 1.0) << "0–255 display scale";
   // SSR answered: nearly every ray hit, and the fallback (here the environment: black) is unused.
   EXPECT_GT(double(st.outcome_rays[size_t(SsrOutcome::Hit)]), 0.99 * double(st.rays));
@@ -95,8 +100,8 @@ TEST(SsrReflection, OffScreenReflectionsFallBackToTheBoxProbeAndAreCounted) {
   mo.shade = [&](uint32_t tri, float u, float v, vec3 toward) { return shade_reflected_point(scene, tri, u, v, toward, 1); };
   const DistanceCubeMap map = render_distance_cube_map(scene, rays, projection_center(scene, reflectors), mo);
   const SsrFallback probe{&map, probe_proxy_box(scene)};
-  const Run with_probe = run(scene, cam, probe);
-  const Run with_env = run(scene, cam, {});
+  const SsrRun with_probe = run(scene, cam, probe);
+  const SsrRun with_env = run(scene, cam, {});
   const SsrStats& st = with_probe.ssr.stats;
   ASSERT_GT(st.samples, 1000u);
   EXPECT_GT(st.outcome_rays[size_t(SsrOutcome::OffScreen)], st.rays / 2);
@@ -113,6 +118,9 @@ TEST(SsrReflection, OffScreenReflectionsFallBackToTheBoxProbeAndAreCounted) {
   EXPECT_EQ(counted, st.fallback_samples);
   EXPECT_GT(zero, st.samples / 2);
   // The probe answers the walls and ceiling nearly exactly; the environment (black) does not.
+  RecordProperty("ssr_probe_mae", std::to_string(with_probe.mae));
+  RecordProperty("ssr_env_mae", std::to_string(with_env.mae));
+  RecordProperty("fallback_samples", std::to_string(st.fallback_samples) + " of " + std::to_string(st.samples));
   EXPECT_LT(with_probe.mae, 2.0);
   EXPECT_GT(with_env.mae, 10.0 * with_probe.mae) << with_env.mae << " vs " << with_probe.mae;
 }
@@ -135,6 +143,40 @@ TEST(SsrReflection, SameResultForAnyThreadCount) {
   EXPECT_EQ(a.radiance, b.radiance);
   EXPECT_EQ(a.stats.steps, b.stats.steps);
   EXPECT_EQ(a.stats.fallback_samples, b.stats.fallback_samples);
+}
+
+// --method ssr is the cluster study with SSR beside it: its figures are added, the cluster
+// method's and the comparison's stay as they were.
+TEST(SsrReflection, ClusterStudyWithSsrAddsItsFiguresAndChangesNoOther) {
+  const Scene scene = load_scene("room-reflector");
+  study::ClusterReflectOptions o;
+  o.width = 48;
+  o.height = 32;
+  o.camera.path = "0";
+  o.frames = 2;
+  o.reflection.supersample = 1;
+  o.cube_size = 16;
+  o.compare = true;
+  const Results plain = study::run_cluster_reflect(scene, o, {});
+  o.ssr = true;
+  const Results with_ssr = study::run_cluster_reflect(scene, o, {});
+  auto timing = [](const std::string& name) {
+    return name.find("ms") != std::string::npos || name.find("speedup") != std::string::npos;
+  };
+  for (const auto& [name, value] : plain.metrics) {
+    const std::string& n = name;
+    if (timing(n)) continue;
+    ASSERT_TRUE(with_ssr.metrics.count(n)) << n;
+    EXPECT_EQ(with_ssr.metrics.at(n), value) << n;
+  }
+  const auto& m = with_ssr.metrics;
+  for (const char* name : {"ssr_mae_r", "boxprobe_mae_g", "ssr_fallback_pct_avg", "ssr_steps_per_ray_avg"})
+    EXPECT_TRUE(m.count(name)) << name;
+  EXPECT_GE(m.at("ssr_fallback_pct_avg"), 0.0);
+  EXPECT_LE(m.at("ssr_fallback_pct_avg"), 100.0);
+  EXPECT_GT(m.at("ssr_mae_r"), 0.0);
+  EXPECT_EQ(with_ssr.tables.size(), plain.tables.size() + 1);
+  EXPECT_EQ(with_ssr.tables.back().title.rfind("SSR with box-probe fallback", 0), 0u);
 }
 
 TEST(SsrReflection, OptionsOutOfRangeAreRefused) {
