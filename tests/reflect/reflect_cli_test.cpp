@@ -21,14 +21,14 @@ TEST(ReflectCli, CompareWritesEveryMethodsMetricsAndImages) {
   RunResult r = run("--scene room-reflector --compare" + kSmall + " --out " + dir.path.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   nlohmann::json j = nlohmann::json::parse(std::ifstream(dir.path / "results.json"));
-  for (const char* m : {"envmap", "rectified", "average", "layered", "reference"}) {
+  for (const char* m : {"envmap", "rectified", "average", "layered", "boxprobe", "reference"}) {
     ASSERT_TRUE(j["metrics"].contains(std::string(m) + "_mae")) << m;
     ASSERT_TRUE(j["metrics"].contains(std::string(m) + "_ms")) << m;
     EXPECT_TRUE(std::filesystem::exists(dir.path / (std::string(m) + ".png"))) << m;
     EXPECT_EQ(std::filesystem::exists(dir.path / ("error_" + std::string(m) + ".png")), std::string(m) != "reference")
         << m;
   }
-  EXPECT_EQ(j["images"].size(), 9u);
+  EXPECT_EQ(j["images"].size(), 11u);
   EXPECT_NE(r.output.find("| rectified |"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("results: "), std::string::npos) << r.output;
 }
