@@ -110,9 +110,9 @@ Technique baseline_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<Re
     std::vector<vec3> reflected;
     if (ssr) {
       SsrReflections r = render_ssr_reflections(vs->scene, frame, {}, {&map, box}, shared->bounds);
-      out.steps.push_back({"ssr depth + back faces + pyramid", r.stats.gbuffer_ms + r.stats.backface_ms +
-                                                                    r.stats.pyramid_ms});
-      out.steps.push_back({"ssr trace + fallback", r.stats.trace_ms});
+      const double depth_ms = r.stats.gbuffer_ms + r.stats.backface_ms + r.stats.pyramid_ms;
+      out.steps.emplace_back(StepTime{"ssr depth passes", depth_ms});
+      out.steps.emplace_back(StepTime{"ssr trace+fallback", r.stats.trace_ms});
       reflected = std::move(r.radiance);
     } else {
       Stopwatch w;
