@@ -113,7 +113,7 @@ struct ClusterSeries {
   Series cause_pct[kOcclusionCauses], cause_mirror_pct[kOcclusionCauses];
   // SSR and the box probe alone (ssr).
   Series ssr_ms, box_ms, ssr_r, ssr_g, ssr_b, box_r, box_g, box_b, ssr_fallback_pct, ssr_fallback_rays_pct,
-      ssr_steps, ssr_confidence, ssr_outcome_pct[5];
+      ssr_steps, ssr_confidence, ssr_outcome_pct[5], ssr_depth_ms, ssr_trace_ms;
 };
 
 // One frame of both methods (and the comparison's), with the median times of its reps.
@@ -296,6 +296,8 @@ void add_ssr_frame(const FrameRun& f, ClusterSeries& s) {
   const SsrStats& st = f.ssr.stats;
   s.ssr_ms.add(f.ssr_ms);
   s.box_ms.add(f.box_ms);
+  s.ssr_depth_ms.add(st.gbuffer_ms + st.backface_ms + st.pyramid_ms);
+  s.ssr_trace_ms.add(st.trace_ms);
   if (st.samples == 0) return;
   const double rays = double(std::max<size_t>(1, st.rays));
   s.ssr_fallback_pct.add(100.0 * double(st.fallback_samples) / double(st.samples));
@@ -355,6 +357,8 @@ void add_ssr_metrics(const ClusterReflectOptions& o, const ClusterSeries& s, Res
   auto& m = results.metrics;
   m["ssr_ms_avg"] = s.ssr_ms.avg();
   m["boxprobe_ms_avg"] = s.box_ms.avg();
+  m["ssr_depth_passes_ms_avg"] = s.ssr_depth_ms.avg();
+  m["ssr_trace_ms_avg"] = s.ssr_trace_ms.avg();
   m["ssr_fallback_pct_avg"] = s.ssr_fallback_pct.avg();
   m["ssr_fallback_pct_max"] = s.ssr_fallback_pct.max();
   m["ssr_fallback_rays_pct_avg"] = s.ssr_fallback_rays_pct.avg();

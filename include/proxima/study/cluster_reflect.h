@@ -13,7 +13,8 @@
 //
 // With ssr (`--method ssr`): screen-space reflections (reflect/ssr_reflection.h) on the same
 // frame and rays, falling back to the box-projected probe (reflect/box_probe.h) on the env
-// map above; metrics ssr_ms_avg, ssr_fallback_pct_avg (reflective samples with a ray that
+// map above; metrics ssr_ms_avg (of it ssr_depth_passes_ms_avg and ssr_trace_ms_avg, the last
+// repetition's), ssr_fallback_pct_avg (reflective samples with a ray that
 // fell back), ssr_fallback_rays_pct_avg, ssr_<outcome>_rays_pct_avg, ssr_steps_per_ray_avg,
 // ssr_confidence_avg, boxprobe_ms_avg, and with compare ssr_mae_r/g/b, boxprobe_mae_r/g/b and
 // a table beside cluster, rectified and Embree. Images ssr, ssr_fallback (red: the share a
