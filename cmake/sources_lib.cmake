@@ -33,6 +33,7 @@ set(PROXIMA_LIB_SOURCES
   src/raster/raster_bench.cpp
   src/raster/rasterizer.cpp
   src/reconstruct/reconstruction.cpp
+  src/reflect/box_probe.cpp
   src/reflect/cluster_camera.cpp
   src/reflect/cluster_clustering.cpp
   src/reflect/cluster_depth_image.cpp
@@ -44,6 +45,7 @@ set(PROXIMA_LIB_SOURCES
   src/reflect/envmap_reflection.cpp
   src/reflect/reflection_comparison.cpp
   src/reflect/reflection_frame.cpp
+  src/reflect/ssr_reflection.cpp
   src/reflect/temporal_best_match.cpp
   src/reflect/temporal_depth_image.cpp
   src/reflect/temporal_offset_warp.cpp

@@ -1,6 +1,7 @@
 // `proxima reflect`: reflections through environment maps with distance (plain, rectified,
 // average, layered; study/envmap_reflect.h, docs/envmap.md) against the Embree reference;
-// `--method cluster` and `--method temporal` run cmd_reflect_cluster.cpp and
+// `--method cluster` (and `--method ssr`: the cluster study with screen-space reflections beside
+// it) and `--method temporal` run cmd_reflect_cluster.cpp and
 // cmd_reflect_temporal.cpp with the flags this command shares with them.
 #include <string>
 
@@ -28,12 +29,12 @@ void check_method(const std::string& method) {
     if (method == m) return;
     names += std::string(m) + ", ";
   }
-  if (method != "cluster" && method != "temporal")
-    fail_input("--method: '" + method + "' is not one of " + names + "cluster, temporal");
+  if (method != "cluster" && method != "ssr" && method != "temporal")
+    fail_input("--method: '" + method + "' is not one of " + names + "cluster, ssr, temporal");
 }
 
 void add_envmap_flags(CLI::App* app, study::EnvmapReflectOptions& o) {
-  app->add_option("--method", o.method, "envmap | rectified | average | layered | reference | cluster | temporal")
+  app->add_option("--method", o.method, "envmap | rectified | average | layered | boxprobe | reference | cluster | ssr | temporal")
       ->capture_default_str();
   app->add_flag("--compare", o.compare,
                 "render every method and the reference; errors and the timing table (cluster: Embree on the "
@@ -59,7 +60,7 @@ void add_envmap_flags(CLI::App* app, study::EnvmapReflectOptions& o) {
       ->capture_default_str();
 }
 
-// --method cluster: the shared flags into the cluster run; flags not given take the
+// --method cluster / ssr: the shared flags into the cluster run; flags not given take the
 // cluster method's defaults (512×512 as the thesis, 8 lobe rays, 1 timing repetition).
 int run_cluster(const ReflectFlags& f, const CLI::App& app) {
   study::EnvmapReflectOptions shared = f.envmap;  // the env-map comparison's flags, checked alike
@@ -80,6 +81,7 @@ int run_cluster(const ReflectFlags& f, const CLI::App& app) {
   c.d_e = f.envmap.d_e;
   c.distance = f.envmap.distance;
   c.edge_fallback = f.envmap.edge == "fallback";
+  c.ssr = f.envmap.method == "ssr";
   return run_cluster_reflect(c);
 }
 
@@ -100,7 +102,7 @@ int run_temporal(const ReflectFlags& f) {
 int run_reflect(ReflectFlags& f, const CLI::App& app) {
   check_method(f.envmap.method);
   if (f.envmap.method == "temporal") return run_temporal(f);
-  if (f.envmap.method == "cluster") return run_cluster(f, app);
+  if (f.envmap.method == "cluster" || f.envmap.method == "ssr") return run_cluster(f, app);
   set_common_options(f.common, f.envmap);
   return publish_study(run_scene_study(f.common, f.envmap, study::run_envmap_reflect));
 }

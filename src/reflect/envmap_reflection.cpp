@@ -19,6 +19,7 @@
 #include "proxima/core/parallel.h"
 #include "proxima/core/rng.h"
 #include "proxima/raster/rasterizer.h"
+#include "proxima/reflect/box_probe.h"
 #include "proxima/trace/direct_light.h"
 #include "proxima/scene/shading.h"
 
@@ -37,6 +38,8 @@ EnvLookup lookup(const EnvmapInputs& in, const Environment& env, vec3 x, vec3 di
       return average_lookup(*in.map, env, x, dir, in.average_distance);
     case EnvmapMethod::Layered:
       return layered_lookup(in.layers, env, x, dir, in.rectify);
+    case EnvmapMethod::BoxProbe:
+      return box_probe_lookup(*in.map, env, x, dir, in.box);
   }
   return {};
 }
@@ -53,14 +56,18 @@ const char* envmap_method_name(EnvmapMethod method) {
       return "average";
     case EnvmapMethod::Layered:
       return "layered";
+    case EnvmapMethod::BoxProbe:
+      return "boxprobe";
   }
   return "?";
 }
 
 EnvmapMethod parse_envmap_method(const std::string& name, const char* flag) {
-  for (EnvmapMethod m : {EnvmapMethod::Plain, EnvmapMethod::Rectified, EnvmapMethod::Average, EnvmapMethod::Layered})
+  for (EnvmapMethod m : {EnvmapMethod::Plain, EnvmapMethod::Rectified, EnvmapMethod::Average, EnvmapMethod::Layered,
+                         EnvmapMethod::BoxProbe})
     if (name == envmap_method_name(m)) return m;
-  fail_input(std::string(flag) + ": unknown env-map method '" + name + "' (envmap, rectified, average, layered)");
+  fail_input(std::string(flag) + ": unknown env-map method '" + name +
+             "' (envmap, rectified, average, layered, boxprobe)");
 }
 
 std::vector<uint32_t> reflective_objects(const Scene& scene) {

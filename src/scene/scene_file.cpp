@@ -249,7 +249,7 @@ class SceneReader {
   Scene read(const json& doc) {
     const Node root(doc, "", file_);
     root.expect_keys({"name", "builtin", "materials", "objects", "cameras", "camera_paths",
-                      "lights", "environment", "ambient"});
+                      "lights", "environment", "ambient", "probe_box"});
     if (root.has("builtin")) read_builtin(root["builtin"]);
     scene_.name = root.get("name", &Node::string, path_.stem().string());
     for (uint32_t m = 0; m < scene_.materials.size(); ++m)
@@ -265,6 +265,7 @@ class SceneReader {
       for (const Node& l : root["lights"].items()) read_light(l);
     if (root.has("environment")) read_environment(root["environment"]);
     scene_.ambient = root.get("ambient", &Node::color, scene_.ambient);
+    if (root.has("probe_box")) read_probe_box(root["probe_box"]);
     if (scene_.triangles.empty())
       root.fail("the scene has no geometry (give \"objects\" or a \"builtin\" scene)");
     return std::move(scene_);
@@ -555,6 +556,13 @@ class SceneReader {
     } else {
       n["type"].fail("unknown light type '" + type + "' (expected point or area)");
     }
+  }
+
+  void read_probe_box(const Node& n) {
+    n.expect_keys({"min", "max"});
+    const vec3 lo = n["min"].vector3(), hi = n["max"].vector3();
+    if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) n.fail("min must be below max on every axis");
+    scene_.probe_box = {lo, hi};
   }
 
   void read_environment(const Node& n) {

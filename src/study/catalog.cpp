@@ -341,7 +341,7 @@ Entry shadows_entry() {
 Entry envmap_entry() {
   using O = EnvmapReflectOptions;
   std::vector<Field<O>> f;
-  f.push_back(field<O>("method", "envmap | rectified | average | layered | reference", &O::method));
+  f.push_back(field<O>("method", "envmap | rectified | average | layered | boxprobe | reference", &O::method));
   f.push_back(field<O>("compare", "every method and the reference instead of `method`", &O::compare));
   add_camera_fields(f, &O::camera);
   f.push_back(field<O>("width", "image width, pixels", &O::width));
@@ -386,6 +386,8 @@ Entry cluster_entry() {
   f.push_back(field<O>("image_frame", "frame whose images are written; -1 = the first one rendered", &O::image_frame));
   f.push_back(field<O>("full_reference", "also render_reference (shadows, jittered area light, 1 bounce)",
                        &O::full_reference));
+  f.push_back(field<O>("ssr", "also screen-space reflections with the box-probe fallback on the same rays",
+                       &O::ssr));
   f.push_back(field<O>("ss", "K×K samples per pixel (the reference's sub-pixel grid)", &O::reflection, &R::supersample));
   f.push_back(field<O>("glossy_rays", "lobe rays per glossy sample", &O::reflection, &R::glossy_rays));
   f.push_back(field<O>("light_samples", "n of the n×n area-light samples", &O::reflection, &R::area_light_samples));

@@ -15,9 +15,11 @@
 #include "proxima/eval/image_error.h"
 #include "proxima/eval/series.h"
 #include "proxima/raster/rasterizer.h"
+#include "proxima/reflect/box_probe.h"
 #include "proxima/reflect/envmap_frame_reflections.h"
 #include "proxima/reflect/envmap_lookup.h"
 #include "proxima/reflect/envmap_reflection.h"
+#include "proxima/reflect/ssr_reflection.h"
 #include "proxima/scene/camera_path.h"
 #include "proxima/scene/shading.h"
 #include "proxima/trace/ray_scene.h"
@@ -29,23 +31,44 @@ namespace {
 
 const char* const kCauseNames[kOcclusionCauses] = {"none", "behind_near_plane", "outside_image",
                                                    "own_curved_reflector", "hidden_in_image"};
+// Metric names of the SsrOutcome values.
+const char* const kSsrOutcomeNames[5] = {"hit", "hidden", "offscreen", "step_limit", "exhausted"};
 
-// Output-resolution image of the samples: clusters in hashed colors, flagged samples red
-// (environment fallback) and yellow (occlusion error), over a dimmed `color`.
-ImageF cluster_image(const ReflectionFrame& frame, const ClusterReflections& cr, const ImageF& color) {
+// Output-resolution image of the samples: per sample the color `of(i)`, over a dimmed `color`
+// (each of a pixel's k×k samples covers its share).
+template <typename SampleColor>
+ImageF sample_overlay(const ReflectionFrame& frame, const ImageF& color, SampleColor&& of) {
   ImageF out = color;
   for (float& v : out.data()) v *= 0.3f;
   const int sw = frame.sample_camera.width, k = frame.supersample;
   const float share = 1.0f / float(k * k);
   for (size_t i = 0; i < frame.sample_count(); ++i) {
-    uint64_t h = mix64(cr.cluster[i]);
-    vec3 c(float(h & 255) / 255.0f, float((h >> 8) & 255) / 255.0f, float((h >> 16) & 255) / 255.0f);
-    if (cr.flags[i] & kEnvFallback) c = vec3(1, 0, 0);
-    if (cr.flags[i] & kOcclusionError) c = vec3(1, 1, 0);
+    const vec3 c = of(i);
     const int x = int(frame.pixel[i] % uint32_t(sw)) / k, y = int(frame.pixel[i] / uint32_t(sw)) / k;
     for (int ch = 0; ch < 3; ++ch) out.at(x, y, ch) += share * (c[ch] - 0.3f * color.at(x, y, ch));
   }
   return out;
+}
+
+// Clusters in hashed colors, flagged samples red (environment fallback) and yellow
+// (occlusion error).
+ImageF cluster_image(const ReflectionFrame& frame, const ClusterReflections& cr, const ImageF& color) {
+  return sample_overlay(frame, color, [&](size_t i) {
+    uint64_t h = mix64(cr.cluster[i]);
+    vec3 c(float(h & 255) / 255.0f, float((h >> 8) & 255) / 255.0f, float((h >> 16) & 255) / 255.0f);
+    if (cr.flags[i] & kEnvFallback) c = vec3(1, 0, 0);
+    if (cr.flags[i] & kOcclusionError) c = vec3(1, 1, 0);
+    return c;
+  });
+}
+
+// The SSR fallback: red by the share of a sample's rays' radiance that came from the
+// fallback (1 − confidence), blue where SSR answered alone.
+ImageF ssr_fallback_image(const ReflectionFrame& frame, const SsrReflections& ssr, const ImageF& color) {
+  return sample_overlay(frame, color, [&](size_t i) {
+    const float fb = 1.0f - ssr.confidence[i];
+    return fb * vec3(1, 0, 0) + (1.0f - fb) * vec3(0.2f, 0.6f, 1.0f);
+  });
 }
 
 // The frames to render: one (the scene camera --camera, or --path with --frame), or the
@@ -88,6 +111,9 @@ struct ClusterSeries {
       second_ray_pct, cluster_cpu_ms, reference_cpu_ms, reference_dynamic_cpu_ms, step1_cpu_ms, cameras_cpu_ms,
       images_cpu_ms, intersection_cpu_ms, texel_shading_ms, triangles_drawn, shaded_texels;
   Series cause_pct[kOcclusionCauses], cause_mirror_pct[kOcclusionCauses];
+  // SSR and the box probe alone (ssr).
+  Series ssr_ms, box_ms, ssr_r, ssr_g, ssr_b, box_r, box_g, box_b, ssr_fallback_pct, ssr_fallback_rays_pct,
+      ssr_steps, ssr_confidence, ssr_outcome_pct[5], ssr_depth_ms, ssr_trace_ms;
 };
 
 // One frame of both methods (and the comparison's), with the median times of its reps.
@@ -97,6 +123,9 @@ struct FrameRun {
   TracedReflections traced;
   std::unique_ptr<RayScene> rays;
   std::vector<vec3> env_radiance;
+  SsrReflections ssr;               // ssr: SSR with the box-probe fallback
+  std::vector<vec3> box_radiance;   // ssr: the box probe alone on every ray
+  double ssr_ms = 0.0, box_ms = 0.0;
   double cluster_ms = 0.0, step1_ms = 0.0, cameras_ms = 0.0, images_ms = 0.0, intersection_ms = 0.0;
   double reference_ms = 0.0, build_ms = 0.0, envmap_ms = 0.0, envmap_build_ms = 0.0;
   // Process CPU time (all threads) of the same steps: steadier than wall-clock under load.
@@ -120,12 +149,25 @@ DistanceCubeMap environment_map(const Scene& scene, const RayScene& rays, const 
   return render_distance_cube_map(scene, rays, projection_center(scene, reflectors), mo);
 }
 
+// SSR and the box probe alone on the frame's rays, timed from the shared G-buffer step on.
+void run_ssr(const Scene& scene, const ClusterReflectOptions& o, const DistanceCubeMap& map,
+             std::span<const Bounds3> bounds, double step1, FrameRun& f, std::vector<double>& ssr_ms,
+             std::vector<double>& box_ms) {
+  const Bounds3 box = probe_proxy_box(scene);
+  Stopwatch w;
+  f.ssr = render_ssr_reflections(scene, f.frame, o.ssr_options, {&map, box}, bounds);
+  ssr_ms.push_back(step1 + w.elapsed_ms());
+  w.restart();
+  f.box_radiance = box_probe_frame_reflections(scene, f.frame, map, box);
+  box_ms.push_back(step1 + w.elapsed_ms());
+}
+
 // Side by side, `reps` times; medians per frame.
 FrameRun run_frame(const Scene& scene, const Camera& camera, const ClusterReflectOptions& o,
                    const ReflectionOptions& ro) {
   FrameRun f;
   std::vector<double> c_ms, r_ms, b_ms, e_ms, s1, s2, s3, s4, c_cpu, r_cpu, b_cpu, s1_cpu, s2_cpu, s3_cpu, s4_cpu,
-      shading;
+      shading, ssr_ms, box_ms;
   DistanceCubeMap map;
   RectifyOptions rectify;
   rectify.D = o.distance > 0.0f ? o.distance : scene_bounds(scene).diagonal();
@@ -155,6 +197,15 @@ FrameRun run_frame(const Scene& scene, const Camera& camera, const ClusterReflec
       f.env_radiance = envmap_frame_reflections(scene, f.frame, map, EnvmapMethod::Rectified, rectify);
       e_ms.push_back(step1 + w.elapsed_ms());
     }
+    if (o.ssr) {
+      if (rep == 0 && !o.compare) {  // the fallback's map; without compare nothing else needs the rays
+        f.rays = std::make_unique<RayScene>(scene);
+        Stopwatch w;
+        map = environment_map(scene, *f.rays, o, ro);
+        f.envmap_build_ms = w.elapsed_ms();
+      }
+      run_ssr(scene, o, map, bounds, step1, f, ssr_ms, box_ms);
+    }
     f.cluster =
         render_cluster_reflections(scene, f.frame, o.cluster, bounds, o.compare ? &f.traced : nullptr);
     const ClusterFrameStats& st = f.cluster.stats;
@@ -181,6 +232,10 @@ FrameRun run_frame(const Scene& scene, const Camera& camera, const ClusterReflec
   f.cameras_ms = median(s2);
   f.images_ms = median(s3);
   f.intersection_ms = median(s4);
+  if (o.ssr) {
+    f.ssr_ms = median(ssr_ms);
+    f.box_ms = median(box_ms);
+  }
   if (o.compare) {
     f.reference_ms = median(r_ms);
     f.build_ms = median(b_ms);
@@ -236,6 +291,22 @@ void add_full_reference_errors(const Scene& scene, const FrameRun& f, const Came
   s.traced_full.add(compare_images(reference, full, &mask).mae_avg);
 }
 
+// SSR figures of a frame: times, fallback shares, outcome shares, steps, confidence.
+void add_ssr_frame(const FrameRun& f, ClusterSeries& s) {
+  const SsrStats& st = f.ssr.stats;
+  s.ssr_ms.add(f.ssr_ms);
+  s.box_ms.add(f.box_ms);
+  s.ssr_depth_ms.add(st.gbuffer_ms + st.backface_ms + st.pyramid_ms);
+  s.ssr_trace_ms.add(st.trace_ms);
+  if (st.samples == 0) return;
+  const double rays = double(std::max<size_t>(1, st.rays));
+  s.ssr_fallback_pct.add(100.0 * double(st.fallback_samples) / double(st.samples));
+  s.ssr_fallback_rays_pct.add(100.0 * double(st.fallback_rays) / rays);
+  for (int k = 0; k < 5; ++k) s.ssr_outcome_pct[k].add(100.0 * double(st.outcome_rays[k]) / rays);
+  s.ssr_steps.add(double(st.steps) / rays);
+  s.ssr_confidence.add(st.confidence_sum / rays);
+}
+
 // The frame's figures into the series. Cluster figures average over the frames that show
 // reflective pixels, and so do the error figures.
 void add_frame(const FrameRun& f, size_t reflective, size_t pixels, bool compare, ClusterSeries& s) {
@@ -265,6 +336,7 @@ void add_frame(const FrameRun& f, size_t reflective, size_t pixels, bool compare
   }
   s.fallback_pct.add(100.0 * double(st.env_fallback_samples) / samples);
   s.fill_pct.add(100.0 * double(st.behind_fill_samples) / samples);
+  if (!f.ssr.radiance.empty()) add_ssr_frame(f, s);
   if (compare) {
     s.reference_ms.add(f.reference_ms);
     s.reference_dynamic_ms.add(f.reference_ms + f.build_ms);
@@ -279,6 +351,27 @@ void add_mae(const ImageError& e, Series& r, Series& g, Series& b) {
   r.add(e.mae[0]);
   g.add(e.mae[1]);
   b.add(e.mae[2]);
+}
+
+void add_ssr_metrics(const ClusterReflectOptions& o, const ClusterSeries& s, Results& results) {
+  auto& m = results.metrics;
+  m["ssr_ms_avg"] = s.ssr_ms.avg();
+  m["boxprobe_ms_avg"] = s.box_ms.avg();
+  m["ssr_depth_passes_ms_avg"] = s.ssr_depth_ms.avg();
+  m["ssr_trace_ms_avg"] = s.ssr_trace_ms.avg();
+  m["ssr_fallback_pct_avg"] = s.ssr_fallback_pct.avg();
+  m["ssr_fallback_pct_max"] = s.ssr_fallback_pct.max();
+  m["ssr_fallback_rays_pct_avg"] = s.ssr_fallback_rays_pct.avg();
+  for (int k = 0; k < 5; ++k) m[std::string("ssr_") + kSsrOutcomeNames[k] + "_rays_pct_avg"] = s.ssr_outcome_pct[k].avg();
+  m["ssr_steps_per_ray_avg"] = s.ssr_steps.avg();
+  m["ssr_confidence_avg"] = s.ssr_confidence.avg();
+  if (!o.compare) return;
+  m["ssr_mae_r"] = s.ssr_r.avg();
+  m["ssr_mae_g"] = s.ssr_g.avg();
+  m["ssr_mae_b"] = s.ssr_b.avg();
+  m["boxprobe_mae_r"] = s.box_r.avg();
+  m["boxprobe_mae_g"] = s.box_g.avg();
+  m["boxprobe_mae_b"] = s.box_b.avg();
 }
 
 void add_metrics(const ClusterReflectOptions& o, const ClusterSeries& s, Results& results) {
@@ -312,6 +405,7 @@ void add_metrics(const ClusterReflectOptions& o, const ClusterSeries& s, Results
   m["behind_fill_pct_avg"] = s.fill_pct.avg();
   m["planar_samples_pct_avg"] = s.planar_pct.avg();
   m["planar_samples_pct_max"] = s.planar_pct.max();
+  if (o.ssr) add_ssr_metrics(o, s, results);
   if (!o.compare) return;
   m["cluster_mae_r"] = s.mae_r.avg();
   m["cluster_mae_g"] = s.mae_g.avg();
@@ -411,6 +505,43 @@ void add_compare_tables(const ClusterReflectOptions& o, const ClusterSeries& s, 
        {{s.occlusion_ray_pct.avg(), s.occlusion_glossy_pct.avg(), s.fallback_pct.avg(), s.fill_pct.avg()}}});
 }
 
+// SSR beside the box probe alone, cluster, rectified env mapping and Embree on the same rays.
+void add_ssr_table(const ClusterSeries& s, const std::string& where, Results& results) {
+  auto row = [](const char* name, const Series& r, const Series& g, const Series& b, const Series& ms,
+                double fallback) {
+    return std::vector<std::variant<std::string, double>>{std::string(name), r.avg(), g.avg(), b.avg(), ms.avg(), fallback};
+  };
+  Table t{"SSR with box-probe fallback vs Embree on the same rays, " + where,
+          {"method", "mae_r", "mae_g", "mae_b", "ms_avg", "fallback_samples_pct"},
+          {row("ssr + box probe", s.ssr_r, s.ssr_g, s.ssr_b, s.ssr_ms, s.ssr_fallback_pct.avg()),
+           row("box probe alone", s.box_r, s.box_g, s.box_b, s.box_ms, 100.0),
+           row("cluster", s.mae_r, s.mae_g, s.mae_b, s.cluster_ms, s.fallback_pct.avg()),
+           row("envmap (rectified)", s.env_r, s.env_g, s.env_b, s.envmap_ms, 100.0)}};
+  t.rows.push_back({std::string("embree (static BVH)"), 0.0, 0.0, 0.0, s.reference_ms.avg(), 0.0});
+  results.tables.push_back(std::move(t));
+}
+
+// With ssr, the frame's SSR and box-probe errors against Embree on the same rays.
+void add_ssr_errors(const FrameRun& f, const ImageF& reference, const ImageU8& mask, ClusterSeries& s) {
+  add_mae(compare_images(compose_reflections(f.frame, f.ssr.radiance), reference, &mask), s.ssr_r, s.ssr_g, s.ssr_b);
+  add_mae(compare_images(compose_reflections(f.frame, f.box_radiance), reference, &mask), s.box_r, s.box_g, s.box_b);
+}
+
+// With ssr, its images (and with compare the box probe's and both heat maps).
+void write_ssr_images(const FrameRun& f, const ImageF& reference, const ImageU8& mask, bool compare,
+                      const StudyOutput& out, Results& results) {
+  const ImageF ssr = compose_reflections(f.frame, f.ssr.radiance);
+  write_image(out, results, "ssr", "ssr.png", ssr);
+  write_image(out, results, "ssr_fallback", "ssr_fallback.png", ssr_fallback_image(f.frame, f.ssr, ssr));
+  if (!compare) return;
+  const ImageF box = compose_reflections(f.frame, f.box_radiance);
+  write_image(out, results, "boxprobe", "boxprobe.png", box);
+  write_image(out, results, "error_ssr", "error_ssr.png",
+              error_heatmap(error_image(ssr, reference, &mask), kErrorHeatmapMax, &mask));
+  write_image(out, results, "error_boxprobe", "error_boxprobe.png",
+              error_heatmap(error_image(box, reference, &mask), kErrorHeatmapMax, &mask));
+}
+
 }  // namespace
 
 void validate(const ClusterReflectOptions& o) {
@@ -431,6 +562,7 @@ void validate(const ClusterReflectOptions& o) {
   require_above_at_most(o.cluster.resolution_scale, 0.0f, 8.0f, "--resolution-scale");
   require_in_range(o.cube_size, 1, kMaxImageSide, "--cube-size");
   require_in_range(o.cluster.march_block, 0, 256, "--march-block");
+  validate(o.ssr_options);
 }
 
 void validate(const ClusterReflectOptions& o, const Scene& scene) {
@@ -470,6 +602,7 @@ Results run_cluster_reflect(const Scene& rest, const ClusterReflectOptions& o, c
       add_mae(compare_images(color, reference, &mask), s.mae_r, s.mae_g, s.mae_b);
       add_mae(compare_images(envmap, reference, &mask), s.env_r, s.env_g, s.env_b);
       if (o.full_reference) add_full_reference_errors(scene, f, camera, ro, color, reference, mask, s);
+      if (o.ssr) add_ssr_errors(f, reference, mask, s);
     }
     if (!wrote_images && (o.image_frame < 0 || o.image_frame == frame_index)) {
       write_image(out, results, "cluster", "cluster.png", color);
@@ -483,6 +616,7 @@ Results run_cluster_reflect(const Scene& rest, const ClusterReflectOptions& o, c
         write_image(out, results, "error_envmap", "error_envmap.png",
                     error_heatmap(error_image(envmap, reference, &mask), kErrorHeatmapMax, &mask));
       }
+      if (o.ssr) write_ssr_images(f, reference, mask, o.compare, out, results);
       wrote_images = true;
     }
   }
@@ -494,6 +628,7 @@ Results run_cluster_reflect(const Scene& rest, const ClusterReflectOptions& o, c
                   : "camera");
   add_tables(o, s, where, results);
   if (o.compare) add_compare_tables(o, s, where, results);
+  if (o.compare && o.ssr) add_ssr_table(s, where, results);
   return results;
 }
 

@@ -13,6 +13,7 @@
 #include "proxima/core/range_check.h"
 #include "proxima/core/timer.h"
 #include "proxima/eval/image_error.h"
+#include "proxima/reflect/box_probe.h"
 #include "proxima/reflect/distance_cube_map.h"
 #include "proxima/reflect/envmap_reflection.h"
 #include "proxima/reflect/reflection_comparison.h"
@@ -63,7 +64,7 @@ Maps build_maps(const Scene& scene, const RayScene& rays, const std::vector<uint
   mo.seed = o.seed;
   mo.exclude = reflectors;
   Maps maps;
-  if (wants("envmap") || wants("rectified") || wants("average")) {
+  if (wants("envmap") || wants("rectified") || wants("average") || wants("boxprobe")) {
     Stopwatch w;
     maps.map = render_distance_cube_map(scene, rays, center, mo);
     results.metrics["envmap_build_ms"] = w.elapsed_ms();
@@ -199,6 +200,15 @@ void report_method(const std::string& m, const EnvmapFrame& frame, double ms, co
   table.rows.push_back({m, ms, 1000.0 / ms, with_build, mae, env_mae, match_pct, edge_pct});
 }
 
+// The proxy box the boxprobe method projected onto.
+void report_box(const Bounds3& box, Results& results) {
+  const char* axis[] = {"x", "y", "z"};
+  for (int a = 0; a < 3; ++a) {
+    results.metrics[std::string("probe_box_min_") + axis[a]] = box.min[a];
+    results.metrics[std::string("probe_box_max_") + axis[a]] = box.max[a];
+  }
+}
+
 }  // namespace
 
 EnvmapInputs envmap_inputs(const Scene& scene, const EnvmapReflectOptions& o) {
@@ -208,6 +218,7 @@ EnvmapInputs envmap_inputs(const Scene& scene, const EnvmapReflectOptions& o) {
   in.rectify.d_e = o.d_e;
   in.rectify.edge = o.edge == "fallback" ? EdgeRule::PlainFallback : EdgeRule::Black;
   in.rectify.max_march_steps = o.march_steps;
+  in.box = probe_proxy_box(scene);
   in.area_light_samples = o.light_samples;
   in.glossy_rays = o.glossy_rays;
   in.seed = o.seed;
@@ -216,7 +227,7 @@ EnvmapInputs envmap_inputs(const Scene& scene, const EnvmapReflectOptions& o) {
 
 void validate(const EnvmapReflectOptions& o) {
   if (!is_method(o.method))
-    fail_input("--method: '" + o.method + "' is not one of envmap, rectified, average, layered, reference");
+    fail_input("--method: '" + o.method + "' is not one of envmap, rectified, average, layered, boxprobe, reference");
   if (!(o.d_e > 0.0f) || !std::isfinite(o.d_e)) fail_input("--d-e: must be a positive number");
   if (!(o.distance >= 0.0f) || !std::isfinite(o.distance))
     fail_input("--distance: must be ≥ 0 (0 = scene diagonal)");
@@ -274,6 +285,7 @@ Results run_envmap_reflect(const Scene& input, const EnvmapReflectOptions& o, co
   results.metrics["D_m"] = in.rectify.D;
   results.metrics["d_e_m"] = o.d_e;
   results.metrics["N"] = rectify_step_limit(in.rectify.D, o.d_e);
+  if (std::find(methods.begin(), methods.end(), "boxprobe") != methods.end()) report_box(in.box, results);
   const Judged judged = judged_pixels(scene, rays, camera, item, reflectors, results);
 
   if (progress) progress->step("frames");

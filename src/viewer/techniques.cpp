@@ -5,10 +5,12 @@
 
 #include "proxima/core/timer.h"
 #include "proxima/raster/rasterizer.h"
+#include "proxima/reflect/box_probe.h"
 #include "proxima/reflect/cluster_reflection.h"
 #include "proxima/reflect/distance_cube_map.h"
 #include "proxima/reflect/envmap_frame_reflections.h"
 #include "proxima/reflect/envmap_reflection.h"
+#include "proxima/reflect/ssr_reflection.h"
 #include "proxima/reflect/temporal_reuse.h"
 #include "proxima/trace/reference_renderer.h"
 #include "gibr_technique.h"
@@ -88,6 +90,35 @@ Technique envmap_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<Refl
     Stopwatch w;
     const std::vector<vec3> reflected = envmap_frame_reflections(vs->scene, frame, map, method, shared->rectify);
     out.steps.push_back({"env map lookups", w.elapsed_ms()});
+    out.color = compose(frame, reflected, out.steps);
+    return out;
+  };
+  return t;
+}
+
+// The engines' baselines: the box-projected probe alone, and SSR falling back to it.
+Technique baseline_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<ReflectionShared> shared, bool ssr) {
+  Technique t;
+  t.name = ssr ? "ssr" : "boxprobe";
+  t.label = ssr ? "screen-space reflections + box probe" : "box-projected env map";
+  t.render = [vs, shared, ssr](const Camera& camera) {
+    const TechniqueSettings& s = shared->settings;
+    TechniqueFrame out;
+    const DistanceCubeMap& map = cube_map(*vs, *shared, s, out.steps);
+    const ReflectionFrame frame = gbuffer(*vs, *shared, s, camera, out.steps);
+    const Bounds3 box = probe_proxy_box(vs->scene);
+    std::vector<vec3> reflected;
+    if (ssr) {
+      SsrReflections r = render_ssr_reflections(vs->scene, frame, {}, {&map, box}, shared->bounds);
+      const double depth_ms = r.stats.gbuffer_ms + r.stats.backface_ms + r.stats.pyramid_ms;
+      out.steps.emplace_back(StepTime{"ssr depth passes", depth_ms});
+      out.steps.emplace_back(StepTime{"ssr trace+fallback", r.stats.trace_ms});
+      reflected = std::move(r.radiance);
+    } else {
+      Stopwatch w;
+      reflected = box_probe_frame_reflections(vs->scene, frame, map, box);
+      out.steps.push_back({"box probe lookups", w.elapsed_ms()});
+    }
     out.color = compose(frame, reflected, out.steps);
     return out;
   };
@@ -187,6 +218,13 @@ std::vector<Technique> make_techniques(std::shared_ptr<ViewerScene> vs, const Te
   list.push_back(shadow_technique(vs, s));
 
   list.push_back(gibr_technique(vs, s));
+  // Appended so the keys above stay; both read the shared cube map.
+  for (bool ssr : {false, true}) {
+    Technique b = baseline_technique(vs, shared, ssr);
+    b.adjust = knob("cube map faces", &shared->settings.cube_size, 16, 2048, true);
+    if (shared->reflectors.empty()) b.unavailable = "the scene has no reflective object";
+    list.push_back(b);
+  }
 
   for (size_t i = 0; i < list.size(); ++i) {
     list[i].key = char('1' + i);

@@ -218,10 +218,11 @@ TEST(EnvmapReflection, GlossyLobeFollowsTheReferenceSamples) {
 }
 
 TEST(EnvmapReflection, MethodNamesParseBackAndUnknownNamesAreRefused) {
-  for (EnvmapMethod m : {EnvmapMethod::Plain, EnvmapMethod::Rectified, EnvmapMethod::Average, EnvmapMethod::Layered})
+  for (EnvmapMethod m : {EnvmapMethod::Plain, EnvmapMethod::Rectified, EnvmapMethod::Average, EnvmapMethod::Layered,
+                         EnvmapMethod::BoxProbe})
     EXPECT_EQ(parse_envmap_method(envmap_method_name(m)), m) << envmap_method_name(m);
   const std::string message = error_of([] { parse_envmap_method("mirror", "--method"); });
-  EXPECT_EQ(message, "--method: unknown env-map method 'mirror' (envmap, rectified, average, layered)");
+  EXPECT_EQ(message, "--method: unknown env-map method 'mirror' (envmap, rectified, average, layered, boxprobe)");
   EXPECT_NE(error_of([] { parse_envmap_method("reference"); }), "");  // the reference is not a lookup
 }
 

@@ -21,14 +21,14 @@ TEST(ReflectCli, CompareWritesEveryMethodsMetricsAndImages) {
   RunResult r = run("--scene room-reflector --compare" + kSmall + " --out " + dir.path.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   nlohmann::json j = nlohmann::json::parse(std::ifstream(dir.path / "results.json"));
-  for (const char* m : {"envmap", "rectified", "average", "layered", "reference"}) {
+  for (const char* m : {"envmap", "rectified", "average", "layered", "boxprobe", "reference"}) {
     ASSERT_TRUE(j["metrics"].contains(std::string(m) + "_mae")) << m;
     ASSERT_TRUE(j["metrics"].contains(std::string(m) + "_ms")) << m;
     EXPECT_TRUE(std::filesystem::exists(dir.path / (std::string(m) + ".png"))) << m;
     EXPECT_EQ(std::filesystem::exists(dir.path / ("error_" + std::string(m) + ".png")), std::string(m) != "reference")
         << m;
   }
-  EXPECT_EQ(j["images"].size(), 9u);
+  EXPECT_EQ(j["images"].size(), 11u);
   EXPECT_NE(r.output.find("| rectified |"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("results: "), std::string::npos) << r.output;
 }
@@ -37,7 +37,7 @@ TEST(ReflectCli, BadInputExitsTwoNamingTheFlag) {
   TempDir dir;
   const std::string out = " --out " + (dir.path / "never").string();
   for (auto [args, flag] : {std::pair{"--method mirror", "--method: 'mirror' is not one of envmap, rectified, "
-                                                         "average, layered, reference, cluster, temporal"},
+                                                         "average, layered, boxprobe, reference, cluster, ssr, temporal"},
                             std::pair{"--d-e 0", "--d-e"}, std::pair{"--edge grey", "--edge"},
                             std::pair{"--cube-size 0", "--cube-size"}, std::pair{"--threads -1", "--threads"},
                             std::pair{"--scene cornell-nope", "cornell-nope"},

@@ -87,6 +87,33 @@ TEST(ClusterReflectStudy, SameMetricsAndImagesForOneAndTwoThreads) {
   expect_same_images(runs[0], runs[1], dir.path / "1", dir.path / "2");
 }
 
+// --method ssr is the cluster study with SSR beside it: its figures are added, the cluster
+// method's and the comparison's stay as they were.
+TEST(ClusterReflectStudy, SsrAddsItsFiguresAndChangesNoOther) {
+  const Scene scene = load_scene("room-reflector");
+  study::ClusterReflectOptions o = tiny_options();
+  const Results plain = study::run_cluster_reflect(scene, o, {});
+  o.ssr = true;
+  const Results with_ssr = study::run_cluster_reflect(scene, o, {});
+  auto timing = [](const std::string& name) {
+    return name.find("ms") != std::string::npos || name.find("speedup") != std::string::npos;
+  };
+  for (const auto& [name, value] : plain.metrics) {
+    const std::string& n = name;
+    if (timing(n)) continue;
+    ASSERT_TRUE(with_ssr.metrics.count(n)) << n;
+    EXPECT_EQ(with_ssr.metrics.at(n), value) << n;
+  }
+  const auto& m = with_ssr.metrics;
+  for (const char* name : {"ssr_mae_r", "boxprobe_mae_g", "ssr_fallback_pct_avg", "ssr_steps_per_ray_avg"})
+    EXPECT_TRUE(m.count(name)) << name;
+  EXPECT_GE(m.at("ssr_fallback_pct_avg"), 0.0);
+  EXPECT_LE(m.at("ssr_fallback_pct_avg"), 100.0);
+  EXPECT_GT(m.at("ssr_mae_r"), 0.0);
+  EXPECT_EQ(with_ssr.tables.size(), plain.tables.size() + 1);
+  EXPECT_EQ(with_ssr.tables.back().title.rfind("SSR with box-probe fallback", 0), 0u);
+}
+
 TEST(ClusterReflectStudy, BadOptionsNameTheFlag) {
   const Scene scene = load_scene("room-reflector");
   auto message = [&](const study::ClusterReflectOptions& o) -> std::string {

@@ -22,9 +22,10 @@ enum class EnvmapMethod {
   Rectified,  // §2.2 per-pixel bisection on the distance map
   Average,    // §2.3 average distance d̄ of the whole map
   Layered,    // depth-peeled layered distance map, nearest hit along the ray (replaces §2.4)
+  BoxProbe,   // box-projected (parallax-corrected) lookup on a proxy box (reflect/box_probe.h)
 };
 
-// "envmap", "rectified", "average", "layered" (the CLI's --method names).
+// "envmap", "rectified", "average", "layered", "boxprobe" (the CLI's --method names).
 const char* envmap_method_name(EnvmapMethod method);
 // The method whose envmap_method_name is `name`; InputError naming `flag` and listing the
 // valid names for anything else.
@@ -50,13 +51,14 @@ struct ReflectorPixels {
 ReflectorPixels rasterize_reflector_pixels(const Scene& scene, const Camera& camera,
                                            std::span<const uint32_t> reflectors);
 
-// What a method reads: `map` for Plain / Rectified / Average (with its d̄ for Average),
-// `layers` (render_distance_cube_layers, layer 0 first) for Layered.
+// What a method reads: `map` for Plain / Rectified / Average / BoxProbe (with its d̄ for
+// Average, `box` for BoxProbe), `layers` (render_distance_cube_layers, layer 0 first) for Layered.
 struct EnvmapInputs {
   EnvmapMethod method = EnvmapMethod::Rectified;
   const DistanceCubeMap* map = nullptr;
   float average_distance = kDistanceInf;
   std::span<const DistanceCubeMap> layers;
+  Bounds3 box;  // BoxProbe: the proxy box (probe_proxy_box)
   RectifyOptions rectify;
   int area_light_samples = 4;  // n×n per area light for the reflector's own direct light
   int glossy_rays = 16;        // lobe samples for gloss > 0 (one lookup each)

@@ -50,6 +50,8 @@ struct Scene {
   std::vector<AreaLight> area_lights;
   Environment environment;
   vec3 ambient{0.0f};  // unshadowed ambient radiance times albedo (docs/shading.md)
+  // Proxy box of box-projected env-map probes (reflect/box_probe.h); empty = the scene's bounds.
+  Bounds3 probe_box;
 
   std::vector<NamedCamera> cameras;
   std::vector<CameraPath> camera_paths;

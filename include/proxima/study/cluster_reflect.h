@@ -10,11 +10,21 @@
 // thesis' Tables 13–21. Images of one frame: cluster, clusters; with compare reference,
 // envmap, error_cluster and error_envmap (heat maps over the reflective pixels on the
 // kErrorHeatmapMax scale).
+//
+// With ssr (`--method ssr`): screen-space reflections (reflect/ssr_reflection.h) on the same
+// frame and rays, falling back to the box-projected probe (reflect/box_probe.h) on the env
+// map above; metrics ssr_ms_avg (of it ssr_depth_passes_ms_avg and ssr_trace_ms_avg, the last
+// repetition's), ssr_fallback_pct_avg (reflective samples with a ray that
+// fell back), ssr_fallback_rays_pct_avg, ssr_<outcome>_rays_pct_avg, ssr_steps_per_ray_avg,
+// ssr_confidence_avg, boxprobe_ms_avg, and with compare ssr_mae_r/g/b, boxprobe_mae_r/g/b and
+// a table beside cluster, rectified and Embree. Images ssr, ssr_fallback (red: the share a
+// pixel's rays took from the fallback), with compare error_ssr, boxprobe, error_boxprobe.
 #pragma once
 
 #include "proxima/core/progress.h"
 #include "proxima/eval/results.h"
 #include "proxima/reflect/cluster_reflection.h"
+#include "proxima/reflect/ssr_reflection.h"
 #include "proxima/scene/camera_select.h"
 #include "proxima/scene/scene.h"
 #include "proxima/study/study.h"
@@ -45,6 +55,8 @@ struct ClusterReflectOptions {
   ReflectionOptions reflection;
   // --theta-bins, --phi-bins, --min-bin-scale, --resolution-scale, --second-layer, --march-block.
   ClusterReflectionOptions cluster;
+  bool ssr = false;  // --method ssr: also SSR with the box-probe fallback on the same rays
+  SsrOptions ssr_options;
 };
 
 // Throws InputError naming the flag for options out of range.

@@ -20,8 +20,10 @@
 namespace proxima::study {
 
 // The method names of --method this study runs, in the order of its results table:
-// the four env-map methods (reflect/envmap_reflection.h), then the reference.
-inline constexpr const char* kEnvmapReflectMethods[] = {"envmap", "rectified", "average", "layered", "reference"};
+// the four env-map methods (reflect/envmap_reflection.h), the box-projected probe (the
+// engines' baseline, reflect/box_probe.h), then the reference.
+inline constexpr const char* kEnvmapReflectMethods[] = {"envmap",   "rectified", "average",
+                                                        "layered",  "boxprobe",  "reference"};
 
 // One field per flag of `proxima reflect` (env-map methods), with the command's defaults.
 struct EnvmapReflectOptions {
@@ -54,6 +56,8 @@ void validate(const EnvmapReflectOptions& options, const Scene& scene);
 EnvmapInputs envmap_inputs(const Scene& scene, const EnvmapReflectOptions& options);
 
 // Renders the reference and the chosen methods on the camera of `options` and compares them.
+// boxprobe reads the same distance cube map as plain / rectified / average, its proxy box
+// probe_proxy_box(scene) (metrics probe_box_min_x … probe_box_max_z).
 // Metrics (per method m): m_mae, m_env_mae, m_ms, m_with_build_ms, m_object_match_pct, and for
 // the env-map methods m_edge_pct, m_samples_per_lookup; shared: reflector_pixels,
 // self_reflection_pct, D_m, d_e_m, N, envmap_build_ms, average_distance_ms,
