@@ -33,11 +33,9 @@ py::dict mesh_dict(Mesh&& mesh) {
   static_assert(sizeof(vec3) == 3 * sizeof(float) && sizeof(uvec3) == 3 * sizeof(uint32_t));
   const auto v = py::ssize_t(mesh.positions.size()), n = py::ssize_t(mesh.normals.size());
   const auto t = py::ssize_t(mesh.triangles.size());
-  py::dict out;
-  out["positions"] = buffer_array<float>(std::move(mesh.positions), {v, 3});
-  out["normals"] = buffer_array<float>(std::move(mesh.normals), {n, 3});
-  out["triangles"] = buffer_array<uint32_t>(std::move(mesh.triangles), {t, 3});
-  return out;
+  return named({{"positions", buffer_array<float>(std::move(mesh.positions), {v, 3})},
+                {"normals", buffer_array<float>(std::move(mesh.normals), {n, 3})},
+                {"triangles", buffer_array<uint32_t>(std::move(mesh.triangles), {t, 3})}});
 }
 
 namespace {
@@ -52,11 +50,7 @@ py::list tables_list(const std::vector<Table>& tables) {
         cells.append(std::visit([](const auto& v) -> py::object { return py::cast(v); }, cell));
       rows.append(cells);
     }
-    py::dict table;
-    table["title"] = t.title;
-    table["columns"] = t.columns;
-    table["rows"] = rows;
-    out.append(table);
+    out.append(named({{"title", t.title}, {"columns", t.columns}, {"rows", rows}}));
   }
   return out;
 }
@@ -66,12 +60,8 @@ py::list tables_list(const std::vector<Table>& tables) {
 py::dict results_dict(const Results& results, std::map<std::string, ImageF>&& arrays) {
   py::dict images;
   for (auto& [role, image] : arrays) images[py::str(role)] = image_array(std::move(image));
-  py::dict out;
-  out["metrics"] = results.metrics;
-  out["tables"] = tables_list(results.tables);
-  out["images"] = results.images;
-  out["arrays"] = images;
-  return out;
+  return named({{"metrics", results.metrics}, {"tables", tables_list(results.tables)}, {"images", results.images},
+                {"arrays", images}});
 }
 
 std::string describe(py::handle obj) {

@@ -104,20 +104,10 @@ py::list catalog_list() {
   py::list out;
   for (const study::StudyInfo& info : study::study_catalog()) {
     py::list options;
-    for (const study::OptionInfo& o : info.options) {
-      py::dict d;
-      d["name"] = o.name;
-      d["type"] = o.type;
-      d["default"] = option_object(o.default_value);
-      d["doc"] = o.doc;
-      d["choices"] = o.choices;
-      options.append(d);
-    }
-    py::dict d;
-    d["name"] = info.name;
-    d["summary"] = info.summary;
-    d["options"] = options;
-    out.append(d);
+    for (const study::OptionInfo& o : info.options)
+      options.append(named({{"name", o.name}, {"type", o.type}, {"default", option_object(o.default_value)},
+                            {"doc", o.doc}, {"choices", o.choices}}));
+    out.append(named({{"name", info.name}, {"summary", info.summary}, {"options", options}}));
   }
   return out;
 }
