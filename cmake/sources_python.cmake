@@ -2,12 +2,15 @@
 # python/src missing here fails the configure step.
 set(PROXIMA_PYTHON_SOURCES
   python/src/arrays.cpp
+  python/src/bind_depth_images.cpp
   python/src/bind_eval.cpp
+  python/src/bind_gibr.cpp
   python/src/bind_rays.cpp
   python/src/bind_render.cpp
   python/src/bind_scene.cpp
   python/src/bind_study.cpp
   python/src/bind_techniques.cpp
+  python/src/bind_visibility.cpp
   python/src/module.cpp
   python/src/scene_handle.cpp
 )

@@ -1,6 +1,7 @@
 #include "arrays.h"
 
 #include <cmath>
+#include <variant>
 
 #include "proxima/core/camera.h"
 
@@ -19,6 +20,49 @@ void register_exceptions(py::module_& /*m*/) {
 }
 
 py::array id_image_array(ImageU32&& ids) { return image_array<int32_t>(std::move(ids)); }
+
+py::dict named(std::initializer_list<Named> entries) {
+  py::dict out;
+  for (const Named& e : entries) out[e.name] = e.value;
+  return out;
+}
+
+py::array image_copy_array(const ImageF& image) { return image_array(ImageF(image), false); }
+
+py::dict mesh_dict(Mesh&& mesh) {
+  static_assert(sizeof(vec3) == 3 * sizeof(float) && sizeof(uvec3) == 3 * sizeof(uint32_t));
+  const auto v = py::ssize_t(mesh.positions.size()), n = py::ssize_t(mesh.normals.size());
+  const auto t = py::ssize_t(mesh.triangles.size());
+  return named({{"positions", buffer_array<float>(std::move(mesh.positions), {v, 3})},
+                {"normals", buffer_array<float>(std::move(mesh.normals), {n, 3})},
+                {"triangles", buffer_array<uint32_t>(std::move(mesh.triangles), {t, 3})}});
+}
+
+namespace {
+
+py::list tables_list(const std::vector<Table>& tables) {
+  py::list out;
+  for (const Table& t : tables) {
+    py::list rows;
+    for (const auto& row : t.rows) {
+      py::list cells;
+      for (const auto& cell : row)
+        cells.append(std::visit([](const auto& v) -> py::object { return py::cast(v); }, cell));
+      rows.append(cells);
+    }
+    out.append(named({{"title", t.title}, {"columns", t.columns}, {"rows", rows}}));
+  }
+  return out;
+}
+
+}  // namespace
+
+py::dict results_dict(const Results& results, std::map<std::string, ImageF>&& arrays) {
+  py::dict images;
+  for (auto& [role, image] : arrays) images[py::str(role)] = image_array(std::move(image));
+  return named({{"metrics", results.metrics}, {"tables", tables_list(results.tables)}, {"images", results.images},
+                {"arrays", images}});
+}
 
 std::string describe(py::handle obj) {
   if (!py::isinstance<py::array>(obj)) return std::string(py::str(py::type::handle_of(obj).attr("__name__")));

@@ -8,9 +8,11 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -22,6 +24,8 @@
 #include "proxima/core/image.h"
 #include "proxima/core/math.h"
 #include "proxima/core/progress.h"
+#include "proxima/eval/results.h"
+#include "proxima/scene/mesh.h"
 
 namespace proxima::python {
 
@@ -70,6 +74,39 @@ py::array image_array(Image<T>&& image, bool squeeze = true) {
 // Triangle or object ids (uint32, kNoTriangle / kNoObject where nothing) as H×W int32 with
 // −1 where nothing: the same bits, no copy.
 py::array id_image_array(ImageU32&& ids);
+
+// One entry of a dict of results: a name and a value pybind11 converts (numbers, strings,
+// arrays, cameras, dicts).
+struct Named {
+  template <typename T>
+  Named(const char* n, T&& v) : name(n), value(object_of(std::forward<T>(v))) {}
+  const char* name;
+  py::object value;
+
+ private:
+  template <typename T>
+  static py::object object_of(T&& v) {
+    if constexpr (std::is_base_of_v<py::handle, std::decay_t<T>>) return py::reinterpret_borrow<py::object>(v);
+    else return py::cast(std::forward<T>(v));
+  }
+};
+
+// The entries as a dict, in order: named({{"beams", stats.beams}, {"ms", stats.ms}}).
+py::dict named(std::initializer_list<Named> entries);
+
+// A copy of `image` as an array (image_array of the copy), for images an object keeps.
+py::array image_copy_array(const ImageF& image);
+
+// A mesh as a dict of arrays: positions (V×3 float32, world m), normals (V×3 float32, unit;
+// 0×3 when the mesh has none), triangles (T×3 uint32 vertex indices, counter-clockwise seen
+// from the front).
+py::dict mesh_dict(Mesh&& mesh);
+
+// A study's results as Python holds them: metrics (name → float), tables (list of dicts with
+// title, columns, rows), images (role → file name in the output directory; empty without one)
+// and arrays (role → the image as an H×W×C float32 array, H×W for one channel, as the study
+// kept it).
+py::dict results_dict(const Results& results, std::map<std::string, ImageF>&& arrays);
 
 // `obj` as a C-contiguous array of dtype T and shape (N, cols) (cols = 0: shape (N,)).
 // ValueError naming `what` unless it is a numpy array of exactly that dtype and shape;

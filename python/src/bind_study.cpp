@@ -49,33 +49,6 @@ study::OptionValues option_values(const py::kwargs& kwargs) {
   return values;
 }
 
-py::list tables_list(const std::vector<Table>& tables) {
-  py::list out;
-  for (const Table& t : tables) {
-    py::list rows;
-    for (const auto& row : t.rows) {
-      py::list cells;
-      for (const auto& cell : row)
-        cells.append(std::visit([](const auto& v) -> py::object { return py::cast(v); }, cell));
-      rows.append(cells);
-    }
-    py::dict table;
-    table["title"] = t.title;
-    table["columns"] = t.columns;
-    table["rows"] = rows;
-    out.append(table);
-  }
-  return out;
-}
-
-py::dict results_dict(const Results& results) {
-  py::dict out;
-  out["metrics"] = results.metrics;
-  out["tables"] = tables_list(results.tables);
-  out["images"] = results.images;
-  return out;
-}
-
 py::dict run(const std::string& name, const SceneHandle& handle, const std::optional<std::filesystem::path>& out_dir,
              py::object progress, const py::kwargs& kwargs) {
   const study::OptionValues values = option_values(kwargs);
@@ -83,12 +56,14 @@ py::dict run(const std::string& name, const SceneHandle& handle, const std::opti
   if (out_dir && out_dir->empty()) fail_input(name + ": out_dir: must not be empty (None writes no images)");
   ProgressCallback callback(std::move(progress));
   Results results;
+  std::map<std::string, ImageF> arrays;
   {
     py::gil_scoped_release release;
     const auto lock = handle.read_lock();
-    results = study::run_study(name, handle.scene(), values, study::StudyOutput{out_dir.value_or("")}, callback.get());
+    results = study::run_study(name, handle.scene(), values, study::StudyOutput{out_dir.value_or(""), &arrays},
+                               callback.get());
   }
-  return results_dict(results);
+  return results_dict(results, std::move(arrays));
 }
 
 // A default as Python writes it: 'text', True / False, numbers to float precision.
@@ -108,8 +83,10 @@ std::string default_text(const study::OptionValue& value) {
 std::string study_doc(const study::StudyInfo& info) {
   std::string doc = info.summary + ".\n\n" + info.name +
                     "(scene, out_dir=None, progress=None, **options) -> dict with 'metrics' (name → float), "
-                    "'tables' (list of dicts with 'title', 'columns', 'rows') and 'images' (role → file name "
-                    "in out_dir; empty when out_dir is None, which writes nothing). progress(stage, what, done, "
+                    "'tables' (list of dicts with 'title', 'columns', 'rows'), 'images' (role → file name "
+                    "in out_dir; empty when out_dir is None, which writes nothing) and 'arrays' (role → the "
+                    "image as an H×W×C float32 array (H×W for one channel): linear RGB where the file is a PNG, the EXR's "
+                    "channels where it is an EXR; with or without out_dir). progress(stage, what, done, "
                     "total) is called as the study advances. Runs with the GIL released.\n\nOptions:\n";
   for (const study::OptionInfo& o : info.options) {
     doc += "  " + o.name + " (" + o.type + ", default " + default_text(o.default_value) + "): " + o.doc;
@@ -127,20 +104,10 @@ py::list catalog_list() {
   py::list out;
   for (const study::StudyInfo& info : study::study_catalog()) {
     py::list options;
-    for (const study::OptionInfo& o : info.options) {
-      py::dict d;
-      d["name"] = o.name;
-      d["type"] = o.type;
-      d["default"] = option_object(o.default_value);
-      d["doc"] = o.doc;
-      d["choices"] = o.choices;
-      options.append(d);
-    }
-    py::dict d;
-    d["name"] = info.name;
-    d["summary"] = info.summary;
-    d["options"] = options;
-    out.append(d);
+    for (const study::OptionInfo& o : info.options)
+      options.append(named({{"name", o.name}, {"type", o.type}, {"default", option_object(o.default_value)},
+                            {"doc", o.doc}, {"choices", o.choices}}));
+    out.append(named({{"name", info.name}, {"summary", info.summary}, {"options", options}}));
   }
   return out;
 }

@@ -1,8 +1,7 @@
 // The techniques on arrays and cameras: env-map reflections (reflect/envmap_reflection.h)
 // with their maps built once per object and any number of cameras rendered from them, and
 // temporal reuse of reflections (reflect/temporal_reuse.h) as an object stepping frames, and
-// cluster reflections (reflect/cluster_reflection.h) per camera, and depth-image sampling
-// (depthimage/sampling.h) from any cameras.
+// cluster reflections (reflect/cluster_reflection.h) per camera.
 #include <memory>
 #include <mutex>
 #include <string>
@@ -20,7 +19,6 @@
 #include "proxima/reflect/envmap_reflection.h"
 #include "proxima/study/cluster_reflect.h"
 #include "proxima/study/envmap_reflect.h"
-#include "proxima/study/sampling.h"
 #include "proxima/study/temporal_reflect.h"
 #include "scene_handle.h"
 
@@ -74,18 +72,12 @@ class EnvmapReflections {
       pixels = rasterize_reflector_pixels(handle_->scene(), camera, reflectors_);
       frame = shade_reflector_pixels(handle_->scene(), handle_->rays(), camera, pixels, in);
     }
-    py::dict stats;
-    stats["pixels"] = frame.stats.pixels;
-    stats["lookups"] = frame.stats.lookups;
-    stats["map_samples"] = frame.stats.map_samples;
-    stats["edge_lookups"] = frame.stats.edge_lookups;
-    stats["fallback_lookups"] = frame.stats.fallback_lookups;
-    py::dict out;
-    out["color"] = image_array(std::move(frame.color));
-    out["object"] = id_image_array(std::move(frame.object));
-    out["triangle"] = id_image_array(std::move(pixels.triangle));
-    out["stats"] = stats;
-    return out;
+    py::dict stats = named({{"pixels", frame.stats.pixels}, {"lookups", frame.stats.lookups},
+        {"map_samples", frame.stats.map_samples}, {"edge_lookups", frame.stats.edge_lookups},
+        {"fallback_lookups", frame.stats.fallback_lookups}});
+    return named({{"color", image_array(std::move(frame.color))},
+        {"object", id_image_array(std::move(frame.object))},
+        {"triangle", id_image_array(std::move(pixels.triangle))}, {"stats", stats}});
   }
 
   const std::vector<uint32_t>& reflectors() const { return reflectors_; }
@@ -190,27 +182,15 @@ class TemporalReflections {
       }
       ++frames_;
     }
-    py::dict stats;
-    stats["key"] = st.key;
-    stats["reflective"] = st.reflective;
-    stats["recomputed"] = st.recomputed;
-    stats["rays"] = st.rays;
-    stats["traced_rays"] = st.traced_rays;
-    stats["disoccluded"] = st.disoccluded;
-    stats["unreliable"] = st.unreliable;
-    stats["curved"] = st.curved;
-    stats["edge"] = st.edge;
-    stats["invalid_offsets"] = st.invalid_offsets;
-    stats["match_steps"] = st.match_steps;
-    stats["recompute_fraction"] = st.recompute_fraction();
-    stats["work"] = st.work;
-    stats["reflection_ms"] = st.reflection_ms();
-    py::dict out;
-    out["color"] = image_array(std::move(color));
-    out["reflective"] = image_array<bool>(std::move(reflective));
-    out["reuse"] = image_array(std::move(reuse));
-    out["stats"] = stats;
-    return out;
+    py::dict stats = named({{"key", st.key}, {"reflective", st.reflective}, {"recomputed", st.recomputed},
+        {"rays", st.rays}, {"traced_rays", st.traced_rays}, {"disoccluded", st.disoccluded},
+        {"unreliable", st.unreliable}, {"curved", st.curved}, {"edge", st.edge},
+        {"invalid_offsets", st.invalid_offsets}, {"match_steps", st.match_steps},
+        {"recompute_fraction", st.recompute_fraction()}, {"work", st.work},
+        {"reflection_ms", st.reflection_ms()}});
+    return named({{"color", image_array(std::move(color))},
+        {"reflective", image_array<bool>(std::move(reflective))}, {"reuse", image_array(std::move(reuse))},
+        {"stats", stats}});
   }
 
   int frames() const { return frames_; }
@@ -322,17 +302,10 @@ py::dict cluster_reflections_py(const SceneHandle& handle, const Camera& camera,
     st = c.stats;
     samples = frame.sample_count();
   }
-  py::dict stats;
-  stats["reflective_samples"] = samples;
-  stats["clusters"] = st.clusters;
-  stats["texels"] = st.texels;
-  stats["rays"] = st.rays;
-  stats["triangles_drawn"] = st.triangles_drawn;
-  stats["shaded_texels"] = st.shaded_texels;
-  stats["env_fallback_samples"] = st.env_fallback_samples;
-  stats["second_layer_texels"] = st.second_layer_texels;
-  stats["second_layer_rays"] = st.second_layer_rays;
-  stats["planar_samples"] = st.planar_samples;
+  py::dict stats = named({{"reflective_samples", samples}, {"clusters", st.clusters}, {"texels", st.texels},
+      {"rays", st.rays}, {"triangles_drawn", st.triangles_drawn}, {"shaded_texels", st.shaded_texels},
+      {"env_fallback_samples", st.env_fallback_samples}, {"second_layer_texels", st.second_layer_texels},
+      {"second_layer_rays", st.second_layer_rays}, {"planar_samples", st.planar_samples}});
   if (reference) {
     stats["occlusion_error_samples"] = st.occlusion_error_samples;
     stats["occlusion_error_rays"] = st.occlusion_error_rays;
@@ -366,90 +339,12 @@ void bind_cluster(py::module_& m) {
         "planar_samples; with reference occlusion_error_samples, occlusion_error_rays).");
 }
 
-py::dict sampling_views_py(const SceneHandle& handle, const std::string& camera, int width, int height,
-                           const std::string& views, float radius) {
-  study::SamplingOptions o;
-  o.camera.camera = camera;
-  o.width = width;
-  o.height = height;
-  o.views = parse_view_shape(views, "views");
-  o.radius = radius;
-  o.methods = {study::SamplingMethod::Conventional};
-  study::validate(o, handle.scene());
-  const study::SamplingViews v = study::sampling_views(handle.scene(), o);
-  py::dict out;
-  out["corners"] = v.corners;
-  out["centroid"] = v.centroid;
-  return out;
-}
-
-py::list sample_depth_images_py(const SceneHandle& handle, const std::vector<Camera>& cameras,
-                                const std::string& method, int layers, bool shade) {
-  const study::SamplingMethod m = study::parse_sampling_method(method, "method");
-  if (cameras.empty() || cameras.size() > 64) fail_input("cameras: expected 1..64 cameras");
-  if (m == study::SamplingMethod::Peeling) {
-    if (cameras.size() != 1) fail_input("cameras: peeling samples from one camera");
-    require_in_range(layers, 1, 64, "layers");
-  }
-  for (const Camera& c : cameras) {
-    validate_camera(c, "cameras");
-    check_image_budget("cameras", uint64_t(c.width), uint64_t(c.height), 16);
-  }
-  std::vector<DepthImage> images;
-  {
-    py::gil_scoped_release release;
-    const auto lock = handle.read_lock();
-    const Scene& scene = handle.scene();
-    switch (m) {
-      case study::SamplingMethod::Conventional: images = sample_conventional(scene, cameras, shade); break;
-      case study::SamplingMethod::Peeling: images = sample_peeling(scene, cameras[0], layers, shade); break;
-      case study::SamplingMethod::NrrPixel:
-        images = sample_nrr(scene, cameras, Redundancy::Pixel, &handle.rays(), shade);
-        break;
-      case study::SamplingMethod::NrrVisibility:
-        images = sample_nrr(scene, cameras, Redundancy::Visibility, &handle.rays(), shade);
-        break;
-    }
-  }
-  py::list out;
-  for (DepthImage& image : images) {
-    py::dict d;
-    d["camera"] = image.camera;
-    d["depth"] = image_array(std::move(image.depth));
-    d["id"] = id_image_array(std::move(image.triangle));
-    if (shade) {
-      d["normal"] = image_array(std::move(image.normal));
-      d["color"] = image_array(std::move(image.color));
-    }
-    out.append(d);
-  }
-  return out;
-}
-
-void bind_sampling(py::module_& m) {
-  m.def("sampling_views", &sampling_views_py, py::arg("scene"), py::kw_only(), py::arg("camera") = "",
-        py::arg("width") = 1024, py::arg("height") = 1024, py::arg("views") = "triangle", py::arg("radius") = 0.0f,
-        "The view set of `proxima sample` (docs/depthimage.md): centred on the scene camera `camera` (name or "
-        "index; '' = the first) at width × height, views 'segment', 'triangle' or 'rectangle', corners `radius` "
-        "m from the centre (0 = 8 % of the distance to the scene's centre). Returns a dict: corners (list of "
-        "Camera: conventional and NRR sample from these), centroid (Camera: peeling samples from it).");
-  m.def("sample_depth_images", &sample_depth_images_py, py::arg("scene"), py::arg("cameras"),
-        py::arg("method") = "nrr-pixel", py::kw_only(), py::arg("layers") = 0, py::arg("shade") = true,
-        "Depth images of the scene (rest pose, back faces culled) by `method`: 'conventional' (one per camera), "
-        "'nrr-pixel' / 'nrr-visibility' (non-redundant rendering over the cameras in order: image i keeps "
-        "only fragments not redundant with images 0..i−1), 'peeling' (`layers` layers from the one camera). "
-        "GIL released. Returns a list of dicts, one per image: camera, depth (H×W float32, −z_camera in m, "
-        "+inf where empty), id (H×W int32 triangle id, −1 where empty), and with shade normal (H×W×3 float32, "
-        "unit world normal facing the camera) and color (H×W×3 float32, linear direct light without shadows).");
-}
-
 }  // namespace
 
 void bind_techniques(py::module_& m) {
   bind_envmap(m);
   bind_temporal(m);
   bind_cluster(m);
-  bind_sampling(m);
 }
 
 }  // namespace proxima::python

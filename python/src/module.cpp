@@ -12,5 +12,8 @@ PYBIND11_MODULE(_proxima, m) {
   bind_rays(m);
   bind_eval(m);
   bind_techniques(m);
+  bind_depth_images(m);
+  bind_visibility(m);
+  bind_gibr(m);
   bind_studies(m);
 }

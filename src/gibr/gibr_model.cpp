@@ -105,11 +105,26 @@ void drop_invalid(ImageU32& labels, const ImageU8& valid) {
     }
 }
 
-}  // namespace
+void check_given(const GivenPhotos& p) {
+  if (p.images.empty() || p.images.size() > 10000) fail_input("photos: expected 1..10000 photographs");
+  if (p.cameras.size() != p.images.size())
+    fail_input("photos: " + std::to_string(p.images.size()) + " photographs but " + std::to_string(p.cameras.size()) +
+               " cameras");
+  for (size_t i = 0; i < p.images.size(); ++i) {
+    validate_camera(p.cameras[i], "cameras");
+    const ImageF& image = p.images[i];
+    if (image.channels() != 3 || image.width() != p.cameras[i].width || image.height() != p.cameras[i].height)
+      fail_input("photos: photograph " + std::to_string(i) + " is " + std::to_string(image.width()) + "×" +
+                 std::to_string(image.height()) + "×" + std::to_string(image.channels()) + ", its camera " +
+                 std::to_string(p.cameras[i].width) + "×" + std::to_string(p.cameras[i].height) + "×3");
+  }
+}
 
-GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) {
+// Phases 1–3; the photographs are `given`, the camera file's or rendered from seeded poses.
+GibrModel build(const Scene& model_scene, const GibrModelOptions& o, GivenPhotos* given) {
   Stopwatch total;
   check_options(model_scene, o);
+  if (given) check_given(*given);
   GibrModel g;
   g.model = extract_polygons(model_scene);
   const GibrSceneDefaults r = resolved(model_scene, g.model, o);
@@ -124,7 +139,10 @@ GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) 
 
   Stopwatch w;
   std::vector<ImageU8> valid;  // per camera-file photograph: empty, or 0 where undistortion had no source
-  if (!o.camera_file.empty()) {
+  if (given) {
+    g.cameras = std::move(given->cameras);
+    g.photos = std::move(given->images);
+  } else if (!o.camera_file.empty()) {
     load_photos(o.camera_file, g, valid);
   } else {
     PhotoPoseOptions ppo;
@@ -197,6 +215,16 @@ GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) 
   if (o.item_buffer) g.item_maps = build_radiance_maps(g.model, g.texel, g.cameras, g.photos, item_labels);
   g.stats.total_ms = total.elapsed_ms();
   return g;
+}
+
+}  // namespace
+
+GibrModel build_gibr_model(const Scene& scene, const GibrModelOptions& options) {
+  return build(scene, options, nullptr);
+}
+
+GibrModel build_gibr_model(const Scene& scene, const GibrModelOptions& options, GivenPhotos photos) {
+  return build(scene, options, &photos);
 }
 
 }  // namespace proxima::gibr

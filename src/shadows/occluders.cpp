@@ -56,6 +56,15 @@ std::vector<DepthImage> sample(const Scene& scene, const RayScene* rays, ShadowS
 
 }  // namespace
 
+std::vector<Camera> occluder_cameras(const AreaLight& light, const LightCameras& cams, ShadowSampling sampling,
+                                     int resolution) {
+  std::vector<Camera> cameras;
+  if (sampling == ShadowSampling::Peeling) cameras.push_back(light_camera(cams, light.point(0.5f, 0.5f), resolution));
+  else if (sampling != ShadowSampling::Geometry)
+    for (const vec3& c : light_corners(light)) cameras.push_back(light_camera(cams, c, resolution));
+  return cameras;
+}
+
 Occluders build_occluders(const Scene& scene, const RayScene* rays, const AreaLight& light, const LightCameras& cams,
                           ShadowSampling sampling, const OccluderOptions& options) {
   Occluders out;
@@ -63,10 +72,8 @@ Occluders build_occluders(const Scene& scene, const RayScene* rays, const AreaLi
     out.scene = scene;
     return out;
   }
-  std::vector<Camera> cameras, offsets;
-  if (sampling == ShadowSampling::Peeling) cameras.push_back(light_camera(cams, light.point(0.5f, 0.5f), options.resolution));
-  else
-    for (const vec3& c : light_corners(light)) cameras.push_back(light_camera(cams, c, options.resolution));
+  const std::vector<Camera> cameras = occluder_cameras(light, cams, sampling, options.resolution);
+  std::vector<Camera> offsets;
   for (const Camera& c : cameras) offsets.push_back(half_pixel_offset_camera(c));
   const bool hybrid = options.reconstruction == ReconstructionMethod::Hybrid;
 

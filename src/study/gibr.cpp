@@ -192,6 +192,13 @@ std::vector<std::variant<std::string, double>> add_view(Errors& e, size_t i, con
 
 void write_view_images(const StudyOutput& out, Results& results, size_t i, const NovelView& nv, const NovelView& ni,
                        const ImageF& truth) {
+  if (i == 0 && out.keeps()) {
+    keep_image(out, "novel_vismap", nv.color);
+    keep_image(out, "novel_itembuffer", ni.color);
+    keep_image(out, "truth", truth);
+    keep_image(out, "error_vismap", error_heatmap(error_image(nv.color, truth), kErrorHeatmapMax));
+    keep_image(out, "error_itembuffer", error_heatmap(error_image(ni.color, truth), kErrorHeatmapMax));
+  }
   if (!out.writes()) return;
   const std::filesystem::path views = out.dir / "views";
   std::filesystem::create_directories(views);

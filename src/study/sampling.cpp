@@ -123,7 +123,7 @@ void add_method(Results& results, Tables& t, SamplingMethod m, const SamplingMet
 // Colour, depth, triangle ids and the Table 3 classes of one method's images.
 void write_images(const StudyOutput& out, Results& results, SamplingMethod m, const std::vector<DepthImage>& images,
                   const std::vector<ImageU8>& classes) {
-  if (!out.writes()) return;
+  if (!out.wants_images()) return;
   for (size_t i = 0; i < images.size(); ++i) {
     const std::string stem = std::string(sampling_method_name(m)) + "_" + std::to_string(i);
     write_image(out, results, stem + "_color", stem + "_color.png", images[i].color);

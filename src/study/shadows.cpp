@@ -29,34 +29,6 @@ void check_side(int side, const char* flag) {
   require_in_range(side, 8, kMaxImageSide, flag);
 }
 
-// What every sampling shares: the light and its samples, the receivers, the light cameras,
-// the shadow maps of the original geometry (the thesis' ground truth) and, unless skipped,
-// exact visibility by Embree rays.
-struct Setting {
-  AreaLight light;
-  std::vector<vec3> samples;
-  Receivers receivers;
-  LightCameras cams;
-  ShadowMapOptions shadow_maps;
-  LightVisibility truth, exact;
-  double truth_ms = 0.0, rays_ms = 0.0;
-};
-
-Setting make_setting(const Scene& scene, const RayScene& rays, const ShadowsOptions& o) {
-  Setting s;
-  const Camera view = pick_camera(scene, o.camera, o.out_res, o.out_res);
-  s.light = shadow_light(scene, o.light_size);
-  s.samples = light_samples(s.light, o.light_samples);
-  s.receivers = render_receivers(scene, view);
-  std::vector<vec3> eyes = s.samples;
-  for (const vec3& c : light_corners(s.light)) eyes.push_back(c);
-  s.cams = fit_light_cameras(scene, s.light, s.receivers, eyes);
-  s.shadow_maps.resolution = o.shadow_res;
-  s.truth = shadow_map_visibility(scene, s.receivers, s.samples, s.cams, s.shadow_maps, &s.truth_ms);
-  if (!o.no_rays) s.exact = ray_visibility(rays, scene, s.receivers, s.samples, &s.rays_ms);
-  return s;
-}
-
 struct Tables {
   Table errors, rays, times;
 };
@@ -75,7 +47,7 @@ Tables make_tables(const Scene& scene, const ShadowsOptions& o) {
 }
 
 // The ground truths: their images, their time, and how far shadow maps are from rays.
-void add_ground_truth(Results& results, Tables& t, const Scene& scene, const Setting& s, bool rays,
+void add_ground_truth(Results& results, Tables& t, const Scene& scene, const ShadowSetting& s, bool rays,
                       const StudyOutput& out) {
   t.times.rows.push_back({"geometry (ground truth)", 0.0, 0.0, s.truth_ms, double(scene.triangles.size())});
   if (rays) {
@@ -98,20 +70,14 @@ void add_errors(Results& results, const std::string& p, const char* suffix, cons
 }
 
 // One sampling: steps 1–3, its errors against both ground truths, its images.
-void add_sampling(Results& results, Tables& t, const Scene& scene, const RayScene& rays, const Setting& s,
+void add_sampling(Results& results, Tables& t, const Scene& scene, const RayScene& rays, const ShadowSetting& s,
                   const ShadowsOptions& o, ShadowSampling sampling, const StudyOutput& out) {
   const std::string name = shadow_sampling_name(sampling);
   const std::string p = o.samplings.size() > 1 ? name + "_" : "";
-  OccluderOptions occ;
-  occ.resolution = o.ref_res;
-  occ.redundancy = o.redundancy;
-  occ.reconstruction = o.reconstruction;
-  const Occluders occluders = build_occluders(scene, &rays, s.light, s.cams, sampling, occ);
-  const bool geometry = sampling == ShadowSampling::Geometry;
-  double shadow_ms = s.truth_ms;
-  const LightVisibility v = geometry ? s.truth
-                                     : shadow_map_visibility(occluders.scene, s.receivers, s.samples, s.cams,
-                                                             s.shadow_maps, &shadow_ms);
+  const ShadowSamplingRun run = run_shadow_sampling(scene, rays, s, o, sampling);
+  const Occluders& occluders = run.occluders;
+  const double shadow_ms = run.shadow_ms;
+  const LightVisibility& v = run.visibility;
   const ShadowError e = compare_visibility(v, s.truth, s.receivers);
   add_errors(results, p, "_", e);
   const double triangles = double(occluders.scene.triangles.size());
@@ -135,6 +101,36 @@ void add_sampling(Results& results, Tables& t, const Scene& scene, const RayScen
 
 }  // namespace
 
+ShadowSetting shadow_setting(const Scene& scene, const RayScene& rays, const Camera& view, const ShadowsOptions& o) {
+  ShadowSetting s;
+  s.light = shadow_light(scene, o.light_size);
+  s.samples = light_samples(s.light, o.light_samples);
+  s.receivers = render_receivers(scene, view);
+  std::vector<vec3> eyes = s.samples;
+  for (const vec3& c : light_corners(s.light)) eyes.push_back(c);
+  s.cams = fit_light_cameras(scene, s.light, s.receivers, eyes);
+  s.shadow_maps.resolution = o.shadow_res;
+  s.truth = shadow_map_visibility(scene, s.receivers, s.samples, s.cams, s.shadow_maps, &s.truth_ms);
+  if (!o.no_rays) s.exact = ray_visibility(rays, scene, s.receivers, s.samples, &s.rays_ms);
+  return s;
+}
+
+ShadowSamplingRun run_shadow_sampling(const Scene& scene, const RayScene& rays, const ShadowSetting& s,
+                                      const ShadowsOptions& o, ShadowSampling sampling) {
+  OccluderOptions occ;
+  occ.resolution = o.ref_res;
+  occ.redundancy = o.redundancy;
+  occ.reconstruction = o.reconstruction;
+  ShadowSamplingRun run;
+  run.occluders = build_occluders(scene, &rays, s.light, s.cams, sampling, occ);
+  run.shadow_ms = s.truth_ms;
+  run.visibility = sampling == ShadowSampling::Geometry
+                       ? s.truth
+                       : shadow_map_visibility(run.occluders.scene, s.receivers, s.samples, s.cams, s.shadow_maps,
+                                               &run.shadow_ms);
+  return run;
+}
+
 void validate(const ShadowsOptions& o) {
   require_above_at_most(o.light_size, 0.0f, 100.0f, "--light-size");
   require_in_range(o.light_samples, 1, 64, "--light-samples");
@@ -152,7 +148,7 @@ void validate(const ShadowsOptions& options, const Scene& scene) {
 Results run_shadows(const Scene& scene, const ShadowsOptions& o, const StudyOutput& out, Progress*) {
   validate(o);
   const RayScene rays(scene);
-  const Setting s = make_setting(scene, rays, o);
+  const ShadowSetting s = shadow_setting(scene, rays, pick_camera(scene, o.camera, o.out_res, o.out_res), o);
   Results results;
   Tables t = make_tables(scene, o);
   add_ground_truth(results, t, scene, s, !o.no_rays, out);

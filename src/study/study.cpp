@@ -7,6 +7,7 @@ namespace proxima::study {
 
 void write_image(const StudyOutput& out, Results& results, const std::string& role, const std::string& file,
                  const ImageF& image) {
+  keep_image(out, role, image);
   if (!out.writes()) return;
   const std::filesystem::path path = out.dir / file;
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
@@ -16,9 +17,14 @@ void write_image(const StudyOutput& out, Results& results, const std::string& ro
 
 void write_exr_image(const StudyOutput& out, Results& results, const std::string& role, const std::string& file,
                      const ImageF& image) {
+  keep_image(out, role, image);
   if (!out.writes()) return;
   write_exr(out.dir / file, image);
   results.images[role] = file;
+}
+
+void keep_image(const StudyOutput& out, const std::string& role, const ImageF& image) {
+  if (out.keeps()) (*out.kept)[role] = image;
 }
 
 ImageF triangle_ids_as_float(const ImageU32& ids) {

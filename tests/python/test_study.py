@@ -7,6 +7,7 @@ import math
 import pathlib
 import subprocess
 
+import numpy as np
 import pytest
 
 import proxima
@@ -86,7 +87,7 @@ def test_catalog_lists_every_study():
 
 def test_envmap_metrics_equal_cli(room, cli, tmp_path):
     r = proxima.study.envmap_reflect(room, **ENVMAP)
-    assert set(r) == {"metrics", "tables", "images"}
+    assert set(r) == {"metrics", "tables", "images", "arrays"}
     assert r["images"] == {}
     assert r["tables"] and {"title", "columns", "rows"} <= set(r["tables"][0])
     assert all(len(row) == len(r["tables"][0]["columns"]) for row in r["tables"][0]["rows"])
@@ -108,6 +109,29 @@ def test_images_written_into_out_dir(room, tmp_path):
     assert r["images"]
     for file in r["images"].values():
         assert (tmp_path / "out" / file).stat().st_size > 0
+    # every image written is also returned as an array, under the same role
+    assert set(r["arrays"]) == set(r["images"])
+    for role, array in r["arrays"].items():
+        assert array.shape == (24, 32, 3) and array.dtype == np.float32, role
+
+
+def test_images_as_arrays_equal_the_files_and_render(cornell, tmp_path):
+    """The reference study's arrays: the linear color, depth and ids it writes as EXR, bit
+    for bit, with or without out_dir; equal to render_reference on the same settings."""
+    options = dict(camera="front", width=40, height=30, spp=2, light_samples=2)
+    without = proxima.study.reference(cornell, **options)
+    assert without["images"] == {}
+    a = without["arrays"]
+    assert {"color", "color_linear", "depth", "normal", "triangle_id"} <= set(a)
+    assert a["depth"].shape == (30, 40) and a["color_linear"].shape == (30, 40, 3)
+    r = proxima.study.reference(cornell, out_dir=tmp_path, **options)
+    for role in ("color_linear", "depth", "normal", "triangle_id"):
+        assert np.array_equal(a[role], r["arrays"][role]), role
+        assert np.array_equal(proxima.read_exr(str(tmp_path / r["images"][role])), a[role]), role
+    ref = proxima.render_reference(cornell, cornell.camera("front", width=40, height=30), spp=2, light_samples=2)
+    assert np.array_equal(a["color_linear"], ref["color"])
+    assert np.array_equal(a["color"], ref["color"])  # the PNG's image before encoding
+    assert np.array_equal(a["triangle_id"], ref["id"].astype(np.float32))
 
 
 def test_bad_options_raise_value_error(room):

@@ -92,4 +92,17 @@ struct GibrModel {
 // throw InputError naming the `proxima gibr` flag, before any work. Deterministic for a seed, at any thread count.
 GibrModel build_gibr_model(const Scene& scene, const GibrModelOptions& options = {});
 
+// Calibrated photographs held in memory: images[i] (linear RGB, 3 channels, the size of
+// cameras[i]) was taken by cameras[i].
+struct GivenPhotos {
+  std::vector<Camera> cameras;
+  std::vector<ImageF> images;
+};
+
+// The same from `photos` instead of rendered or camera-file photographs (options.photos,
+// photo_width, photo_height and camera_file unused). InputError naming "photos" for none,
+// more than 10000, a count different from the cameras', or an image that is not 3 channels
+// of its camera's size; "cameras" for an invalid camera.
+GibrModel build_gibr_model(const Scene& scene, const GibrModelOptions& options, GivenPhotos photos);
+
 }  // namespace proxima::gibr

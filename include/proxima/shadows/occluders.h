@@ -39,6 +39,11 @@ struct Occluders {
   double reconstruct_ms = 0.0;  // step 2
 };
 
+// The reference cameras of step 1 (`resolution`² pixels): one per light corner, or for
+// Peeling the one at the light's centre; none for Geometry.
+std::vector<Camera> occluder_cameras(const AreaLight& light, const LightCameras& cams, ShadowSampling sampling,
+                                     int resolution);
+
 // Steps 1–2 for `sampling`. `rays` (the BVH of `scene`) is needed for NRR with visibility
 // redundancy only. The hybrid reconstruction renders each image's offset image H with the
 // same sampling rule (NRR over the four offset cameras, peeling of the offset camera).

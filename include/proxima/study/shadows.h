@@ -12,8 +12,11 @@
 #include "proxima/eval/results.h"
 #include "proxima/scene/camera_select.h"
 #include "proxima/scene/scene.h"
+#include "proxima/shadows/light_setup.h"
+#include "proxima/shadows/light_visibility.h"
 #include "proxima/shadows/occluders.h"
 #include "proxima/study/study.h"
+#include "proxima/trace/ray_scene.h"
 
 namespace proxima::study {
 
@@ -38,6 +41,33 @@ void validate(const ShadowsOptions& options);
 // The options on `scene`: validate(options), and the camera choice resolves (errors name
 // --camera, --path or --frame).
 void validate(const ShadowsOptions& options, const Scene& scene);
+
+// What every sampling shares: the light and its n×n samples, the receivers (the visible
+// points of `view`), the light cameras, the shadow maps of the original geometry (the
+// thesis' ground truth: `truth`, `truth_ms`) and, unless no_rays, exact visibility by Embree
+// shadow rays (`exact`, `rays_ms`). `rays` is the BVH of `scene`; `options` valid.
+struct ShadowSetting {
+  AreaLight light;
+  std::vector<vec3> samples;
+  Receivers receivers;
+  LightCameras cams;
+  ShadowMapOptions shadow_maps;
+  LightVisibility truth, exact;
+  double truth_ms = 0.0, rays_ms = 0.0;
+};
+ShadowSetting shadow_setting(const Scene& scene, const RayScene& rays, const Camera& view,
+                             const ShadowsOptions& options);
+
+// Steps 1–3 of one sampling on a setting: its occluders (ref_res, redundancy,
+// reconstruction of `options`) and the receivers' visibility through their shadow maps
+// (`shadow_ms`); Geometry: the setting's ground truth.
+struct ShadowSamplingRun {
+  Occluders occluders;
+  LightVisibility visibility;
+  double shadow_ms = 0.0;
+};
+ShadowSamplingRun run_shadow_sampling(const Scene& scene, const RayScene& rays, const ShadowSetting& setting,
+                                      const ShadowsOptions& options, ShadowSampling sampling);
 
 // Runs the study. Metrics per sampling (prefixed "<sampling>_" when several run):
 // intensity_error_mean/_max, visibility_error_mean/_max (0..255, vs the geometry's shadow

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <string>
 
 #include "proxima/core/image.h"
@@ -20,17 +21,27 @@ namespace proxima::study {
 // An empty `dir` writes nothing: the results alone (tests, bindings).
 struct StudyOutput {
   std::filesystem::path dir;
+  // Non-null: every image published under a role is also kept here (role → the image
+  // before encoding: linear RGB for a PNG, the channels of an EXR), with or without `dir`.
+  std::map<std::string, ImageF>* kept = nullptr;
 
   bool writes() const { return !dir.empty(); }
+  bool keeps() const { return kept != nullptr; }
+  // Whether the study's images are wanted at all (written or kept).
+  bool wants_images() const { return writes() || keeps(); }
 };
 
 // Writes `image` as out.dir/file (PNG, linear → sRGB) and records it in results.images under
-// `role`; does nothing when `out` has no directory.
+// `role`; keeps a copy under `role` when `out` keeps images. Without a directory nothing is
+// written or recorded.
 void write_image(const StudyOutput& out, Results& results, const std::string& role, const std::string& file,
                  const ImageF& image);
 // The same as EXR (float channels as they are), for depth, normals and ids.
 void write_exr_image(const StudyOutput& out, Results& results, const std::string& role, const std::string& file,
                      const ImageF& image);
+// Keeps a copy of `image` under `role` when `out` keeps images (for images a study writes
+// itself, outside write_image); does nothing otherwise.
+void keep_image(const StudyOutput& out, const std::string& role, const ImageF& image);
 
 // Triangle ids as one float channel for EXR: exact up to 2^24, −1 where no triangle was hit.
 ImageF triangle_ids_as_float(const ImageU32& ids);
