@@ -76,6 +76,7 @@ set(PROXIMA_LIB_SOURCES
   src/study/catalog.cpp
   src/study/cluster_reflect.cpp
   src/study/demo.cpp
+  src/study/demo_bench.cpp
   src/study/demo_cluster.cpp
   src/study/demo_envmap.cpp
   src/study/demo_gibr.cpp
@@ -92,6 +93,7 @@ set(PROXIMA_LIB_SOURCES
   src/study/sampling.cpp
   src/study/shadows.cpp
   src/study/study.cpp
+  src/study/technique_bench.cpp
   src/study/temporal_reflect.cpp
   src/study/trace_bench.cpp
   src/study/visibility.cpp

@@ -440,6 +440,22 @@ Part viewer_part(Page& p) {
           d};
 }
 
+// Every technique against Embree (the demo's "bench" section), when the merged results
+// hold its table: the table as the demo wrote it. Empty for results made before it existed.
+std::string bench_detail(const Page& p) {
+  const std::string title = "demo: Techniques vs Embree at the demo's settings";
+  for (const Table& t : p.results().tables)
+    if (t.title.rfind(title, 0) == 0) {
+      Table shown = t;
+      shown.title.erase(0, std::string("demo: ").size());
+      return "\n## Techniques vs Embree\n\nEach technique and Embree timed in the same run (the demo's "
+             "settings; error-vs-ms plots per technique in the demo's report, `proxima bench techniques` "
+             "for 5 interleaved repetitions).\n\n" +
+             markdown_table(shown) + "\n" + p.commands({"demo-bench"});
+    }
+  return "";
+}
+
 std::string header(const Page& p) {
   const Results& r = p.results();
   std::string d = "# Measured results\n\n";
@@ -481,6 +497,7 @@ ResultsPage results_page(const Results& merged) {
   page += "\n## Summary\n\n";
   page += markdown({"technique", "setting", "error vs reference", "paper", "speed vs reference", "paper"}, summary);
   for (const Part& part : parts) page += "\n" + part.detail;
+  page += bench_detail(p);
   page += "\nThe demo took " + fixed(p.m("demo_demo_seconds"), 0) + " s.\n";
   return {page, p.missing()};
 }

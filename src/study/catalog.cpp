@@ -23,6 +23,7 @@
 #include "proxima/study/reference.h"
 #include "proxima/study/sampling.h"
 #include "proxima/study/shadows.h"
+#include "proxima/study/technique_bench.h"
 #include "proxima/study/temporal_reflect.h"
 #include "proxima/study/trace_bench.h"
 #include "proxima/study/visibility.h"
@@ -528,11 +529,22 @@ Entry raster_bench_entry() {
                   run_raster_bench);
 }
 
+Entry technique_bench_entry() {
+  using O = TechniqueBenchOptions;
+  std::vector<Field<O>> f;
+  f.push_back(field<O>("techniques", "comma-separated techniques, or all", &O::techniques));
+  f.push_back(field<O>("reps", "interleaved repetitions, 1..100 (medians)", &O::reps));
+  f.push_back(field<O>("sweep", "also the other settings of each technique's knob", &O::sweep));
+  f.push_back(field<O>("seed", "the studies' sample streams", &O::seed));
+  return entry<O>("technique_bench", "every technique beside Embree (proxima bench techniques)", std::move(f),
+                  run_technique_bench);
+}
+
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> all = [] {
     std::vector<Entry> e{cluster_entry(),  envmap_entry(),      gibr_entry(),     raster_bench_entry(),
                          reference_entry(), sampling_entry(),   shadows_entry(),  temporal_entry(),
-                         trace_bench_entry(), visibility_entry()};
+                         technique_bench_entry(), trace_bench_entry(), visibility_entry()};
     std::sort(e.begin(), e.end(), [](const Entry& a, const Entry& b) { return a.info.name < b.info.name; });
     return e;
   }();

@@ -26,6 +26,7 @@ std::vector<SectionDef> demo_sections() {
       {"temporal", "temporal reuse", temporal_steps, temporal_section},
       {"visibility", "visibility maps", visibility_steps, visibility_section},
       {"gibr", "image-based rendering", one, gibr_section},
+      {"bench", "techniques vs Embree", one, bench_section},
   };
 }
 

@@ -47,6 +47,7 @@ void visibility_section(Context& c);
 void shadows_section(Context& c);
 void temporal_section(Context& c);
 void gibr_section(Context& c);
+void bench_section(Context& c);  // after the others: reuses their demo-settings timings
 int sampling_steps(const Context& c);
 int envmap_steps(const Context& c);
 int cluster_steps(const Context& c);

@@ -15,7 +15,7 @@ namespace proxima {
 namespace {
 
 TEST(Cli, HelpOnEverySubcommand) {
-  for (const char* sub : {"scenes", "info", "render", "bench", "bench trace", "bench raster", "bench view", "demo", "reflect", "shadows", "view", "gibr"}) {
+  for (const char* sub : {"scenes", "info", "render", "bench", "bench trace", "bench raster", "bench techniques", "bench view", "demo", "reflect", "shadows", "view", "gibr"}) {
     RunResult r = run_cli(std::string(sub) + " --help");
     EXPECT_EQ(r.exit_code, 0) << sub;
     EXPECT_NE(r.output.find("Usage"), std::string::npos) << sub << ": " << r.output;

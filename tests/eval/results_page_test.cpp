@@ -80,6 +80,18 @@ TEST(ResultsPage, MissingMetricsAreListedAndShownAsDashes) {
   EXPECT_NE(page.markdown.find("| — |"), std::string::npos);
 }
 
+// The demo's techniques-vs-Embree table is shown when the demo wrote one, and only then.
+TEST(ResultsPage, TechniquesVsEmbreeTableWhenTheDemoHasIt) {
+  Results demo = run("abc", 2, {{"demo_seconds", 59.0}});
+  const std::string without = results_page(merge_results({{"demo", demo}}, {"proxima"})).markdown;
+  EXPECT_EQ(without.find("## Techniques vs Embree"), std::string::npos);
+  demo.tables.push_back({"Techniques vs Embree at the demo's settings (ratio)", {"technique", "ratio"},
+                         {{std::string("cluster"), 0.41}}});
+  const std::string with = results_page(merge_results({{"demo", demo}}, {"proxima"})).markdown;
+  EXPECT_NE(with.find("## Techniques vs Embree"), std::string::npos);
+  EXPECT_NE(with.find("| cluster | 0.41 |"), std::string::npos);
+}
+
 TEST(ResultsMerge, PrefixesEveryRunsFiguresAndKeepsItsCommand) {
   const Results merged = merge_results({{"demo", run("abc", 2, {{"x_ms", 1.0}})},
                                         {"bench_trace", run("abc", 2, {{"x_ms", 2.0}})}},

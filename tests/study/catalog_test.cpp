@@ -45,7 +45,8 @@ TEST(StudyCatalog, ListsEveryStudyOfTheStudyHeaders) {
     for (const study::OptionInfo& o : s.options) EXPECT_FALSE(o.doc.empty()) << s.name << "." << o.name;
   }
   EXPECT_EQ(names, (std::vector<std::string>{"cluster_reflect", "envmap_reflect", "gibr", "raster_bench", "reference",
-                                             "sampling", "shadows", "temporal_reflect", "trace_bench", "visibility"}));
+                                             "sampling", "shadows", "technique_bench", "temporal_reflect", "trace_bench",
+                                             "visibility"}));
 }
 
 // Each name reaches its own study: a value out of range is refused by that study's
@@ -61,6 +62,7 @@ TEST(StudyCatalog, EveryStudyIsReachableByName) {
       {"shadows", {{"light_size", 0.0}}, "--light-size"},
       {"temporal_reflect", {{"path", std::string("0")}, {"threshold", 2.0}}, "--threshold"},
       {"visibility", {{"selfcheck_rays", std::int64_t{0}}}, "--selfcheck-rays"},
+      {"technique_bench", {{"techniques", std::string("nope")}}, "--techniques"},
   };
   for (const auto& [name, values, flag] : cases)
     EXPECT_NE(error_of([&] { study::run_study(name, scene, values, {}); }).find(flag), std::string::npos) << name;
