@@ -62,14 +62,14 @@ void load_photos(const std::filesystem::path& camera_file, GibrModel& g) {
 
 }  // namespace
 
-GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) {
+GibrModel prepare_gibr_model(const Scene& model_scene, const GibrModelOptions& o) {
   Stopwatch total;
   check_options(model_scene, o);
   GibrModel g;
   g.model = extract_polygons(model_scene);
   const GibrSceneDefaults r = resolved(model_scene, g.model, o);
   g.texel = r.texel;
-  (void)make_texel_grids(g.model, g.texel);  // rejects a texel too small before the photographs
+  g.maps.grids = make_texel_grids(g.model, g.texel);  // rejects a texel too small before the photographs
   PhotoSceneOptions pso;
   pso.period = r.period;
   pso.seed = o.seed;
@@ -87,56 +87,92 @@ GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) 
     ppo.height = o.photo_height;
     ppo.seed = o.seed;
     g.cameras = photo_poses(*g.rays, model_scene.camera_paths.front(), ppo, 0.01f, g.far);
-    g.photos.resize(g.cameras.size());
-    for (size_t i = 0; i < g.cameras.size(); ++i)
-      g.photos[i] = render_photo(g.scene, *g.rays, g.cameras[i], o.supersample, derive_seed(o.seed, i, 1));
   }
   g.stats.photos_ms = w.elapsed_ms();
-
   // Phase 1: spatial subdivision.
   g.winged_pair = build_winged_pair(g.model, {}, &g.stats.bsp);
-  // Phase 2: a visibility map per photograph (and the baseline's item buffers).
+  g.stats.total_ms = total.elapsed_ms();
+  return g;
+}
+
+PhotoMapping map_photograph(const GibrModel& g, size_t i, const GibrModelOptions& o) {
+  PhotoMapping pm;
+  Stopwatch w;
+  if (g.photos.empty()) pm.photo = render_photo(g.scene, *g.rays, g.cameras[i], o.supersample, derive_seed(o.seed, i, 1));
+  const ImageF& photo = g.photos.empty() ? pm.photo : g.photos[i];
+  pm.photo_ms = w.elapsed_ms();
+  // Phase 2: the visibility map; kept for phase 3's exact texel-center test in pixels not
+  // mapped as a whole (instead of a sub-pixel record: exact, and a third of the labels' memory).
   w.restart();
-  const size_t n = g.cameras.size();
-  std::vector<ImageU32> labels(n);
-  std::vector<double> silhouettes(n);
-  std::vector<visibility::MapCheck> checks(n);
-  // Kept until phase 3 for the exact texel-center test in pixels not mapped as a whole
-  // (instead of a sub-pixel record: exact, and a third of the labels' memory).
-  std::vector<VisibilityMap> vis_maps(o.whole_pixels ? 0 : n);
-  parallel_for(n, 1, [&](size_t b, size_t e) {
-    for (size_t i = b; i < e; ++i) {
-      VisibilityMap map = trace_visibility_map(g.winged_pair, g.cameras[i]);
-      silhouettes[i] = double(map.stats.silhouette_edges);
-      checks[i] = visibility::check_visibility_map(map, g.model, *g.rays, g.cameras[i]);
-      labels[i] = vismap_pixel_polygons(map, o.exclude_boundaries, false);
-      if (o.unmix && !o.whole_pixels)
-        labels[i] = unmix_silhouette_pixels(map, labels[i], g.photos[i], o.supersample, o.exclude_boundaries);
-      if (!o.whole_pixels) vis_maps[i] = std::move(map);
-    }
-  });
-  g.stats.vismap_ms = w.elapsed_ms();
-  double sum = 0.0;
-  for (double s : silhouettes) sum += s;
-  g.stats.silhouette_edges_avg = sum / double(n);
-  for (size_t i = 0; i < n; ++i) {
-    g.stats.selfcheck_ms += checks[i].ms;
-    if (checks[i].pass) continue;
-    ++g.stats.maps_failed_selfcheck;
-    g.stats.selfcheck_failures.push_back("photograph " + std::to_string(i) + ": " + checks[i].reason);
-  }
-  std::vector<ImageU32> item_labels;
+  VisibilityMap map = trace_visibility_map(g.winged_pair, g.cameras[i]);
+  pm.silhouette_edges = double(map.stats.silhouette_edges);
+  pm.check = visibility::check_visibility_map(map, g.model, *g.rays, g.cameras[i]);
+  ImageU32 labels = vismap_pixel_polygons(map, o.exclude_boundaries, false);
+  if (o.unmix && !o.whole_pixels) labels = unmix_silhouette_pixels(map, labels, photo, o.supersample, o.exclude_boundaries);
+  pm.vismap_ms = w.elapsed_ms();
+  // Phase 3: this photograph's radiance-map layers.
+  w.restart();
+  pm.layers = map_photo_layers(g.model, g.maps.grids, uint32_t(i), g.cameras[i], photo, labels,
+                               o.whole_pixels ? nullptr : &map);
+  pm.map_ms = w.elapsed_ms();
   if (o.item_buffer) {
     w.restart();
-    item_labels.resize(n);
-    for (size_t i = 0; i < n; ++i) item_labels[i] = itembuffer_pixel_polygons(g.scene, g.model, g.cameras[i]);
-    g.stats.itembuffer_ms = w.elapsed_ms();
+    const ImageU32 item_labels = itembuffer_pixel_polygons(g.scene, g.model, g.cameras[i]);
+    pm.itembuffer_ms = w.elapsed_ms();
+    w.restart();
+    pm.item_layers = map_photo_layers(g.model, g.maps.grids, uint32_t(i), g.cameras[i], photo, item_labels, nullptr);
+    pm.item_map_ms = w.elapsed_ms();
   }
-  // Phase 3: radiance maps.
-  g.maps = build_radiance_maps(g.model, g.texel, g.cameras, g.photos, labels, vis_maps);
-  vis_maps = {};
-  if (o.item_buffer) g.item_maps = build_radiance_maps(g.model, g.texel, g.cameras, g.photos, item_labels);
-  g.stats.total_ms = total.elapsed_ms();
+  return pm;
+}
+
+void add_photographs(GibrModel& g, std::vector<PhotoMapping> photos, const GibrModelOptions& o) {
+  const size_t n = g.cameras.size();
+  if (photos.size() != n) fail_input("gibr: " + std::to_string(photos.size()) + " photograph mappings for " +
+                                     std::to_string(n) + " photographs");
+  std::vector<PhotoLayers> layers(n), item_layers(n);
+  double sum = 0.0, map_ms = 0.0, item_map_ms = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    PhotoMapping& pm = photos[i];
+    if (g.photos.size() < n) g.photos.push_back(std::move(pm.photo));
+    g.stats.photos_ms += pm.photo_ms;
+    g.stats.vismap_ms += pm.vismap_ms;
+    g.stats.itembuffer_ms += pm.itembuffer_ms;
+    g.stats.selfcheck_ms += pm.check.ms;
+    sum += pm.silhouette_edges;
+    map_ms += pm.map_ms;
+    item_map_ms += pm.item_map_ms;
+    if (!pm.check.pass) {
+      ++g.stats.maps_failed_selfcheck;
+      g.stats.selfcheck_failures.push_back("photograph " + std::to_string(i) + ": " + pm.check.reason);
+    }
+    layers[i] = std::move(pm.layers);
+    item_layers[i] = std::move(pm.item_layers);
+  }
+  g.stats.silhouette_edges_avg = sum / double(n);
+  Stopwatch w;
+  const std::vector<TexelGrid> grids = g.maps.grids;
+  g.maps = merge_photo_layers(grids, g.cameras, std::move(layers));
+  g.maps.stats.ms += map_ms;
+  if (o.item_buffer) {
+    g.item_maps = merge_photo_layers(grids, g.cameras, std::move(item_layers));
+    g.item_maps.stats.ms += item_map_ms;
+  }
+  g.stats.total_ms += w.elapsed_ms() + g.stats.photos_ms + g.stats.vismap_ms + g.stats.itembuffer_ms + map_ms;
+}
+
+GibrModel build_gibr_model(const Scene& model_scene, const GibrModelOptions& o) {
+  GibrModel g = prepare_gibr_model(model_scene, o);
+  std::vector<PhotoMapping> photos;
+  if (o.photographs) {
+    photos = o.photographs(g);
+  } else {
+    photos.resize(g.cameras.size());
+    parallel_for(photos.size(), 1, [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i) photos[i] = map_photograph(g, i, o);
+    });
+  }
+  add_photographs(g, std::move(photos), o);
   return g;
 }
 
