@@ -97,6 +97,7 @@ set(PROXIMA_LIB_SOURCES
   src/study/temporal_reflect.cpp
   src/study/trace_bench.cpp
   src/study/visibility.cpp
+  src/sweep/gibr_photos.cpp
   src/sweep/item.cpp
   src/sweep/manifest.cpp
   src/sweep/sweep.cpp

@@ -120,8 +120,9 @@ void check_given(const GivenPhotos& p) {
   }
 }
 
-// Phases 1–3; the photographs are `given`, the camera file's or rendered from seeded poses.
-GibrModel build(const Scene& model_scene, const GibrModelOptions& o, GivenPhotos* given) {
+// Phase 1 and what the photographs need: the photographs `given`, the camera file's or
+// seeded poses to render from.
+GibrModel prepare(const Scene& model_scene, const GibrModelOptions& o, GivenPhotos* given) {
   Stopwatch total;
   check_options(model_scene, o);
   if (given) check_given(*given);
@@ -129,7 +130,7 @@ GibrModel build(const Scene& model_scene, const GibrModelOptions& o, GivenPhotos
   g.model = extract_polygons(model_scene);
   const GibrSceneDefaults r = resolved(model_scene, g.model, o);
   g.texel = r.texel;
-  (void)make_texel_grids(g.model, g.texel);  // rejects a texel too small before the photographs
+  g.maps.grids = make_texel_grids(g.model, g.texel);  // rejects a texel too small before the photographs
   PhotoSceneOptions pso;
   pso.period = r.period;
   pso.seed = o.seed;
@@ -138,12 +139,11 @@ GibrModel build(const Scene& model_scene, const GibrModelOptions& o, GivenPhotos
   g.rays = std::make_unique<RayScene>(g.scene);
 
   Stopwatch w;
-  std::vector<ImageU8> valid;  // per camera-file photograph: empty, or 0 where undistortion had no source
   if (given) {
     g.cameras = std::move(given->cameras);
     g.photos = std::move(given->images);
   } else if (!o.camera_file.empty()) {
-    load_photos(o.camera_file, g, valid);
+    load_photos(o.camera_file, g, g.photo_valid);
   } else {
     PhotoPoseOptions ppo;
     ppo.count = o.photos;
@@ -152,72 +152,112 @@ GibrModel build(const Scene& model_scene, const GibrModelOptions& o, GivenPhotos
     ppo.seed = o.seed;
     ppo.yaw_deg = o.photo_yaw_deg;
     ppo.backoff = o.photo_backoff;
-    g.cameras = photo_poses(*g.rays, model_scene.camera_paths.front(), ppo, 0.01f, g.far);
-    g.photos.resize(g.cameras.size());
-    for (size_t i = 0; i < g.cameras.size(); ++i) {
-      g.photos[i] = render_photo(g.scene, *g.rays, g.cameras[i], o.supersample, derive_seed(o.seed, i, 1));
-      g.cameras[i] = miscalibrated(g.cameras[i], o.calibration_px, derive_seed(o.seed, i, 3));
-    }
+    g.render_poses = photo_poses(*g.rays, model_scene.camera_paths.front(), ppo, 0.01f, g.far);
+    for (size_t i = 0; i < g.render_poses.size(); ++i)
+      g.cameras.push_back(miscalibrated(g.render_poses[i], o.calibration_px, derive_seed(o.seed, i, 3)));
   }
   g.stats.photos_ms = w.elapsed_ms();
-
   // Phase 1: spatial subdivision.
   g.winged_pair = build_winged_pair(g.model, {}, &g.stats.bsp);
-  // Phase 2: a visibility map per photograph (and the baseline's item buffers).
-  w.restart();
-  const size_t n = g.cameras.size();
-  std::vector<ImageU32> labels(n);
-  std::vector<double> silhouettes(n);
-  std::vector<visibility::MapCheck> checks(n);
-  // Kept until phase 3 for the exact texel-center test in pixels not mapped as a whole
-  // (instead of a sub-pixel record: exact, and a third of the labels' memory).
-  std::vector<VisibilityMap> vis_maps(o.whole_pixels ? 0 : n);
-  parallel_for(n, 1, [&](size_t b, size_t e) {
-    for (size_t i = b; i < e; ++i) {
-      VisibilityMap map = trace_visibility_map(g.winged_pair, g.cameras[i]);
-      silhouettes[i] = double(map.stats.silhouette_edges);
-      checks[i] = visibility::check_visibility_map(map, g.model, *g.rays, g.cameras[i]);
-      labels[i] = vismap_pixel_polygons(map, o.exclude_boundaries, false);
-      // An undistorted photograph is a bilinear resample: its pixels within 1 px of a touched
-      // one mix the silhouette's sides too, and no pixel averages the map's sample points.
-      const bool resampled = i < valid.size() && valid[i].width() > 0;
-      if (resampled) drop_resampled_band(labels[i], map);
-      if (o.unmix && !o.whole_pixels && !resampled)
-        labels[i] = unmix_silhouette_pixels(map, labels[i], g.photos[i], o.supersample, o.exclude_boundaries,
-                                            o.unmix_two_pass);
-      if (i < valid.size()) drop_invalid(labels[i], valid[i]);
-      if (!o.whole_pixels) vis_maps[i] = std::move(map);
-    }
-  });
-  g.stats.vismap_ms = w.elapsed_ms();
-  double sum = 0.0;
-  for (double s : silhouettes) sum += s;
-  g.stats.silhouette_edges_avg = sum / double(n);
-  for (size_t i = 0; i < n; ++i) {
-    g.stats.selfcheck_ms += checks[i].ms;
-    if (checks[i].pass) continue;
-    ++g.stats.maps_failed_selfcheck;
-    g.stats.selfcheck_failures.push_back("photograph " + std::to_string(i) + ": " + checks[i].reason);
-  }
-  std::vector<ImageU32> item_labels;
-  if (o.item_buffer) {
-    w.restart();
-    item_labels.resize(n);
-    for (size_t i = 0; i < n; ++i) {
-      item_labels[i] = itembuffer_pixel_polygons(g.scene, g.model, g.cameras[i]);
-      if (i < valid.size()) drop_invalid(item_labels[i], valid[i]);
-    }
-    g.stats.itembuffer_ms = w.elapsed_ms();
-  }
-  // Phase 3: radiance maps.
-  g.maps = build_radiance_maps(g.model, g.texel, g.cameras, g.photos, labels, vis_maps);
-  vis_maps = {};
-  if (o.item_buffer) g.item_maps = build_radiance_maps(g.model, g.texel, g.cameras, g.photos, item_labels);
   g.stats.total_ms = total.elapsed_ms();
   return g;
 }
 
+GibrModel build(const Scene& model_scene, const GibrModelOptions& o, GivenPhotos* given) {
+  GibrModel g = prepare(model_scene, o, given);
+  std::vector<PhotoMapping> photos;
+  if (o.photographs) {
+    photos = o.photographs(g);
+  } else {
+    photos.resize(g.cameras.size());
+    parallel_for(photos.size(), 1, [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i) photos[i] = map_photograph(g, i, o);
+    });
+  }
+  add_photographs(g, std::move(photos), o);
+  return g;
+}
+
 }  // namespace
+
+GibrModel prepare_gibr_model(const Scene& model_scene, const GibrModelOptions& o) {
+  return prepare(model_scene, o, nullptr);
+}
+
+PhotoMapping map_photograph(const GibrModel& g, size_t i, const GibrModelOptions& o) {
+  PhotoMapping pm;
+  Stopwatch w;
+  if (g.photos.empty())
+    pm.photo = render_photo(g.scene, *g.rays, g.render_poses[i], o.supersample, derive_seed(o.seed, i, 1));
+  const ImageF& photo = g.photos.empty() ? pm.photo : g.photos[i];
+  pm.photo_ms = w.elapsed_ms();
+  // Phase 2: the visibility map; kept for phase 3's exact texel-center test in pixels not
+  // mapped as a whole (instead of a sub-pixel record: exact, and a third of the labels' memory).
+  w.restart();
+  VisibilityMap map = trace_visibility_map(g.winged_pair, g.cameras[i]);
+  pm.silhouette_edges = double(map.stats.silhouette_edges);
+  pm.check = visibility::check_visibility_map(map, g.model, *g.rays, g.cameras[i]);
+  ImageU32 labels = vismap_pixel_polygons(map, o.exclude_boundaries, false);
+  // An undistorted photograph is a bilinear resample: its pixels within 1 px of a touched
+  // one mix the silhouette's sides too, and no pixel averages the map's sample points.
+  const ImageU8* valid = i < g.photo_valid.size() ? &g.photo_valid[i] : nullptr;
+  const bool resampled = valid && valid->width() > 0;
+  if (resampled) drop_resampled_band(labels, map);
+  if (o.unmix && !o.whole_pixels && !resampled)
+    labels = unmix_silhouette_pixels(map, labels, photo, o.supersample, o.exclude_boundaries, o.unmix_two_pass);
+  if (valid) drop_invalid(labels, *valid);
+  pm.vismap_ms = w.elapsed_ms();
+  // Phase 3: this photograph's radiance-map layers.
+  w.restart();
+  pm.layers = map_photo_layers(g.model, g.maps.grids, uint32_t(i), g.cameras[i], photo, labels,
+                               o.whole_pixels ? nullptr : &map);
+  pm.map_ms = w.elapsed_ms();
+  if (o.item_buffer) {
+    w.restart();
+    ImageU32 item_labels = itembuffer_pixel_polygons(g.scene, g.model, g.cameras[i]);
+    if (valid) drop_invalid(item_labels, *valid);
+    pm.itembuffer_ms = w.elapsed_ms();
+    w.restart();
+    pm.item_layers = map_photo_layers(g.model, g.maps.grids, uint32_t(i), g.cameras[i], photo, item_labels, nullptr);
+    pm.item_map_ms = w.elapsed_ms();
+  }
+  return pm;
+}
+
+void add_photographs(GibrModel& g, std::vector<PhotoMapping> photos, const GibrModelOptions& o) {
+  const size_t n = g.cameras.size();
+  if (photos.size() != n) fail_input("gibr: " + std::to_string(photos.size()) + " photograph mappings for " +
+                                     std::to_string(n) + " photographs");
+  std::vector<PhotoLayers> layers(n), item_layers(n);
+  double sum = 0.0, map_ms = 0.0, item_map_ms = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    PhotoMapping& pm = photos[i];
+    if (g.photos.size() < n) g.photos.push_back(std::move(pm.photo));
+    g.stats.photos_ms += pm.photo_ms;
+    g.stats.vismap_ms += pm.vismap_ms;
+    g.stats.itembuffer_ms += pm.itembuffer_ms;
+    g.stats.selfcheck_ms += pm.check.ms;
+    sum += pm.silhouette_edges;
+    map_ms += pm.map_ms;
+    item_map_ms += pm.item_map_ms;
+    if (!pm.check.pass) {
+      ++g.stats.maps_failed_selfcheck;
+      g.stats.selfcheck_failures.push_back("photograph " + std::to_string(i) + ": " + pm.check.reason);
+    }
+    layers[i] = std::move(pm.layers);
+    item_layers[i] = std::move(pm.item_layers);
+  }
+  g.stats.silhouette_edges_avg = sum / double(n);
+  Stopwatch w;
+  const std::vector<TexelGrid> grids = g.maps.grids;
+  g.maps = merge_photo_layers(grids, g.cameras, std::move(layers));
+  g.maps.stats.ms += map_ms;
+  if (o.item_buffer) {
+    g.item_maps = merge_photo_layers(grids, g.cameras, std::move(item_layers));
+    g.item_maps.stats.ms += item_map_ms;
+  }
+  g.stats.total_ms += w.elapsed_ms() + g.stats.photos_ms + g.stats.vismap_ms + g.stats.itembuffer_ms + map_ms;
+}
 
 GibrModel build_gibr_model(const Scene& scene, const GibrModelOptions& options) {
   return build(scene, options, nullptr);

@@ -232,11 +232,6 @@ ImageU32 itembuffer_pixel_polygons(const Scene& scene, const ModelPolygons& mode
 
 namespace {
 
-struct PhotoLayers {
-  std::vector<std::pair<uint32_t, SampleLayer>> layers;
-  size_t pixels_mapped = 0;
-};
-
 // The visibility map's regions of a polygon meeting each pixel that may show more than one
 // polygon — not mapped as a whole (label kNone: touching a silhouette,
 // or background) or beside a pixel with another label (a crease between polygons: the
@@ -597,6 +592,12 @@ void fill_reach(SampleLayer& L) {
   L.reach_mixed = L.mixed > 0 ? block_reach(L, kMixed) : std::vector<uint8_t>{};
 }
 
+PhotoLayers map_photo_layers(const ModelPolygons& model, const std::vector<TexelGrid>& grids, uint32_t photo,
+                             const Camera& camera, const ImageF& image, const ImageU32& pixel_polygons,
+                             const VisibilityMap* vis_map) {
+  return map_photo(model, grids, photo, camera, image, pixel_polygons, vis_map);
+}
+
 RadianceMaps build_radiance_maps(const ModelPolygons& model, double texel, std::span<const Camera> cameras,
                                  std::span<const ImageF> photos, std::span<const ImageU32> pixel_polygons,
                                  std::span<const VisibilityMap> vis_maps) {
@@ -608,16 +609,25 @@ RadianceMaps build_radiance_maps(const ModelPolygons& model, double texel, std::
     if (vis_maps[k].width != cameras[k].width || vis_maps[k].height != cameras[k].height)
       fail_input("radiance maps: a visibility map's size differs from its camera's");
   Stopwatch watch;
-  RadianceMaps maps;
-  maps.grids = make_texel_grids(model, texel);
-  maps.layers.resize(model.polygons.size());
-  maps.cameras.assign(cameras.begin(), cameras.end());
+  const std::vector<TexelGrid> grids = make_texel_grids(model, texel);
   std::vector<PhotoLayers> per(cameras.size());
   parallel_for(cameras.size(), 1, [&](size_t b, size_t e) {
     for (size_t k = b; k < e; ++k)
-      per[k] = map_photo(model, maps.grids, uint32_t(k), cameras[k], photos[k], pixel_polygons[k],
+      per[k] = map_photo(model, grids, uint32_t(k), cameras[k], photos[k], pixel_polygons[k],
                          vis_maps.empty() ? nullptr : &vis_maps[k]);
   });
+  RadianceMaps maps = merge_photo_layers(grids, cameras, std::move(per));
+  maps.stats.ms = watch.elapsed_ms();
+  return maps;
+}
+
+RadianceMaps merge_photo_layers(const std::vector<TexelGrid>& grids, std::span<const Camera> cameras,
+                                std::vector<PhotoLayers> per) {
+  Stopwatch watch;
+  RadianceMaps maps;
+  maps.grids = grids;
+  maps.layers.resize(grids.size());
+  maps.cameras.assign(cameras.begin(), cameras.end());
   RadianceStats& s = maps.stats;
   s.photos = cameras.size();
   for (PhotoLayers& pl : per) {

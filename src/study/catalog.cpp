@@ -465,7 +465,7 @@ Entry visibility_entry() {
                   run_visibility);
 }
 
-Entry gibr_entry() {
+std::vector<Field<GibrOptions>> gibr_fields() {
   using O = GibrOptions;
   using M = gibr::GibrModelOptions;
   std::vector<Field<O>> f;
@@ -501,7 +501,12 @@ Entry gibr_entry() {
   f.push_back(field<O>("offpath", "meters the offpath views move off the path, 0..1000", &O::offpath));
   f.push_back(field<O>("photo_images", "photos/photo_NNN.png (--no-photo-images clears it)", &O::photo_images));
   f.push_back(field<O>("fps_repeat", "timed renders per novel view (median), 1..1000", &O::fps_repeat));
-  return entry<O>("gibr", "hybrid geometry- and image-based rendering (proxima gibr)", std::move(f), run_gibr);
+  return f;
+}
+
+Entry gibr_entry() {
+  return entry<GibrOptions>("gibr", "hybrid geometry- and image-based rendering (proxima gibr)", gibr_fields(),
+                            run_gibr);
 }
 
 Entry trace_bench_entry() {
@@ -579,6 +584,95 @@ OptionValues resolved_options(std::string_view name, const OptionValues& options
 Results run_study(std::string_view name, const Scene& scene, const OptionValues& options, const StudyOutput& out,
                   Progress* progress) {
   return find_entry(name).run(scene, options, out, progress);
+}
+
+GibrOptions gibr_options(const OptionValues& options) { return apply_options("gibr", gibr_fields(), options); }
+
+namespace {
+
+// The catalog study of a command and the arguments after the command's name.
+std::pair<std::string, size_t> command_study(const std::vector<std::string>& a) {
+  if (a.empty()) fail_input("an empty command");
+  auto method = [&]() -> std::string {
+    for (size_t i = 1; i + 1 < a.size(); ++i)
+      if (a[i] == "--method") return a[i + 1];
+    return "";
+  };
+  if (a[0] == "reflect") {
+    const std::string m = method();
+    return {m == "temporal" ? "temporal_reflect" : m == "cluster" ? "cluster_reflect" : "envmap_reflect", 1};
+  }
+  if (a[0] == "bench" && a.size() > 1 && (a[1] == "raster" || a[1] == "trace")) return {a[1] + "_bench", 2};
+  static const std::map<std::string, std::string> kCommands{
+      {"render", "reference"}, {"sample", "sampling"},     {"shadows", "shadows"},
+      {"visibility", "visibility"}, {"gibr", "gibr"}};
+  const auto it = kCommands.find(a[0]);
+  if (it == kCommands.end()) fail_input("'" + a[0] + "': not a command that runs a study");
+  return {it->second, 1};
+}
+
+// The value of option `info` as the text `text` gives it.
+OptionValue parse_option(const OptionInfo& info, const std::string& text, const std::string& flag) {
+  try {
+    size_t used = 0;
+    if (info.type == "int") {
+      const std::int64_t v = std::stoll(text, &used);
+      if (used == text.size()) return v;
+    } else if (info.type == "float") {
+      if (text == "inf" || text == "-inf") return text;
+      const double v = std::stod(text, &used);
+      if (used == text.size()) return v;
+    } else {
+      return text;
+    }
+  } catch (const std::exception&) {
+  }
+  fail_input(flag + ": '" + text + "' is not " + (info.type == "int" ? "an integer" : "a number"));
+}
+
+const OptionInfo* find_option(const StudyInfo& study, const std::string& name) {
+  for (const OptionInfo& o : study.options)
+    if (o.name == name) return &o;
+  return nullptr;
+}
+
+}  // namespace
+
+CatalogRun catalog_run_from_command(const std::vector<std::string>& a) {
+  const auto [name, first] = command_study(a);
+  const StudyInfo& study = study_info(name);
+  CatalogRun run{name, "", {}};
+  std::string floors;
+  for (size_t i = first; i < a.size(); ++i) {
+    const std::string& flag = a[i];
+    if (flag.size() < 3 || flag.compare(0, 2, "--") != 0) fail_input("'" + flag + "': expected a --flag");
+    std::string key = flag.substr(2);
+    std::replace(key.begin(), key.end(), '-', '_');
+    if (key == "gloss_rays") key = "glossy_rays";
+    const OptionInfo* info = find_option(study, key);
+    // Flags that choose the scene, the study (reflect --method temporal) or the output.
+    const bool command_flag = key == "scene" || key == "floors" || key == "out" || (key == "threads" && !info) ||
+                              (key == "method" && a[0] == "reflect" && name != "envmap_reflect");
+    if (!command_flag && !info) {
+      const OptionInfo* cleared = key.rfind("no_", 0) == 0 ? find_option(study, key.substr(3)) : nullptr;
+      if (!cleared || cleared->type != "bool") fail_input(flag + ": not an option of study " + name);
+      run.options[cleared->name] = false;
+      continue;
+    }
+    if (info && info->type == "bool") {
+      run.options[key] = true;
+      continue;
+    }
+    if (i + 1 >= a.size()) fail_input(flag + ": needs a value");
+    const std::string& value = a[++i];
+    if (key == "scene") run.scene = value;
+    else if (key == "floors") floors = value;
+    else if (!command_flag) run.options[key] = parse_option(*info, value, flag);
+  }
+  if (!floors.empty()) run.scene += ":floors=" + floors;
+  if (name == "sampling" && !run.options.count("height") && run.options.count("width"))
+    run.options["height"] = run.options["width"];
+  return run;
 }
 
 std::string option_text(const OptionValue& value) {

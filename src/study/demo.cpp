@@ -17,8 +17,8 @@ namespace demo {
 std::vector<SectionDef> demo_sections() {
   auto one = [](const Context&) { return 1; };
   return {
-      {"reference", "reference renders", [](const Context&) { return 2; }, reference_section},
-      {"raster", "rasterizer vs Embree", one, raster_section},
+      {"reference", "reference renders", [](const Context&) { return 2; }, reference_section, false},
+      {"raster", "rasterizer vs Embree", one, raster_section, false},
       {"sampling", "depth-image sampling", sampling_steps, sampling_section},
       {"shadows", "soft shadows", shadows_steps, shadows_section},
       {"envmap", "environment maps", envmap_steps, envmap_section},
@@ -65,11 +65,10 @@ Section run_section(const DemoOptions& o, const Table& timing, double seconds, i
 
 }  // namespace
 
-DemoRun run_demo(const DemoOptions& o, const std::filesystem::path& out_dir, Progress& progress) {
-  validate(o);
-  ThreadLimit limit(o.threads);
-  DemoRun run;
-  run.results.threads = active_threads();
+namespace {
+
+demo::Context context(const DemoOptions& o, const std::filesystem::path& out_dir, Results& results,
+                      Progress& progress) {
   demo::Context c;
   c.full = o.full;
   c.threads = o.threads;
@@ -78,13 +77,42 @@ DemoRun run_demo(const DemoOptions& o, const std::filesystem::path& out_dir, Pro
   c.height = o.height;
   c.out = out_dir;
   c.out_arg = o.out_arg.empty() ? out_dir.string() : o.out_arg;
-  c.results = &run.results;
+  c.results = &results;
   c.progress = &progress;
+  return c;
+}
+
+bool selected(const DemoOptions& o, const demo::SectionDef& s) {
+  return o.only.empty() || std::find(o.only.begin(), o.only.end(), s.id) != o.only.end();
+}
+
+}  // namespace
+
+std::vector<DemoStudyRun> plan_demo(const DemoOptions& o) {
+  validate(o);
+  Results results;
+  Progress silent([](const ProgressEvent&) {});
+  std::vector<DemoStudyRun> plan;
+  demo::Context c = context(o, "demo-plan", results, silent);
+  c.plan = &plan;
+  for (const demo::SectionDef& s : demo::demo_sections())
+    if (s.studies && selected(o, s)) s.run(c);
+  return plan;
+}
+
+DemoRun run_demo(const DemoOptions& o, const std::filesystem::path& out_dir, Progress& progress,
+                 const DemoRunSource& source) {
+  validate(o);
+  ThreadLimit limit(o.threads);
+  DemoRun run;
+  run.results.threads = active_threads();
+  demo::Context c = context(o, out_dir, run.results, progress);
+  if (source) c.source = &source;
 
   Stopwatch total;
   Table timing{"demo stages", {"section", "seconds"}, {}};
   for (const demo::SectionDef& s : demo::demo_sections()) {
-    if (!o.only.empty() && std::find(o.only.begin(), o.only.end(), s.id) == o.only.end()) continue;
+    if (!selected(o, s)) continue;
     Stopwatch w;
     progress.begin(s.stage, s.steps(c));
     try {

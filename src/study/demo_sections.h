@@ -11,6 +11,7 @@
 #include "proxima/core/image.h"
 #include "proxima/core/progress.h"
 #include "proxima/eval/results.h"
+#include "proxima/study/demo.h"
 #include "proxima/study/study.h"
 
 namespace proxima::study::demo {
@@ -24,6 +25,10 @@ struct Context {
   std::string out_arg;            // --out as given, for the reproducing commands
   Results* results = nullptr;
   Progress* progress = nullptr;
+  // Planning (plan_demo): study runs are listed here instead of run, and no file is read or
+  // written (images read back are 1×1 black).
+  std::vector<DemoStudyRun>* plan = nullptr;
+  const DemoRunSource* source = nullptr;  // non-null: study runs are read from it
 };
 
 // One technique's section. `steps` is its number of progress steps (study runs).
@@ -32,6 +37,7 @@ struct SectionDef {
   std::string stage;  // progress label
   std::function<int(const Context&)> steps;
   std::function<void(Context&)> run;
+  bool studies = true;  // its figures come from study runs (run_study); false: computed by the section
 };
 
 // Every section, in page order (demo.cpp).

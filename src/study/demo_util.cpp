@@ -33,8 +33,9 @@ std::string shell_quote(const std::string& a) {
 
 StudyRun run_study(Context& c, const std::string& dir, std::vector<std::string> args,
                    const std::function<Results(const study::StudyOutput&)>& study) {
+  const DemoStudyRun spec{dir, args};
   const std::filesystem::path out = c.out / dir;
-  std::filesystem::create_directories(out);
+  if (!c.plan) std::filesystem::create_directories(out);
   args.insert(args.begin(), "proxima");
   args.push_back("--out");
   args.push_back((std::filesystem::path(c.out_arg) / dir).string());
@@ -46,7 +47,11 @@ StudyRun run_study(Context& c, const std::string& dir, std::vector<std::string> 
   run.dir = dir;
   for (const std::string& a : args) run.command += (run.command.empty() ? "" : " ") + shell_quote(a);
   c.progress->step(dir);
-  run.results = study(study::StudyOutput{out});
+  if (c.plan) {
+    c.plan->push_back(spec);
+    return run;
+  }
+  run.results = c.source ? (*c.source)(spec) : study(study::StudyOutput{out});
   run.results.command = args;
   run.results.threads = active_threads();
   write_results_json(out / "results.json", run.results);
@@ -63,7 +68,10 @@ void add_image(Context& c, Section& s, const std::string& role, const std::strin
   s.images.push_back(role);
 }
 
-ImageF read_study_image(const Context& c, const std::string& file) { return read_image_linear(c.out / file, 3); }
+ImageF read_study_image(const Context& c, const std::string& file) {
+  if (c.plan) return ImageF(1, 1, 3, 0.0f);
+  return read_image_linear(c.out / file, 3);
+}
 
 Window worst_window(const ImageF& error, int size) {
   Window best{0, 0, std::min({size, error.width(), error.height()})};
@@ -111,14 +119,15 @@ ImageF side_by_side(const std::vector<ImageF>& images, int shrink) {
 }
 
 void write_image(Context& c, Section& s, const std::string& role, const std::string& file, const ImageF& image) {
+  add_image(c, s, role, file);
+  if (c.plan) return;
   std::filesystem::create_directories((c.out / file).parent_path());
   write_png_linear(c.out / file, image);
-  add_image(c, s, role, file);
 }
 
 void add_heatmap_legend(Context& c, Section& s, float max_error) {
   const std::string file = "heatmap_legend_0_" + fixed(max_error, 0) + ".png";
-  if (!std::filesystem::exists(c.out / file)) write_png_linear(c.out / file, heatmap_legend(256, 20));
+  if (!c.plan && !std::filesystem::exists(c.out / file)) write_png_linear(c.out / file, heatmap_legend(256, 20));
   add_image(c, s, "heat-map legend: error 0 (left, black) to ≥ " + fixed(max_error, 0) + " (right, yellow), 0–255 display scale", file);
 }
 

@@ -296,10 +296,7 @@ Table region_table(const Errors& e, const std::string& name) {
 
 // Phases 1–3 with both mappings; their self-check failures warned about on stderr.
 GibrModel build_model(const Scene& scene, const GibrOptions& o) {
-  GibrModelOptions mo = o.model;
-  mo.item_buffer = true;
-  mo.seed = o.seed;
-  GibrModel g = build_gibr_model(scene, mo);
+  GibrModel g = build_gibr_model(scene, gibr_model_options(o));
   for (const std::string& failure : g.stats.selfcheck_failures)
     std::fprintf(stderr, "warning: %s: visibility map of %s (failed its self-check)\n", scene.name.c_str(),
                  failure.c_str());
@@ -307,6 +304,13 @@ GibrModel build_model(const Scene& scene, const GibrOptions& o) {
 }
 
 }  // namespace
+
+GibrModelOptions gibr_model_options(const GibrOptions& o) {
+  GibrModelOptions mo = o.model;
+  mo.item_buffer = true;
+  mo.seed = o.seed;
+  return mo;
+}
 
 const char* gibr_views_name(GibrViews views) {
   switch (views) {

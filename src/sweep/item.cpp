@@ -17,6 +17,8 @@
 #include "proxima/core/timer.h"
 #include "proxima/eval/results.h"
 #include "proxima/scene/load.h"
+#include "proxima/scene/visibility_models.h"
+#include "proxima/sweep/gibr_photos.h"
 
 namespace proxima::sweep {
 
@@ -41,7 +43,19 @@ json value_json(const study::OptionValue& v) {
 json item_identity(const SweepItem& item) {
   json options = json::object();
   for (const auto& [name, value] : study::resolved_options(item.study, item.options)) options[name] = value_json(value);
-  return {{"id", item.id}, {"scene", item.scene}, {"study", item.study}, {"options", options}};
+  json id = {{"id", item.id}, {"scene", item.scene}, {"study", item.study}, {"options", options}};
+  if (item.photo >= 0) id["photo"] = item.photo;
+  return id;
+}
+
+// A built-in scene, a scene file, or "building:floors=N" (`proxima visibility --floors N`).
+Scene load_item_scene(const std::string& name) {
+  const std::string floors = "building:floors=";
+  if (name.rfind(floors, 0) != 0) return load_scene(name);
+  const std::string n = name.substr(floors.size());
+  if (n.empty() || n.size() > 4 || n.find_first_not_of("0123456789") != std::string::npos)
+    fail_input("scene '" + name + "': floors must be a number");
+  return make_vis_building(std::stoi(n));
 }
 
 // The item as a command-like line for its results.json: study, scene, the options given.
@@ -127,18 +141,25 @@ ItemFiles unpack_item(std::string_view packed) {
   return files;
 }
 
-ItemFiles run_item(const SweepItem& item, const fs::path& scratch) {
+ItemFiles run_item(const SweepItem& item, const fs::path& scratch, const std::vector<std::string>& inputs) {
   const fs::path dir = scratch / item.id;
   fs::remove_all(dir);
   fs::create_directories(dir);
   json record = item_identity(item);
   Stopwatch watch;
   try {
-    const Scene scene = load_scene(item.scene);
-    Results results = study::run_study(item.study, scene, item.options, study::StudyOutput{dir});
-    results.command = item_command(item);
-    results.threads = active_threads();
-    write_results_json(dir / "results.json", results);
+    const Scene scene = load_item_scene(item.scene);
+    if (item.photo >= 0) {
+      write_bytes(dir / "photo.bin", run_gibr_photo(scene, item.options, item.photo));
+    } else {
+      if (inputs.size() != item.inputs.size()) throw std::runtime_error("sweep: the item's inputs are missing");
+      const study::StudyOutput out{dir};
+      Results results = item.inputs.empty() ? study::run_study(item.study, scene, item.options, out)
+                                            : run_gibr_with_photos(scene, item.options, out, inputs);
+      results.command = item_command(item);
+      results.threads = active_threads();
+      write_results_json(dir / "results.json", results);
+    }
     record["status"] = "ok";
   } catch (const std::exception& e) {
     // Nothing half-written: a failed item is its record alone.
@@ -174,6 +195,20 @@ ItemStatus stored_item(const fs::path& out, const SweepItem& item) {
   for (const auto& [key, value] : identity.items())
     if (!record.contains(key) || record[key] != value) return {};
   return status_of(record);
+}
+
+ItemFiles failed_item(const SweepItem& item, const std::string& error) {
+  json record = item_identity(item);
+  record["status"] = "failed";
+  record["error"] = error;
+  record["seconds"] = 0.0;
+  return {{{"item.json", record.dump(2) + "\n"}}};
+}
+
+std::vector<std::string> item_inputs(const Manifest& manifest, const fs::path& out, const SweepItem& item) {
+  std::vector<std::string> inputs;
+  for (size_t i : item.inputs) inputs.push_back(read_bytes(out / "items" / manifest.items.at(i).id / "photo.bin"));
+  return inputs;
 }
 
 ItemStatus item_status(const ItemFiles& files) {

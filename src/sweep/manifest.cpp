@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <fstream>
 #include <sstream>
+#include <variant>
 
 #include <nlohmann/json.hpp>
 
@@ -74,23 +75,27 @@ void check_keys(const json& run, const std::string& where) {
 
 }  // namespace
 
-Manifest parse_manifest(const std::string& json_text, const std::filesystem::path& base_dir,
-                        const std::string& source) {
-  json doc;
+namespace {
+
+struct Pending {
+  std::string scene, study;
+  study::OptionValues options;
+  std::string demo_dir;  // the demo run it is, if any
+};
+
+json parse_json(const std::string& json_text, const std::string& source) {
   try {
-    doc = json::parse(json_text);
+    return json::parse(json_text);
   } catch (const json::exception& e) {
     fail_input(source + ": not valid JSON: " + e.what());
   }
-  if (!doc.is_object() || !doc.contains("runs") || !doc["runs"].is_array() || doc["runs"].empty())
-    fail_input(source + ": expected {\"runs\": [ ... ]} with at least one run");
-  struct Pending {
-    std::string scene, study;
-    study::OptionValues options;
-  };
+}
+
+// The runs of {"runs": [...]}, expanded.
+std::vector<Pending> expand_runs(const json& runs, const std::filesystem::path& base_dir, const std::string& source) {
   std::vector<Pending> pending;
-  for (size_t r = 0; r < doc["runs"].size(); ++r) {
-    const json& run = doc["runs"][r];
+  for (size_t r = 0; r < runs.size(); ++r) {
+    const json& run = runs[r];
     const std::string where = source + ": runs[" + std::to_string(r) + "]";
     if (!run.is_object()) fail_input(where + ": must be an object");
     check_keys(run, where);
@@ -112,17 +117,131 @@ Manifest parse_manifest(const std::string& json_text, const std::filesystem::pat
       }
     }
     for (const std::string& scene : scenes_of(run, base_dir, where))
-      for (const study::OptionValues& options : points) pending.push_back({scene, name, options});
+      for (const study::OptionValues& options : points) pending.push_back({scene, name, options, ""});
   }
+  return pending;
+}
+
+// The demo options of {"demo": {...}}.
+study::DemoOptions demo_options(const json& d, const std::string& where) {
+  if (!d.is_object()) fail_input(where + ": must be an object (full, seed, width, height, only)");
+  study::DemoOptions o;
+  for (const auto& [key, value] : d.items()) {
+    const std::string at = where + ": \"" + key + "\"";
+    if (key == "full" && value.is_boolean()) o.full = value.get<bool>();
+    else if ((key == "seed" || key == "width" || key == "height") && value.is_number_integer()) {
+      const std::int64_t v = value.get<std::int64_t>();
+      if (key == "seed") o.seed = static_cast<uint64_t>(v);
+      else if (v < 1 || v > 16384) fail_input(at + ": must be in 1..16384");
+      else (key == "width" ? o.width : o.height) = static_cast<int>(v);
+    } else if (key == "only" && value.is_array()) {
+      for (const json& id : value) {
+        if (!id.is_string()) fail_input(at + ": must be a list of section ids");
+        o.only.push_back(id.get<std::string>());
+      }
+    } else {
+      fail_input(at + ": unknown key or wrong type (full: bool, seed/width/height: integer, only: list)");
+    }
+  }
+  try {
+    study::validate(o);
+  } catch (const InputError& e) {
+    fail_input(where + ": " + e.what());
+  }
+  return o;
+}
+
+// The demo's study runs as catalog runs (each from its reproducing command).
+std::vector<Pending> expand_demo(const study::DemoOptions& o, const std::string& where) {
+  std::vector<Pending> pending;
+  for (const study::DemoStudyRun& run : study::plan_demo(o)) {
+    study::CatalogRun c;
+    try {
+      c = study::catalog_run_from_command(run.args);
+      study::resolved_options(c.study, c.options);
+    } catch (const InputError& e) {
+      fail_input(where + ": demo run " + run.dir + ": " + e.what());
+    }
+    pending.push_back({c.scene, c.study, c.options, run.dir});
+  }
+  return pending;
+}
+
+// The photographs of a gibr run with rendered photographs, 0 otherwise.
+int gibr_photos(const Pending& p) {
+  if (p.study != "gibr") return 0;
+  const study::OptionValues o = study::resolved_options(p.study, p.options);
+  if (!std::get<std::string>(o.at("camera_file")).empty()) return 0;
+  return static_cast<int>(std::get<std::int64_t>(o.at("photos")));
+}
+
+std::string item_id(size_t number, size_t digits, const std::string& name) {
+  std::string n = std::to_string(number);
+  n.insert(0, digits > n.size() ? digits - n.size() : 0, '0');
+  return "i" + n + "_" + name;
+}
+
+// The items as a manifest lists them (informative; checked against the expansion).
+json items_json(const Manifest& m) {
+  json items = json::array();
+  for (const SweepItem& item : m.items) {
+    json options = json::object();
+    for (const auto& [name, value] : item.options)
+      options[name] = std::visit([](const auto& v) { return json(v); }, value);
+    json j = {{"id", item.id}, {"study", item.study}, {"scene", item.scene}, {"options", options}};
+    if (item.photo >= 0) j["photo"] = item.photo;
+    items.push_back(j);
+  }
+  return items;
+}
+
+}  // namespace
+
+Manifest parse_manifest(const std::string& json_text, const std::filesystem::path& base_dir,
+                        const std::string& source) {
+  const json doc = parse_json(json_text, source);
   Manifest m;
-  const size_t digits = std::max<size_t>(3, std::to_string(pending.size() - 1).size());
-  for (size_t i = 0; i < pending.size(); ++i) {
-    std::string number = std::to_string(i);
-    number.insert(0, digits - number.size(), '0');
-    m.items.push_back({"i" + number + "_" + pending[i].study, pending[i].scene, pending[i].study,
-                       pending[i].options});
+  std::vector<Pending> pending;
+  if (doc.is_object() && doc.contains("demo") && !doc.contains("runs")) {
+    for (const auto& [key, value] : doc.items())
+      if (key != "demo" && key != "items") fail_input(source + ": unknown key \"" + key + "\" (demo, items)");
+    m.demo = demo_options(doc["demo"], source + ": demo");
+    pending = expand_demo(*m.demo, source);
+  } else if (doc.is_object() && doc.contains("runs") && doc["runs"].is_array() && !doc["runs"].empty() &&
+             !doc.contains("demo")) {
+    pending = expand_runs(doc["runs"], base_dir, source);
+  } else {
+    fail_input(source + ": expected {\"runs\": [ ... ]} with at least one run, or {\"demo\": { ... }}");
   }
+  if (pending.empty()) fail_input(source + ": no study runs (the demo sections chosen run none)");
+  size_t count = 0;
+  for (const Pending& p : pending) count += 1 + size_t(gibr_photos(p));
+  const size_t digits = std::max<size_t>(3, std::to_string(count - 1).size());
+  for (const Pending& p : pending) {
+    SweepItem item{"", p.scene, p.study, p.options, -1, {}};
+    for (int k = 0, n = gibr_photos(p); k < n; ++k) {
+      SweepItem photo = item;
+      photo.id = item_id(m.items.size(), digits, p.study + "_photo");
+      photo.photo = k;
+      item.inputs.push_back(m.items.size());
+      m.items.push_back(std::move(photo));
+    }
+    item.id = item_id(m.items.size(), digits, p.study);
+    if (!p.demo_dir.empty()) m.demo_items[p.demo_dir] = m.items.size();
+    m.items.push_back(std::move(item));
+  }
+  if (doc.contains("items") && doc["items"] != items_json(m))
+    fail_input(source + ": its \"items\" are not the demo's study runs of this proxima (regenerate it: proxima demo "
+                        "--manifest FILE)");
   return m;
+}
+
+std::string demo_manifest_json(const study::DemoOptions& o) {
+  json demo = {{"full", o.full}, {"seed", o.seed}, {"width", o.width}, {"height", o.height}};
+  if (!o.only.empty()) demo["only"] = o.only;
+  json doc = {{"demo", demo}};
+  doc["items"] = items_json(parse_manifest(doc.dump(), ".", "demo"));
+  return doc.dump(1) + "\n";
 }
 
 Manifest read_manifest(const std::filesystem::path& path) {

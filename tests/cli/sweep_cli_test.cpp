@@ -1,6 +1,6 @@
 // `proxima sweep`: under `mpirun -np 3` a small manifest (two scenes, four studies, a
-// parameter grid, a GIBR run and one bad item) gives the same deterministic metrics and
-// image bits as `-np 1` and as the in-process run, the bad item recorded and the others
+// parameter grid, a GIBR run split into per-photograph items, and one bad item) gives the
+// same deterministic metrics and image bits as `-np 1` and as the in-process run, the bad item recorded and the others
 // finished; a sweep killed half-way resumes without redoing finished items; a bad manifest
 // writes nothing.
 #include <gtest/gtest.h>
@@ -70,9 +70,9 @@ TEST(SweepCli, RanksGiveTheInProcessResultsAndABadItemFailsAlone) {
   }
   EXPECT_NE(three.output.find("3 ranks"), std::string::npos) << three.output;
   const Results r = read_results_json(dir.path / "np3" / "results.json");
-  EXPECT_EQ(r.metrics.at("sweep_items"), 7.0);
+  EXPECT_EQ(r.metrics.at("sweep_items"), 10.0);  // the GIBR run: 3 photograph items and its own
   EXPECT_EQ(r.metrics.at("sweep_failed"), 1.0);
-  EXPECT_TRUE(r.metrics.contains("i005_gibr_psnr_vismap"));
+  EXPECT_TRUE(r.metrics.contains("i008_gibr_psnr_vismap"));
   expect_same_sweep(dir.path / "local", dir.path / "np1");
   expect_same_sweep(dir.path / "local", dir.path / "np3");
 #endif

@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "proxima/core/error.h"
 #include "test_util.h"
 
 namespace proxima::sweep {
@@ -56,6 +57,83 @@ TEST(SweepManifest, MalformedManifestsAreRefusedNamingWhere) {
     EXPECT_NE(e.find(part), std::string::npos) << text << " → " << e;
   }
   EXPECT_NE(error_of([] { read_manifest("/nonexistent/m.json"); }).find("/nonexistent/m.json"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace proxima::sweep
+
+namespace proxima::sweep {
+namespace {
+
+// The full demo as a manifest: one item per study run of the demo (its planned runs, each
+// through the catalog) plus one per GIBR photograph; every run directory maps to its item.
+TEST(SweepManifest, DemoManifestHasAnItemPerStudyRunOfTheDemo) {
+  study::DemoOptions full;
+  full.full = true;
+  const std::vector<study::DemoStudyRun> plan = study::plan_demo(full);
+  const Manifest m = parse_manifest(R"({"demo": {"full": true}})", ".", "full.json");
+  ASSERT_TRUE(m.demo.has_value());
+  EXPECT_TRUE(m.demo->full);
+  ASSERT_EQ(m.demo_items.size(), plan.size());
+  size_t photos = 0;
+  for (const SweepItem& item : m.items) photos += item.photo >= 0;
+  EXPECT_EQ(photos, 100u);  // the full GIBR run's photographs
+  EXPECT_EQ(m.items.size(), plan.size() + photos);
+  for (const study::DemoStudyRun& run : plan) {
+    ASSERT_TRUE(m.demo_items.contains(run.dir)) << run.dir;
+    const SweepItem& item = m.items[m.demo_items.at(run.dir)];
+    EXPECT_EQ(item.photo, -1);
+    const study::CatalogRun c = study::catalog_run_from_command(run.args);
+    EXPECT_EQ(item.study, c.study) << run.dir;
+    EXPECT_EQ(item.options, c.options) << run.dir;
+  }
+  const SweepItem& gibr = m.items[m.demo_items.at("gibr/rooms")];
+  EXPECT_EQ(gibr.inputs.size(), 100u);
+  EXPECT_EQ(std::get<std::int64_t>(gibr.options.at("photo_width")), 320);
+  // The quick demo has fewer or smaller runs: the settings come from the sections.
+  const Manifest quick = parse_manifest(R"({"demo": {"only": ["gibr", "sampling"]}})", ".", "quick.json");
+  EXPECT_EQ(std::get<std::int64_t>(quick.items[quick.demo_items.at("sampling/nest")].options.at("frames")), 100);
+  EXPECT_EQ(std::get<std::int64_t>(m.items[m.demo_items.at("sampling/nest")].options.at("frames")), 1000);
+}
+
+TEST(SweepManifest, DemoManifestTextListsItsItemsAndAStaleListIsRefused) {
+  study::DemoOptions o;
+  o.only = {"gibr"};
+  const std::string text = demo_manifest_json(o);
+  const Manifest m = parse_manifest(text, ".", "demo.json");
+  EXPECT_EQ(m.items.size(), 17u);  // 16 photographs and the run
+  std::string stale = text;
+  stale.replace(stale.find("\"rooms\""), 7, "\"floor\"");
+  EXPECT_THROW(parse_manifest(stale, ".", "demo.json"), InputError);
+  EXPECT_THROW(parse_manifest(R"({"demo": {"only": ["nope"]}})", ".", "d.json"), InputError);
+  EXPECT_THROW(parse_manifest(R"({"demo": {"fulll": true}})", ".", "d.json"), InputError);
+  EXPECT_THROW(parse_manifest(R"({"demo": {}, "runs": []})", ".", "d.json"), InputError);
+}
+
+// Commands map to catalog runs: the study, the scene, flags by name, the commands' own
+// defaults (sample --height = --width, --gloss-rays, --no-*, visibility --floors).
+TEST(SweepManifest, CommandsMapToCatalogRuns) {
+  const study::CatalogRun s = study::catalog_run_from_command({"sample", "--scene", "nest", "--width", "64",
+                                                               "--method", "conventional,peeling", "--out", "x"});
+  EXPECT_EQ(s.study, "sampling");
+  EXPECT_EQ(s.scene, "nest");
+  EXPECT_EQ(std::get<std::int64_t>(s.options.at("height")), 64);
+  EXPECT_EQ(std::get<std::string>(s.options.at("method")), "conventional,peeling");
+  EXPECT_FALSE(s.options.contains("out"));
+  const study::CatalogRun t = study::catalog_run_from_command(
+      {"reflect", "--method", "cluster", "--scene", "bathroom", "--gloss-rays", "8", "--compare"});
+  EXPECT_EQ(t.study, "cluster_reflect");
+  EXPECT_EQ(std::get<std::int64_t>(t.options.at("glossy_rays")), 8);
+  EXPECT_TRUE(std::get<bool>(t.options.at("compare")));
+  EXPECT_FALSE(t.options.contains("method"));
+  const study::CatalogRun v =
+      study::catalog_run_from_command({"visibility", "--scene", "building", "--floors", "3", "--no-oracle"});
+  EXPECT_EQ(v.scene, "building:floors=3");
+  EXPECT_FALSE(std::get<bool>(v.options.at("oracle")));
+  EXPECT_EQ(study::catalog_run_from_command({"reflect", "--cube-size", "64"}).study, "envmap_reflect");
+  EXPECT_THROW(study::catalog_run_from_command({"reflect", "--no-such-flag", "1"}), InputError);
+  EXPECT_THROW(study::catalog_run_from_command({"sample", "--width", "wide"}), InputError);
+  EXPECT_THROW(study::catalog_run_from_command({"view"}), InputError);
 }
 
 }  // namespace

@@ -114,7 +114,10 @@ void worker(const sweep::Manifest& m, int rank) {
   const std::filesystem::path scratch = scratch_dir(rank);
   send_u64(kStop, 0, kAsk);  // nothing finished yet
   for (uint64_t i; (i = recv_u64(0, kItem)) != kStop;) {
-    const std::string packed = sweep::pack_item(sweep::run_item(m.items.at(i), scratch));
+    std::vector<std::string> inputs;
+    for (auto& file : sweep::unpack_item(recv_bytes(recv_u64(0, kItem), 0, kItem)).files)
+      inputs.push_back(std::move(file.second));
+    const std::string packed = sweep::pack_item(sweep::run_item(m.items.at(i), scratch, inputs));
     send_u64(i, 0, kAsk);
     send_u64(packed.size(), 0, kData);
     send_bytes(packed, 0, kData);
@@ -123,9 +126,40 @@ void worker(const sweep::Manifest& m, int rank) {
   std::filesystem::remove_all(scratch, ec);
 }
 
-// Rank 0's server: answers every rank's asks until each was told to stop.
+// Sends item `i` and its inputs' photo.bin bytes (packed as files "0", "1", …) to `to`.
+void send_item(const sweep::SweepCoordinator& c, size_t i, int to) {
+  sweep::ItemFiles inputs;
+  for (std::string& bytes : c.inputs(i)) inputs.files.emplace_back(std::to_string(inputs.files.size()), std::move(bytes));
+  const std::string packed = sweep::pack_item(inputs);
+  send_u64(i, to, kItem);
+  send_u64(packed.size(), to, kItem);
+  send_bytes(packed, to, kItem);
+}
+
+// Rank 0's server: answers every rank's asks until each was told to stop. A rank asking
+// while the items left wait for inputs still running waits for an answer until one is ready.
 void serve(sweep::SweepCoordinator& c, std::mutex& lock, int ranks) {
+  std::vector<int> parked;
   for (int stopped = 0; stopped < ranks - 1;) {
+    // Parked ranks first: an item finished since may have made one ready.
+    while (!parked.empty()) {
+      std::optional<size_t> next;
+      bool handed_out = false;
+      {
+        const std::lock_guard<std::mutex> g(lock);
+        next = c.next();
+        handed_out = c.handed_out();
+      }
+      if (!next && !handed_out) break;
+      const int to = parked.back();
+      parked.pop_back();
+      if (next) {
+        send_item(c, *next, to);
+      } else {
+        send_u64(kStop, to, kItem);
+        ++stopped;
+      }
+    }
     int ready = 0;
     MPI_Status status;
     MPI_Iprobe(MPI_ANY_SOURCE, kAsk, MPI_COMM_WORLD, &ready, &status);
@@ -140,13 +174,7 @@ void serve(sweep::SweepCoordinator& c, std::mutex& lock, int ranks) {
       const std::lock_guard<std::mutex> g(lock);
       c.finish(finished, sweep::unpack_item(packed), from);
     }
-    std::optional<size_t> next;
-    {
-      const std::lock_guard<std::mutex> g(lock);
-      next = c.next();
-    }
-    send_u64(next ? *next : kStop, from, kItem);
-    if (!next) ++stopped;
+    parked.push_back(from);
   }
 }
 
@@ -161,12 +189,20 @@ int coordinate(const SweepRun& run, const sweep::Manifest& m, int ranks) {
       const std::filesystem::path scratch = scratch_dir(0);
       for (;;) {
         std::optional<size_t> i;
+        std::vector<std::string> inputs;
+        bool handed_out = false;
         {
           const std::lock_guard<std::mutex> g(lock);
           i = c.next();
+          if (i) inputs = c.inputs(*i);
+          handed_out = c.handed_out();
         }
-        if (!i) break;
-        sweep::ItemFiles files = sweep::run_item(m.items[*i], scratch);
+        if (!i && handed_out) break;
+        if (!i) {  // the items left wait for inputs other ranks are running
+          std::this_thread::sleep_for(std::chrono::milliseconds(20));
+          continue;
+        }
+        sweep::ItemFiles files = sweep::run_item(m.items[*i], scratch, inputs);
         const std::lock_guard<std::mutex> g(lock);
         c.finish(*i, files, 0);
       }

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "proxima/scene/scene.h"
 #include "proxima/trace/ray_scene.h"
 #include "proxima/visibility/bsp_build.h"
+#include "proxima/visibility/map_check.h"
 #include "proxima/visibility/polygons.h"
 #include "proxima/visibility/winged_pair.h"
 
@@ -30,6 +32,9 @@ struct GibrSceneDefaults {
   double texel = 0.02, period = 1.0;
 };
 GibrSceneDefaults gibr_scene_defaults(const std::string& scene_name, double scale);
+
+struct GibrModel;
+struct PhotoMapping;
 
 struct GibrModelOptions {
   int photos = 100;                     // along the scene's first camera path, ≥ 1
@@ -50,6 +55,9 @@ struct GibrModelOptions {
   double photo_backoff = 0.0;           // meters the photographs step back, 0..1000
   double calibration_px = 0.0;          // 0..100
   uint64_t seed = 1;
+  // Supplies every photograph's mapping, in photograph order (map_photograph of each, e.g.
+  // computed by other processes: proxima sweep); empty = mapped here, in parallel.
+  std::function<std::vector<PhotoMapping>(const GibrModel&)> photographs = {};
   // Non-empty: the photographs are the images of this camera file (photo_set.h; e.g. real
   // photographs of the model), not rendered; `photos`, `photo_width` / `photo_height` are
   // then unused and `supersample` only tells the unmixing how finely the images average.
@@ -78,14 +86,40 @@ struct GibrModel {
   visibility::ModelPolygons model;      // extract_polygons of the input scene
   visibility::WingedPair winged_pair;   // phase 1
   double texel = 0.0, far = 0.0;        // texel size used; far plane of every camera
-  std::vector<Camera> cameras;          // per photograph
+  std::vector<Camera> cameras;          // per photograph, as the mapping uses it (calibrated)
   std::vector<ImageF> photos;           // linear RGB (camera-file photographs undistorted and equalized)
+  std::vector<Camera> render_poses;     // rendered photographs: the poses they are taken from
+  std::vector<ImageU8> photo_valid;     // camera-file photographs: empty, or 0 where undistortion had no source
   RadianceMaps maps;                    // visibility-map mapping (phase 3)
   RadianceMaps item_maps;               // item-buffer mapping; empty unless options.item_buffer
   GibrModelStats stats;
 };
 
-// Builds the model. A camera file that is missing or malformed, or whose images are
+// The per-photograph phases of one photograph: its image (rendered, or the camera file's),
+// visibility map (phase 2: silhouettes, self-check, pixel labels) and its radiance-map layers
+// (phase 3) through the visibility map and, with item_buffer, through an item buffer.
+struct PhotoMapping {
+  ImageF photo;
+  double silhouette_edges = 0.0;
+  visibility::MapCheck check;
+  PhotoLayers layers, item_layers;
+  double photo_ms = 0.0, vismap_ms = 0.0, itembuffer_ms = 0.0, map_ms = 0.0, item_map_ms = 0.0;
+};
+
+// Everything but the per-photograph phases: the photo scene, cameras, phase 1 and the texel
+// grids (maps.grids); photos only from a camera file.
+GibrModel prepare_gibr_model(const Scene& scene, const GibrModelOptions& options);
+
+// Photograph `index` of a prepared model (the same options). Deterministic.
+PhotoMapping map_photograph(const GibrModel& g, size_t index, const GibrModelOptions& options);
+
+// Completes a prepared model from its photographs' mappings (all, in photograph order): the
+// radiance maps merged in that order, the statistics (the phases' times summed over the
+// photographs).
+void add_photographs(GibrModel& g, std::vector<PhotoMapping> photos, const GibrModelOptions& options);
+
+// Builds the model (prepare_gibr_model, map_photograph of every photograph — or
+// options.photographs — and add_photographs). A camera file that is missing or malformed, or whose images are
 // unreadable or not the size its cameras say, throws InputError naming the file. Invalid
 // options (photos outside 1..10000, supersample outside 1..8, a negative texel or period, a
 // bad photograph size, a texel too small for the model) or a scene without a camera path

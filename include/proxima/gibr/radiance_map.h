@@ -21,6 +21,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "proxima/core/camera.h"
@@ -178,6 +179,25 @@ ImageU32 itembuffer_pixel_polygons(const Scene& scene, const visibility::ModelPo
 RadianceMaps build_radiance_maps(const visibility::ModelPolygons& model, double texel, std::span<const Camera> cameras,
                                  std::span<const ImageF> photos, std::span<const ImageU32> pixel_polygons,
                                  std::span<const visibility::VisibilityMap> vis_maps = {});
+
+// One photograph's layers (build_radiance_maps' per-photograph step): (polygon, layer) pairs
+// in polygon order, and its pixels mapped onto some polygon.
+struct PhotoLayers {
+  std::vector<std::pair<uint32_t, SampleLayer>> layers;
+  size_t pixels_mapped = 0;
+};
+
+// The layers photograph `photo` (index into the maps' cameras) adds, as build_radiance_maps
+// makes them (grids: make_texel_grids of the model and texel; vis_map may be null).
+PhotoLayers map_photo_layers(const visibility::ModelPolygons& model, const std::vector<TexelGrid>& grids,
+                             uint32_t photo, const Camera& camera, const ImageF& image, const ImageU32& pixel_polygons,
+                             const visibility::VisibilityMap* vis_map);
+
+// The radiance maps of every photograph's layers (`per`, in photograph order: each polygon's
+// layers come out in photograph order, whatever computed them where) and their statistics;
+// stats.ms is the merge's time.
+RadianceMaps merge_photo_layers(const std::vector<TexelGrid>& grids, std::span<const Camera> cameras,
+                                std::vector<PhotoLayers> per);
 
 // Texel coordinates (continuous, texel centers at +0.5) of a world point on the grid's plane.
 inline dvec2 texel_coords(const TexelGrid& g, const dvec3& p) {

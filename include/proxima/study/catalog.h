@@ -20,6 +20,7 @@
 #include "proxima/core/progress.h"
 #include "proxima/eval/results.h"
 #include "proxima/scene/scene.h"
+#include "proxima/study/gibr.h"
 #include "proxima/study/study.h"
 
 namespace proxima::study {
@@ -58,6 +59,26 @@ OptionValues resolved_options(std::string_view name, const OptionValues& options
 // out of range (those messages name the flag, "--cube-size", of the option `cube_size`).
 Results run_study(std::string_view name, const Scene& scene, const OptionValues& options, const StudyOutput& out,
                   Progress* progress = nullptr);
+
+// The gibr study's options from values (a sweep runs its per-photograph phases as items).
+GibrOptions gibr_options(const OptionValues& options);
+
+// A study run as the catalog names it.
+struct CatalogRun {
+  std::string study;
+  std::string scene;  // --scene; the building with --floors N is "building:floors=N"
+  OptionValues options;
+};
+
+// The study run of a `proxima` command line (without "proxima"): render → reference, sample
+// → sampling, shadows, visibility, gibr, bench raster / bench trace, reflect → envmap_reflect
+// or, with --method temporal / cluster, temporal_reflect / cluster_reflect. Each flag is the
+// option of its name (a bool option: the flag alone sets it, --no-<name> clears it; others
+// take the next argument, typed by the catalog); --out and --threads are dropped, and the
+// commands' own defaults that differ from the options structs' are applied (sample: --height
+// is --width; reflect: --gloss-rays is --glossy-rays). Throws InputError naming the flag for
+// one the study does not have or a value that is not of its type.
+CatalogRun catalog_run_from_command(const std::vector<std::string>& args);
 
 // The value as text: "true", "42", "0.5", "inf", or the string itself.
 std::string option_text(const OptionValue& value);

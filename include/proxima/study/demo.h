@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,8 +34,29 @@ struct DemoRun {
   int failed_sections = 0;  // sections that threw; each is reported on the page
 };
 
+// One study run of the demo: the subdirectory of the report it writes into and the
+// `proxima` command reproducing it (without "proxima", --out and --threads). The command is
+// the run's one description: a sweep runs it through the study catalog
+// (study::catalog_run_from_command), so the demo's settings are written only in its sections.
+struct DemoStudyRun {
+  std::string dir;
+  std::vector<std::string> args;
+};
+
+// Every study run run_demo(options) makes, in order, without running any: the sections run
+// on empty results and write nothing. Sections computing without study runs (reference
+// renders, rasterizer agreement) are not listed; they run when the demo is assembled.
+std::vector<DemoStudyRun> plan_demo(const DemoOptions& options);
+
+// The results of one of plan_demo's runs (each has its own dir), its files already placed in
+// out_dir / run.dir (a sweep's stored items, sweep/sweep.h); throws when they are missing or
+// failed (that section is then reported as failed).
+using DemoRunSource = std::function<Results(const DemoStudyRun& run)>;
+
 // Runs the sections into `out_dir` (each study writes its images into a subdirectory there,
-// with its results.json). A section that fails is reported on the page, not thrown.
-DemoRun run_demo(const DemoOptions& options, const std::filesystem::path& out_dir, Progress& progress);
+// with its results.json). A section that fails is reported on the page, not thrown. With a
+// `source`, the study runs are read from it instead of run (everything else is the same).
+DemoRun run_demo(const DemoOptions& options, const std::filesystem::path& out_dir, Progress& progress,
+                 const DemoRunSource& source = {});
 
 }  // namespace proxima::study

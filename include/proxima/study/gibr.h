@@ -48,6 +48,9 @@ struct GibrOptions {
 // build_gibr_model (gibr/gibr_model.h) as run_gibr starts, before any work.
 void validate(const GibrOptions& options);
 
+// The model options run_gibr builds with: options.model with item_buffer and the seed set.
+gibr::GibrModelOptions gibr_model_options(const GibrOptions& options);
+
 // Builds the model with both mappings (warning on stderr for every photograph's visibility
 // map that fails its self-check), renders `frames` novel views with each mapping (timed
 // `fps_repeat` times with the visibility-map maps; also at 1 sample per pixel when

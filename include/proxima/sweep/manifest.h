@@ -10,14 +10,25 @@
 //
 // A run expands scene by scene (in the order given), each over the grid's cartesian product
 // (keys in name order, the last one varying fastest); a grid value overrides the same option
-// of "options". Items are numbered in that order over all runs.
+// of "options". Items are numbered in that order over all runs. A gibr run (without a camera
+// file) becomes one item per photograph (its visibility map and radiance-map layers,
+// gibr/gibr_model.h map_photograph) and the run's item, which merges them in photograph
+// order and renders the novel views.
+//
+// `proxima demo` as a manifest: {"demo": {"full": true, "seed": 1, "width": 512, "height":
+// 512, "only": ["gibr"]}} (every key optional, as `proxima demo`'s flags) expands into the
+// demo's study runs (study/demo.h plan_demo), each run through the catalog from its
+// reproducing command; merge_sweep then writes the demo's report.
 #pragma once
 
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "proxima/study/catalog.h"
+#include "proxima/study/demo.h"
 
 namespace proxima::sweep {
 
@@ -28,10 +39,16 @@ struct SweepItem {
   std::string scene;  // built-in name, or a file (relative to the manifest's directory)
   std::string study;  // a study_catalog() name
   study::OptionValues options;  // as given, over the study's defaults
+  // ≥ 0: the per-photograph phases of photograph `photo` of this gibr run, stored as
+  // photo.bin (sweep/gibr_photos.h); −1: the study call.
+  int photo = -1;
+  std::vector<size_t> inputs;  // items whose photo.bin this one reads (a gibr run's photographs, in order)
 };
 
 struct Manifest {
   std::vector<SweepItem> items;
+  std::optional<study::DemoOptions> demo;    // a demo manifest
+  std::map<std::string, size_t> demo_items;  // its run directories → their items
 };
 
 // Parses and expands a manifest. A scene with '/' or '.' in it is a file; relative ones are
@@ -40,6 +57,11 @@ struct Manifest {
 // missing scene file fails that item, not the sweep).
 Manifest parse_manifest(const std::string& json_text, const std::filesystem::path& base_dir,
                         const std::string& source);
+
+// The demo manifest of `options` (full, seed, width, height, only) with its items listed
+// under "items" (informative: a manifest whose items differ from its expansion by this
+// binary is rejected as stale).
+std::string demo_manifest_json(const study::DemoOptions& options);
 
 // parse_manifest of a file; InputError naming the file when it cannot be read.
 Manifest read_manifest(const std::filesystem::path& path);

@@ -24,8 +24,13 @@ class SweepCoordinator {
  public:
   SweepCoordinator(const Manifest& manifest, const std::filesystem::path& out, std::FILE* log);
 
-  // The next item to run (manifest order), none when every item is handed out.
+  // The next item to run (manifest order) whose inputs are finished; none when every item is
+  // handed out or the rest wait for inputs still running. An item whose input failed is
+  // stored as failed here, not handed out.
   std::optional<size_t> next();
+  bool handed_out() const { return todo_.empty(); }
+  // The photo.bin bytes of item `index`'s inputs (item_inputs).
+  std::vector<std::string> inputs(size_t index) const;
   // Stores item `index`'s files (store_item) and logs it; `rank` ran it.
   void finish(size_t index, const ItemFiles& files, int rank);
 
@@ -37,8 +42,9 @@ class SweepCoordinator {
   const Manifest& manifest_;
   std::filesystem::path out_;
   std::FILE* log_;
-  std::vector<size_t> todo_;
-  size_t next_ = 0, done_ = 0, skipped_ = 0, failed_ = 0;
+  std::vector<size_t> todo_;        // not handed out yet, in manifest order
+  std::vector<ItemState> state_;    // per item: Absent until stored
+  size_t to_run_ = 0, done_ = 0, skipped_ = 0, failed_ = 0;
   Stopwatch watch_;
 };
 
@@ -51,7 +57,9 @@ struct SweepSummary {
 // each successful item's metrics as "<id>_<metric>", its tables titled "<id>: <title>", its
 // images as "<id>/<role>" (files under items/<id>/), a section per item, and the table
 // "sweep items" (id, study, scene, status, seconds, error). Metrics sweep_items and
-// sweep_failed. `command` is the merged file's command line.
+// sweep_failed. `command` is the merged file's command line. A demo manifest instead gets
+// the demo's own report, as `proxima demo` writes it (run_demo over the stored items, each
+// run's files copied to its directory), plus the table "sweep items" and those two metrics.
 SweepSummary merge_sweep(const Manifest& manifest, const std::filesystem::path& out,
                          const std::vector<std::string>& command);
 
