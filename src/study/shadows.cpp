@@ -39,6 +39,7 @@ struct Setting {
   LightCameras cams;
   ShadowMapOptions shadow_maps;
   LightVisibility truth, exact;
+  ShadowMapStats truth_stats;
   double truth_ms = 0.0, rays_ms = 0.0;
 };
 
@@ -52,7 +53,9 @@ Setting make_setting(const Scene& scene, const RayScene& rays, const ShadowsOpti
   for (const vec3& c : light_corners(s.light)) eyes.push_back(c);
   s.cams = fit_light_cameras(scene, s.light, s.receivers, eyes);
   s.shadow_maps.resolution = o.shadow_res;
-  s.truth = shadow_map_visibility(scene, s.receivers, s.samples, s.cams, s.shadow_maps, &s.truth_ms);
+  s.shadow_maps.fit_receivers = !o.full_maps;
+  s.shadow_maps.footprint_texels = o.shadow_footprint;
+  s.truth = shadow_map_visibility(scene, s.receivers, s.samples, s.cams, s.shadow_maps, &s.truth_ms, &s.truth_stats);
   if (!o.no_rays) s.exact = ray_visibility(rays, scene, s.receivers, s.samples, &s.rays_ms);
   return s;
 }
@@ -108,16 +111,20 @@ void add_sampling(Results& results, Tables& t, const Scene& scene, const RayScen
   occ.reconstruction = o.reconstruction;
   const Occluders occluders = build_occluders(scene, &rays, s.light, s.cams, sampling, occ);
   const bool geometry = sampling == ShadowSampling::Geometry;
-  double shadow_ms = s.truth_ms;
+  ShadowMapStats st = s.truth_stats;
   const LightVisibility v = geometry ? s.truth
                                      : shadow_map_visibility(occluders.scene, s.receivers, s.samples, s.cams,
-                                                             s.shadow_maps, &shadow_ms);
+                                                             s.shadow_maps, nullptr, &st);
+  const double shadow_ms = st.ms;
   const ShadowError e = compare_visibility(v, s.truth, s.receivers);
   add_errors(results, p, "_", e);
   const double triangles = double(occluders.scene.triangles.size());
   results.metrics[p + "time_reference_ms"] = occluders.reference_ms;
   results.metrics[p + "time_reconstruct_ms"] = occluders.reconstruct_ms;
   results.metrics[p + "time_shadow_ms"] = shadow_ms;
+  results.metrics[p + "time_shadow_raster_ms"] = st.raster_ms;
+  results.metrics[p + "shadow_texels"] = double(st.texels);
+  results.metrics[p + "shadow_triangles_drawn"] = double(st.triangles_drawn);
   results.metrics[p + "occluder_triangles"] = triangles;
   results.metrics[p + "reference_samples"] = double(occluders.samples);
   t.errors.rows.push_back(
@@ -141,6 +148,7 @@ void validate(const ShadowsOptions& o) {
   check_side(o.ref_res, "--ref-res");
   check_side(o.out_res, "--out-res");
   check_side(o.shadow_res, "--shadow-res");
+  require_in_range(o.shadow_footprint, 0.0f, 16.0f, "--shadow-footprint");
   if (o.samplings.empty()) fail_input("--sampling: give at least one");
 }
 
@@ -162,6 +170,8 @@ Results run_shadows(const Scene& scene, const ShadowsOptions& o, const StudyOutp
   results.metrics["receivers"] = double(s.receivers.count);
   results.metrics["triangles"] = double(scene.triangles.size());
   results.metrics["light_fov_deg"] = s.cams.vfov_deg;
+  results.metrics["time_geometry_shadow_ms"] = s.truth_ms;
+  results.metrics["shadow_focal_px"] = s.truth_stats.focal_px;
   results.tables.push_back(t.errors);
   if (!o.no_rays) results.tables.push_back(t.rays);
   results.tables.push_back(t.times);
