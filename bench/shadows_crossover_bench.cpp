@@ -3,8 +3,8 @@
 // (light size 1, 8×8 samples, 256² receivers from the scene's main camera, NRR reference
 // images 512² with the hybrid reconstruction, shadow-map density of 1024²) on city and on
 // grass from 50k to 10M triangles. Per repetition, interleaved: the depth-image method
-// (step 1 reference images, step 2 reconstruction, step 3 with fitted maps), step 3 as it
-// was (whole-field 1024² maps, ShadowMapOptions::fit_receivers off) on the same occluders,
+// (step 1 reference images, step 2 reconstruction with merged planar runs, step 3 with
+// fitted maps), step 3 as it was (whole-field 1024² maps of the unmerged reconstruction),
 // the Embree BVH build and the shadow rays. Counters are medians over the repetitions;
 // visibility errors (0–255) are against the rays. Arguments: grass blades (12 triangles
 // each; 0 = city), repetitions, threads.
@@ -12,7 +12,6 @@
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
-#include <algorithm>
 #include <vector>
 
 #include "proxima/core/parallel.h"
@@ -28,20 +27,17 @@ namespace {
 
 using namespace proxima;
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
-}
-
 double max_rss_mb() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   return double(u.ru_maxrss) / 1024.0;
 }
 
+// Wall-clock and process-CPU milliseconds per phase and repetition. On a shared machine
+// the CPU times are the steadier figures (another process's load does not count).
 struct Times {
   std::vector<double> reference, reconstruct, shadow, shadow_today, bvh, rays;
+  std::vector<double> steps12_cpu, shadow_cpu, shadow_today_cpu, bvh_cpu, rays_cpu;
 };
 
 void BM_SoftShadowsVsRays(benchmark::State& state) {
@@ -57,6 +53,10 @@ void BM_SoftShadowsVsRays(benchmark::State& state) {
   const LightCameras cams = fit_light_cameras(scene, light, receivers, eyes);
   OccluderOptions oo;
   oo.resolution = 512;
+  // Step 3 as it was ran on the unmerged reconstruction (built once: it is deterministic).
+  OccluderOptions unmerged = oo;
+  unmerged.merge_planar_runs = false;
+  const Occluders occ_today = build_occluders(scene, nullptr, light, cams, ShadowSampling::Nrr, unmerged);
   ShadowMapOptions fitted, today;
   today.fit_receivers = false;
   Times t;
@@ -66,24 +66,34 @@ void BM_SoftShadowsVsRays(benchmark::State& state) {
   for (auto _ : state) {
     t = Times{};
     for (int r = 0; r < reps; ++r) {
+      double cpu = process_cpu_ms();
       const Occluders occ = build_occluders(scene, nullptr, light, cams, ShadowSampling::Nrr, oo);
+      t.steps12_cpu.push_back(process_cpu_ms() - cpu);
       occluder_triangles = occ.scene.triangles.size();
       t.reference.push_back(occ.reference_ms);
       t.reconstruct.push_back(occ.reconstruct_ms);
       // Alternate which step-3 variant goes first.
       for (int k = 0; k < 2; ++k) {
-        if ((k == 0) == (r % 2 == 0))
+        cpu = process_cpu_ms();
+        if ((k == 0) == (r % 2 == 0)) {
           v_fitted = shadow_map_visibility(occ.scene, receivers, samples, cams, fitted, nullptr, &st_fitted);
-        else
-          v_today = shadow_map_visibility(occ.scene, receivers, samples, cams, today, nullptr, &st_today);
+          t.shadow_cpu.push_back(process_cpu_ms() - cpu);
+        } else {
+          v_today = shadow_map_visibility(occ_today.scene, receivers, samples, cams, today, nullptr, &st_today);
+          t.shadow_today_cpu.push_back(process_cpu_ms() - cpu);
+        }
       }
       t.shadow.push_back(st_fitted.ms);
       t.shadow_today.push_back(st_today.ms);
       Stopwatch build;
+      cpu = process_cpu_ms();
       const RayScene rays(scene);
       t.bvh.push_back(build.elapsed_ms());
+      t.bvh_cpu.push_back(process_cpu_ms() - cpu);
       double rays_ms = 0.0;
+      cpu = process_cpu_ms();
       v_rays = ray_visibility(rays, scene, receivers, samples, &rays_ms);
+      t.rays_cpu.push_back(process_cpu_ms() - cpu);
       t.rays.push_back(rays_ms);
     }
   }
@@ -92,6 +102,7 @@ void BM_SoftShadowsVsRays(benchmark::State& state) {
   auto& c = state.counters;
   c["triangles"] = double(scene.triangles.size());
   c["occluder_triangles"] = double(occluder_triangles);
+  c["occluder_triangles_today"] = double(occ_today.scene.triangles.size());
   c["receivers"] = double(receivers.count);
   c["reference_ms"] = reference;
   c["reconstruct_ms"] = reconstruct;
@@ -103,6 +114,16 @@ void BM_SoftShadowsVsRays(benchmark::State& state) {
   c["rays_ms"] = rays;
   c["ratio_static"] = rays / depth_total;           // > 1: the depth-image method wins
   c["ratio_dynamic"] = (bvh + rays) / depth_total;  // the BVH rebuilt for a changed scene
+  const double depth_cpu = median(t.steps12_cpu) + median(t.shadow_cpu);
+  c["depth_image_cpu_ms"] = depth_cpu;
+  c["steps12_cpu_ms"] = median(t.steps12_cpu);
+  c["shadow_cpu_ms"] = median(t.shadow_cpu);
+  c["shadow_today_cpu_ms"] = median(t.shadow_today_cpu);
+  c["shadow_speedup_cpu"] = median(t.shadow_today_cpu) / median(t.shadow_cpu);
+  c["bvh_cpu_ms"] = median(t.bvh_cpu);
+  c["rays_cpu_ms"] = median(t.rays_cpu);
+  c["ratio_static_cpu"] = median(t.rays_cpu) / depth_cpu;
+  c["ratio_dynamic_cpu"] = (median(t.bvh_cpu) + median(t.rays_cpu)) / depth_cpu;
   c["fit_ms"] = st_fitted.fit_ms;
   c["map_raster_ms"] = st_fitted.raster_ms;
   c["map_test_ms"] = st_fitted.test_ms;
