@@ -23,26 +23,25 @@ rows = json.load(open(sys.argv[1]))["benchmarks"]
 def scene(b):
     blades = int(b["name"].split("blades:")[1].split("/")[0])
     return "city" if blades == 0 else f"grass {blades} blades"
-print("Wall-clock ms (medians):")
-print("| scene | triangles | occluder tris (today) | step 1 | step 2 | step 3 | step 3 today | speed-up "
-      "| depth-image total | Embree BVH | Embree rays | ratio static | ratio with BVH | vis err depth-image "
-      "| vis err today | max RSS MB |")
-print("|" + " --- |" * 16)
-for b in rows:
-    g = lambda k: b.get(k, float("nan"))
-    print(f"| {scene(b)} | {g('triangles'):,.0f} | {g('occluder_triangles'):,.0f} ({g('occluder_triangles_today'):,.0f}) "
-          f"| {g('reference_ms'):.0f} | {g('reconstruct_ms'):.0f} | {g('shadow_ms'):.0f} | {g('shadow_today_ms'):.0f} "
-          f"| {g('shadow_speedup'):.2f}x | {g('depth_image_ms'):.0f} | {g('bvh_ms'):.0f} | {g('rays_ms'):.0f} "
-          f"| {g('ratio_static'):.2f} | {g('ratio_dynamic'):.2f} | {g('vis_error_rays'):.2f} "
-          f"| {g('vis_error_rays_today'):.2f} | {g('max_rss_mb'):.0f} |")
-print("\nProcess-CPU ms (medians):")
-print("| scene | steps 1+2 | step 3 | step 3 today | speed-up | depth-image total | Embree BVH | Embree rays "
-      "| ratio static | ratio with BVH | step 3 texels (today) | triangles drawn (today) |")
-print("|" + " --- |" * 12)
-for b in rows:
-    g = lambda k: b.get(k, float("nan"))
-    print(f"| {scene(b)} | {g('steps12_cpu_ms'):.0f} | {g('shadow_cpu_ms'):.0f} | {g('shadow_today_cpu_ms'):.0f} "
-          f"| {g('shadow_speedup_cpu'):.2f}x | {g('depth_image_cpu_ms'):.0f} | {g('bvh_cpu_ms'):.0f} "
-          f"| {g('rays_cpu_ms'):.0f} | {g('ratio_static_cpu'):.2f} | {g('ratio_dynamic_cpu'):.2f} "
-          f"| {g('texels'):,.0f} ({g('texels_today'):,.0f}) | {g('triangles_drawn'):,.0f} ({g('triangles_drawn_today'):,.0f}) |")
+def table(title, columns):
+    """columns: (header, format) pairs; a format names counters in braces."""
+    print(f"\n{title}\n| scene | " + " | ".join(h for h, _ in columns) + " |")
+    print("|" + " --- |" * (len(columns) + 1))
+    for b in rows:
+        g = {k: v for k, v in b.items() if isinstance(v, (int, float))}
+        print(f"| {scene(b)} | " + " | ".join(f.format(**g) for _, f in columns) + " |")
+table("Wall-clock ms (medians):", [
+    ("triangles", "{triangles:,.0f}"), ("occluder tris (today)", "{occluder_triangles:,.0f} ({occluder_triangles_today:,.0f})"),
+    ("step 1", "{reference_ms:.0f}"), ("step 2", "{reconstruct_ms:.0f}"), ("step 3", "{shadow_ms:.0f}"),
+    ("step 3 today", "{shadow_today_ms:.0f}"), ("speed-up", "{shadow_speedup:.2f}x"),
+    ("depth-image total", "{depth_image_ms:.0f}"), ("Embree BVH", "{bvh_ms:.0f}"), ("Embree rays", "{rays_ms:.0f}"),
+    ("ratio static", "{ratio_static:.2f}"), ("ratio with BVH", "{ratio_dynamic:.2f}"),
+    ("vis err depth-image", "{vis_error_rays:.2f}"), ("vis err today", "{vis_error_rays_today:.2f}"),
+    ("max RSS MB", "{max_rss_mb:.0f}")])
+table("Process-CPU ms (medians):", [
+    ("steps 1+2", "{steps12_cpu_ms:.0f}"), ("step 3", "{shadow_cpu_ms:.0f}"), ("step 3 today", "{shadow_today_cpu_ms:.0f}"),
+    ("speed-up", "{shadow_speedup_cpu:.2f}x"), ("depth-image total", "{depth_image_cpu_ms:.0f}"),
+    ("Embree BVH", "{bvh_cpu_ms:.0f}"), ("Embree rays", "{rays_cpu_ms:.0f}"), ("ratio static", "{ratio_static_cpu:.2f}"),
+    ("ratio with BVH", "{ratio_dynamic_cpu:.2f}"), ("step 3 texels (today)", "{texels:,.0f} ({texels_today:,.0f})"),
+    ("triangles drawn (today)", "{triangles_drawn:,.0f} ({triangles_drawn_today:,.0f})")])
 PY
