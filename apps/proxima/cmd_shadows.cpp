@@ -38,7 +38,11 @@ void add_light_flags(CLI::App* app, study::ShadowsOptions& o) {
   app->add_option("--light-samples", o.light_samples, "n: the light is sampled n x n")->capture_default_str();
   app->add_option("--ref-res", o.ref_res, "reference depth images, pixels (square)")->capture_default_str();
   app->add_option("--out-res", o.out_res, "output image, pixels (square)")->capture_default_str();
-  app->add_option("--shadow-res", o.shadow_res, "shadow maps, pixels (square)")->capture_default_str();
+  app->add_option("--shadow-res", o.shadow_res, "shadow-map texel density: of a map this side over the light field")
+      ->capture_default_str();
+  app->add_flag("--full-maps", o.full_maps, "shadow maps cover the whole light field (not fitted to the receivers)");
+  app->add_option("--shadow-footprint", o.shadow_footprint, "texels per receiver footprint (0: --shadow-res alone)")
+      ->capture_default_str();
   app->add_flag("--no-rays", o.no_rays, "skip the Embree shadow-ray ground truth");
 }
 

@@ -236,7 +236,7 @@ CornerVertices corner_vertices(const Samples& s, const DepthImage& offset, const
 
 }  // namespace
 
-Mesh reconstruct_hybrid(const DepthImage& image, const DepthImage& offset, HybridStats* stats) {
+Mesh reconstruct_hybrid(const DepthImage& image, const DepthImage& offset, HybridStats* stats, bool merge_planar_runs) {
   const Samples s = gather(image);
   assert(offset.triangle.width() == s.width + 1 && offset.triangle.height() == s.height + 1);
   const Camera& cam = image.camera;
@@ -265,31 +265,66 @@ Mesh reconstruct_hybrid(const DepthImage& image, const DepthImage& offset, Hybri
       }
     }
   });
-  // Two triangles per sample, row-major.
-  std::vector<size_t> row_quads(size_t(s.height), 0);
-  for (int y = 0; y < s.height; ++y)
-    for (int x = 0; x < s.width; ++x) row_quads[size_t(y)] += s.valid[s.index(x, y)];
-  const size_t quads = prefix(row_quads);
-  mesh.triangles.resize(2 * quads);
   auto corner_id = [&](int i, int j, int slot) {
     const size_t c = size_t(j) * size_t(cw) + size_t(i);
     return first[c] + corners[c].use[size_t(slot)];
   };
+  // extends[k]: sample k's quad joins the planar run of its left neighbour (merge only).
+  std::vector<uint8_t> extends(s.valid.size(), 0);
+  std::vector<size_t> row_quads(size_t(s.height), 0);
+  parallel_for(size_t(s.height), kRowGrain, [&](size_t y0, size_t y1) {
+    for (int y = int(y0); y < int(y1); ++y) {
+      size_t start = 0;  // sample of the current run's first quad
+      bool open = false;
+      for (int x = 0; x < s.width; ++x) {
+        const size_t k = s.index(x, y);
+        if (!s.valid[k]) {
+          open = false;
+          continue;
+        }
+        auto on_plane = [&](uint32_t v) {
+          const size_t r = start;
+          return std::abs(glm::dot(s.normals[r], mesh.positions[v] - s.points[r])) <=
+                 kMergeTolerance * s.depth[r] / s.focal;
+        };
+        const bool joins = merge_planar_runs && open && corner_id(x, y, 0) == corner_id(x, y, 3) &&
+                           corner_id(x, y + 1, 1) == corner_id(x, y + 1, 2) && on_plane(corner_id(x + 1, y + 1, 2)) &&
+                           on_plane(corner_id(x + 1, y, 3));
+        if (joins) {
+          extends[k] = 1;
+          continue;
+        }
+        ++row_quads[size_t(y)];
+        start = k;
+        // A run starts only where the quad itself lies on its sample's plane.
+        open = merge_planar_runs && on_plane(corner_id(x, y, 0)) && on_plane(corner_id(x, y + 1, 1)) &&
+               on_plane(corner_id(x + 1, y + 1, 2)) && on_plane(corner_id(x + 1, y, 3));
+      }
+    }
+  });
+  const size_t quads = prefix(row_quads);
+  mesh.triangles.resize(2 * quads);
+  // Two triangles per run (one sample's quad or a planar run of them), row-major.
   parallel_for(size_t(s.height), kRowGrain, [&](size_t y0, size_t y1) {
     for (int y = int(y0); y < int(y1); ++y) {
       size_t t = 2 * row_quads[size_t(y)];
       for (int x = 0; x < s.width; ++x) {
-        if (!s.valid[s.index(x, y)]) continue;
-        const uint32_t c0 = corner_id(x, y, 0), c1 = corner_id(x, y + 1, 1), c2 = corner_id(x + 1, y + 1, 2),
-                       c3 = corner_id(x + 1, y, 3);
+        if (!s.valid[s.index(x, y)] || extends[s.index(x, y)]) continue;
+        int end = x;  // last quad of the run
+        while (end + 1 < s.width && extends[s.index(end + 1, y)]) ++end;
+        const uint32_t c0 = corner_id(x, y, 0), c1 = corner_id(x, y + 1, 1), c2 = corner_id(end + 1, y + 1, 2),
+                       c3 = corner_id(end + 1, y, 3);
         mesh.triangles[t++] = uvec3(c0, c1, c2);
         mesh.triangles[t++] = uvec3(c2, c3, c0);
       }
     }
   });
+  size_t samples = 0;
+  for (uint8_t v : s.valid) samples += v;
   if (stats) {
     *stats = {};
-    stats->samples = quads;
+    stats->samples = samples;
+    stats->quads = quads;
     stats->vertices = mesh.positions.size();
     for (const CornerVertices& c : corners) {
       stats->corners_from_h += c.from_h;

@@ -87,7 +87,8 @@ Occluders build_occluders(const Scene& scene, const RayScene* rays, const AreaLi
   std::vector<Mesh> meshes;
   for (size_t i = 0; i < images.size(); ++i) {
     out.samples += sample_count(images[i]);
-    meshes.push_back(hybrid ? reconstruct_hybrid(images[i], offset_images[i]) : reconstruct_conventional(images[i]));
+    meshes.push_back(hybrid ? reconstruct_hybrid(images[i], offset_images[i], nullptr, options.merge_planar_runs)
+                            : reconstruct_conventional(images[i]));
   }
   out.scene = reconstruction_scene(meshes, std::string(shadow_sampling_name(sampling)) + "-reconstruction");
   out.reconstruct_ms = reconstruct.elapsed_ms();

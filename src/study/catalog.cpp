@@ -331,7 +331,12 @@ Entry shadows_entry() {
   f.push_back(field<O>("light_samples", "n: the light is sampled n × n, 1..64", &O::light_samples));
   f.push_back(field<O>("ref_res", "pixels (square) of the reference depth images", &O::ref_res));
   f.push_back(field<O>("out_res", "pixels (square) of the output image", &O::out_res));
-  f.push_back(field<O>("shadow_res", "pixels (square) of the shadow maps", &O::shadow_res));
+  f.push_back(field<O>("shadow_res", "shadow-map texel density: of a map this side over the light field",
+                       &O::shadow_res));
+  f.push_back(field<O>("full_maps", "shadow maps cover the whole light field (not fitted to the receivers)",
+                       &O::full_maps));
+  f.push_back(field<O>("shadow_footprint", "texels per receiver footprint, 0..16 (0: shadow_res alone)",
+                       &O::shadow_footprint));
   f.push_back(field<O>("redundancy", "NRR's redundancy test", &O::redundancy));
   f.push_back(field<O>("reconstruction", "hybrid (Algorithm 4) or conventional mesh", &O::reconstruction));
   f.push_back(field<O>("no_rays", "skip the Embree shadow-ray ground truth", &O::no_rays));

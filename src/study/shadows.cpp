@@ -76,7 +76,8 @@ void add_sampling(Results& results, Tables& t, const Scene& scene, const RayScen
   const std::string p = o.samplings.size() > 1 ? name + "_" : "";
   const ShadowSamplingRun run = run_shadow_sampling(scene, rays, s, o, sampling);
   const Occluders& occluders = run.occluders;
-  const double shadow_ms = run.shadow_ms;
+  const ShadowMapStats& st = run.stats;
+  const double shadow_ms = st.ms;
   const LightVisibility& v = run.visibility;
   const ShadowError e = compare_visibility(v, s.truth, s.receivers);
   add_errors(results, p, "_", e);
@@ -84,6 +85,9 @@ void add_sampling(Results& results, Tables& t, const Scene& scene, const RayScen
   results.metrics[p + "time_reference_ms"] = occluders.reference_ms;
   results.metrics[p + "time_reconstruct_ms"] = occluders.reconstruct_ms;
   results.metrics[p + "time_shadow_ms"] = shadow_ms;
+  results.metrics[p + "time_shadow_raster_ms"] = st.raster_ms;
+  results.metrics[p + "shadow_texels"] = double(st.texels);
+  results.metrics[p + "shadow_triangles_drawn"] = double(st.triangles_drawn);
   results.metrics[p + "occluder_triangles"] = triangles;
   results.metrics[p + "reference_samples"] = double(occluders.samples);
   t.errors.rows.push_back(
@@ -110,7 +114,9 @@ ShadowSetting shadow_setting(const Scene& scene, const RayScene& rays, const Cam
   for (const vec3& c : light_corners(s.light)) eyes.push_back(c);
   s.cams = fit_light_cameras(scene, s.light, s.receivers, eyes);
   s.shadow_maps.resolution = o.shadow_res;
-  s.truth = shadow_map_visibility(scene, s.receivers, s.samples, s.cams, s.shadow_maps, &s.truth_ms);
+  s.shadow_maps.fit_receivers = !o.full_maps;
+  s.shadow_maps.footprint_texels = o.shadow_footprint;
+  s.truth = shadow_map_visibility(scene, s.receivers, s.samples, s.cams, s.shadow_maps, &s.truth_ms, &s.truth_stats);
   if (!o.no_rays) s.exact = ray_visibility(rays, scene, s.receivers, s.samples, &s.rays_ms);
   return s;
 }
@@ -123,11 +129,12 @@ ShadowSamplingRun run_shadow_sampling(const Scene& scene, const RayScene& rays, 
   occ.reconstruction = o.reconstruction;
   ShadowSamplingRun run;
   run.occluders = build_occluders(scene, &rays, s.light, s.cams, sampling, occ);
-  run.shadow_ms = s.truth_ms;
+  run.stats = s.truth_stats;
   run.visibility = sampling == ShadowSampling::Geometry
                        ? s.truth
                        : shadow_map_visibility(run.occluders.scene, s.receivers, s.samples, s.cams, s.shadow_maps,
-                                               &run.shadow_ms);
+                                               nullptr, &run.stats);
+  run.shadow_ms = run.stats.ms;
   return run;
 }
 
@@ -137,6 +144,7 @@ void validate(const ShadowsOptions& o) {
   check_side(o.ref_res, "--ref-res");
   check_side(o.out_res, "--out-res");
   check_side(o.shadow_res, "--shadow-res");
+  require_in_range(o.shadow_footprint, 0.0f, 16.0f, "--shadow-footprint");
   if (o.samplings.empty()) fail_input("--sampling: give at least one");
 }
 
@@ -158,6 +166,8 @@ Results run_shadows(const Scene& scene, const ShadowsOptions& o, const StudyOutp
   results.metrics["receivers"] = double(s.receivers.count);
   results.metrics["triangles"] = double(scene.triangles.size());
   results.metrics["light_fov_deg"] = s.cams.vfov_deg;
+  results.metrics["time_geometry_shadow_ms"] = s.truth_ms;
+  results.metrics["shadow_focal_px"] = s.truth_stats.focal_px;
   results.tables.push_back(t.errors);
   if (!o.no_rays) results.tables.push_back(t.rays);
   results.tables.push_back(t.times);

@@ -1,7 +1,7 @@
 // Mesh reconstruction from depth images (thesis ch. 3, Algorithm 4): the hybrid mesh of a
 // plane is watertight and covers exactly the plane's image, an isolated one-pixel object
 // still gives a quad (the conventional mesh drops it), re-rendering reproduces the depth
-// image, and the result does not depend on the thread count.
+// image (also with planar runs merged), and the result does not depend on the thread count.
 #include "proxima/reconstruct/reconstruction.h"
 
 #include <gtest/gtest.h>
@@ -220,21 +220,58 @@ TEST(Reconstruction, SameMeshForAnyThreadCount) {
   const Camera cam = look_at(vec3(0, 1.4f, 3.2f), vec3(0, 0.1f, 0), vec3(0, 1, 0), 50.0f, 80, 64);
   const DepthImage image = render_depth_image(scene, cam, true);
   const DepthImage offset = render_depth_image(scene, half_pixel_offset_camera(cam), true);
-  Mesh a, b, c, d;
+  Mesh a, b, c, d, e, f;
   {
     ThreadLimit one(1);
     a = reconstruct_hybrid(image, offset);
     c = reconstruct_conventional(image);
+    e = reconstruct_hybrid(image, offset, nullptr, true);
   }
   {
     ThreadLimit two(2);
     b = reconstruct_hybrid(image, offset);
     d = reconstruct_conventional(image);
+    f = reconstruct_hybrid(image, offset, nullptr, true);
   }
+  EXPECT_EQ(e.triangles, f.triangles);
   EXPECT_EQ(a.positions, b.positions);
   EXPECT_EQ(a.triangles, b.triangles);
   EXPECT_EQ(c.positions, d.positions);
   EXPECT_EQ(c.triangles, d.triangles);
+}
+
+// Merged planar runs: a plane's rows become one quad each, covering the same pixels at the
+// same depths; on curved grass and the city's boxes the mesh re-renders as the unmerged one.
+TEST(Reconstruction, MergedPlanarRunsKeepTheShape) {
+  const Scene scene = plane_scene();
+  const Camera cam = plane_camera();
+  const DepthImage i = render_depth_image(scene, cam, true);
+  const DepthImage h = render_depth_image(scene, half_pixel_offset_camera(cam), true);
+  HybridStats stats;
+  const Mesh merged = reconstruct_hybrid(i, h, &stats, true);
+  EXPECT_EQ(stats.samples, sample_count(i));
+  EXPECT_LE(stats.quads, size_t(cam.height));  // one run per row of the (convex) plane
+  EXPECT_EQ(merged.triangles.size(), 2 * stats.quads);
+  const Mesh plain = reconstruct_hybrid(i, h);
+  const ImageU32 seen_merged = ids_seen(merged, cam), seen_plain = ids_seen(plain, cam);
+  size_t covered_merged = 0, covered_plain = 0;
+  for (uint32_t t : seen_merged.data()) covered_merged += t != kNoTriangle;
+  for (uint32_t t : seen_plain.data()) covered_plain += t != kNoTriangle;
+  EXPECT_EQ(covered_merged, covered_plain);
+  for (size_t k = 0; k < seen_merged.data().size(); ++k)
+    EXPECT_EQ(seen_merged.data()[k] == kNoTriangle, seen_plain.data()[k] == kNoTriangle) << k;
+  EXPECT_GE(depth_match(merged, i, 0.01f), 0.999);
+  for (const Scene& s : {make_grass_scene(), make_city_scene()}) {
+    const Camera c = look_at(s.cameras[0].camera.position, vec3(0, 0.3f, 0), vec3(0, 1, 0),
+                             s.cameras[0].camera.vfov_deg, 128, 128, 0.05f, 200.0f);
+    const DepthImage si = render_depth_image(s, c, true);
+    const DepthImage sh = render_depth_image(s, half_pixel_offset_camera(c), true);
+    HybridStats st;
+    const Mesh m = reconstruct_hybrid(si, sh, &st, true);
+    EXPECT_LT(st.quads, st.samples) << s.name;
+    EXPECT_GE(depth_match(m, si, kContinuityTolerance), depth_match(reconstruct_hybrid(si, sh), si, kContinuityTolerance) - 1e-3)
+        << s.name;
+  }
 }
 
 TEST(Reconstruction, EmptyImageGivesEmptyMesh) {

@@ -140,6 +140,70 @@ TEST(SoftShadows, SameVisibilityForAnyThreadCount) {
   EXPECT_EQ(c.bits, d.bits);
 }
 
+// A fitted map holds every receiver, keeps the requested texel density, and its far plane
+// lies behind the farthest receiver.
+TEST(SoftShadows, FittedMapCameraHoldsEveryReceiver) {
+  LightSetup s(0.5f, 3, 48);
+  std::vector<vec3> points;
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 48; ++x)
+      if (s.receivers.mask.at(x, y))
+        points.push_back(vec3(s.receivers.position.at(x, y, 0), s.receivers.position.at(x, y, 1),
+                              s.receivers.position.at(x, y, 2)));
+  ASSERT_GT(points.size(), 1000u);
+  const float focal = 200.0f;
+  for (const vec3& eye : s.samples) {
+    const Camera cam = fitted_shadow_map_camera(s.cams, eye, points, focal);
+    EXPECT_NEAR(focal_length_px(cam), focal, 1e-3f * focal);
+    EXPECT_LT(cam.vfov_deg, s.cams.vfov_deg);  // the receivers fill part of the light field only
+    for (const vec3& p : points) {
+      const auto q = project(cam, p);
+      ASSERT_TRUE(q.has_value());
+      EXPECT_GE(q->pixel.x, 1.0f);
+      EXPECT_GE(q->pixel.y, 1.0f);
+      EXPECT_LE(q->pixel.x, float(cam.width) - 1.0f);
+      EXPECT_LE(q->pixel.y, float(cam.height) - 1.0f);
+      EXPECT_LT(q->depth, cam.far);
+    }
+  }
+}
+
+// Fitting the maps to the receivers moves the texel grid only: the answers stay those of
+// whole-field maps of the same density but for edge texels, and as close to the rays.
+TEST(SoftShadows, FittedMapsAnswerAsWholeFieldMaps) {
+  LightSetup s(0.3f, 4, 64);
+  const RayScene rays(s.scene);
+  ShadowMapOptions full, fitted;
+  full.resolution = fitted.resolution = 256;
+  full.fit_receivers = false;
+  ShadowMapStats st_full, st_fitted;
+  const LightVisibility a = shadow_map_visibility(s.scene, s.receivers, s.samples, s.cams, full, nullptr, &st_full);
+  const LightVisibility b = shadow_map_visibility(s.scene, s.receivers, s.samples, s.cams, fitted, nullptr, &st_fitted);
+  const LightVisibility exact = ray_visibility(rays, s.scene, s.receivers, s.samples);
+  EXPECT_EQ(st_fitted.receivers_outside, 0u);
+  EXPECT_LT(st_fitted.texels, st_full.texels);
+  EXPECT_FLOAT_EQ(st_fitted.focal_px, st_full.focal_px);
+  EXPECT_LT(compare_visibility(b, a, s.receivers).visibility_mean, 1.0);
+  EXPECT_LT(compare_visibility(b, exact, s.receivers).visibility_mean, 4.0);  // the whole-field maps' bound
+}
+
+// A footprint density lowers the focal length to about that many texels per receiver
+// spacing, and no further than `resolution` allows.
+TEST(SoftShadows, FootprintTexelsSetTheDensity) {
+  LightSetup s(0.3f, 4, 64);
+  ShadowMapOptions o;
+  o.resolution = 4096;
+  ShadowMapStats dense, coarse, capped;
+  shadow_map_visibility(s.scene, s.receivers, s.samples, s.cams, o, nullptr, &dense);
+  o.footprint_texels = 2.0f;
+  shadow_map_visibility(s.scene, s.receivers, s.samples, s.cams, o, nullptr, &coarse);
+  EXPECT_LT(coarse.focal_px, 0.5f * dense.focal_px);
+  EXPECT_LT(coarse.texels, dense.texels / 4);
+  o.resolution = 16;
+  shadow_map_visibility(s.scene, s.receivers, s.samples, s.cams, o, nullptr, &capped);
+  EXPECT_LT(capped.focal_px, coarse.focal_px);
+}
+
 TEST(SoftShadows, ParsesSamplingNames) {
   EXPECT_EQ(parse_shadow_sampling("nrr", "--sampling"), ShadowSampling::Nrr);
   EXPECT_EQ(parse_shadow_sampling("peeling", "--sampling"), ShadowSampling::Peeling);

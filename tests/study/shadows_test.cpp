@@ -129,6 +129,8 @@ TEST(ShadowsStudy, ValidateNamesTheFlag) {
       {[](study::ShadowsOptions& o) { o.ref_res = 7; }, "--ref-res"},
       {[](study::ShadowsOptions& o) { o.out_res = kMaxImageSide + 1; }, "--out-res"},
       {[](study::ShadowsOptions& o) { o.shadow_res = 0; }, "--shadow-res"},
+      {[](study::ShadowsOptions& o) { o.shadow_footprint = 16.5f; }, "--shadow-footprint"},
+      {[](study::ShadowsOptions& o) { o.shadow_footprint = -1.0f; }, "--shadow-footprint"},
       {[](study::ShadowsOptions& o) { o.samplings.clear(); }, "--sampling"},
   };
   for (const auto& [change, flag] : cases) {

@@ -47,7 +47,8 @@ Mesh reconstruct_conventional(const DepthImage& image);
 Camera half_pixel_offset_camera(const Camera& c);
 
 struct HybridStats {
-  size_t samples = 0;          // quads made (one per sample of I)
+  size_t samples = 0;          // samples of I (one quad each)
+  size_t quads = 0;            // quads emitted: samples, fewer with merged planar runs
   size_t corners_from_h = 0;   // sample corners taken from H
   size_t corners_fitted = 0;   // sample corners from the tangent plane
   size_t vertices = 0;
@@ -64,7 +65,17 @@ struct HybridStats {
 // clamped to kMaxCornerDepthOffset footprints in depth). So a continuous surface comes
 // out watertight and each sample covers exactly its pixel square seen from the camera.
 // Needs depth, triangle, normal of both images. Deterministic for any thread count.
-Mesh reconstruct_hybrid(const DepthImage& image, const DepthImage& offset, HybridStats* stats = nullptr);
+//
+// merge_planar_runs: consecutive quads of a row that share their corner vertices and whose
+// corners all lie within kMergeTolerance footprints of the run's first sample's tangent
+// plane become one quad (first quad's left corners, last quad's right corners). The corners
+// are on the camera rays through the pixel corners, so on a plane the run's top and bottom
+// corners are collinear: the one quad covers the same pixels and the same surface (to
+// 2 · kMergeTolerance footprints), and the vertices of the neighbouring rows lie on its
+// edges. Fewer triangles for the same shape: what a shadow map of the mesh pays for.
+inline constexpr float kMergeTolerance = 1e-3f;
+Mesh reconstruct_hybrid(const DepthImage& image, const DepthImage& offset, HybridStats* stats = nullptr,
+                        bool merge_planar_runs = false);
 
 // A scene with one object per mesh (no lights, one grey material): what the rasterizer
 // and Embree take. Meshes without normals get computed ones.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "proxima/scene/scene.h"
@@ -30,20 +31,55 @@ struct LightVisibility {
 // (θ between the receiver normal and the light direction, tan θ capped at kMaxBiasSlope).
 // One texel of slack covers the nearest-texel lookup; the slope term the depth change
 // across it on a slanted receiver.
+//
+// Texel density: that of a resolution² map over the light cameras' field of view, or, with
+// footprint_texels > 0, the lower of that and footprint_texels texels per receiver
+// footprint (the median distance between neighbouring receivers seen from the light's
+// centre) along each axis — finer texels than the receivers' spacing buy little.
+// fit_receivers: each map covers only what its receivers read — the light camera turned to
+// the centre of their projection, the image cropped to it (plus a texel), the far plane at
+// the farthest receiver (an occluder behind every receiver blocks none) — so a map has the
+// texels and the triangles that can change an answer and no others. Without it every map
+// covers the whole light-camera field (LightCameras) at `resolution`².
 struct ShadowMapOptions {
   int resolution = 1024;
   float constant_bias = 1.5f;
   float slope_bias = 1.0f;
+  bool fit_receivers = true;
+  float footprint_texels = 0.0f;
 };
 inline constexpr float kMaxBiasSlope = 10.0f;
+// Largest side of a fitted map; a wider one gets coarser texels.
+inline constexpr int kMaxFittedMapSide = 4096;
+
+// What the shadow-map step did: wall time, texels and triangles drawn over all maps, and
+// the self-check: receivers (facing their sample) outside a fitted map — a fitted map
+// covers every receiver by construction, so any is a bug (a warning is printed).
+struct ShadowMapStats {
+  double ms = 0.0;
+  double fit_ms = 0.0;     // fitting the maps' cameras
+  double raster_ms = 0.0;  // rasterizing the maps
+  double test_ms = 0.0;    // the receivers' depth tests
+  uint64_t texels = 0;
+  uint64_t triangles_drawn = 0;  // triangles the rasterizer set up (survived its culling)
+  uint64_t receivers_outside = 0;
+  float focal_px = 0.0f;  // the maps' focal length
+};
 
 // For each light sample: rasterize `occluders` (both sides, depth only) from the sample
-// into a resolution² shadow map with `cams`, then test every receiver: lit iff its depth
-// minus the bias is ≤ the map's nearest-texel depth (outside the map: lit). `ms` gets the
-// wall time. Deterministic for any thread count.
+// into a shadow map (options above), then test every receiver: lit iff its depth minus the
+// bias is ≤ the map's nearest-texel depth (outside the map: lit). `ms` gets the wall time.
+// Deterministic for any thread count.
 LightVisibility shadow_map_visibility(const Scene& occluders, const Receivers& receivers,
                                       const std::vector<vec3>& samples, const LightCameras& cams,
-                                      const ShadowMapOptions& options, double* ms = nullptr);
+                                      const ShadowMapOptions& options, double* ms = nullptr,
+                                      ShadowMapStats* stats = nullptr);
+
+// The shadow-map camera of light sample `eye` for `points` (the receivers' world
+// positions) with focal length `focal_px` (fit_receivers above). Falls back to the whole
+// light-camera field at the same focal length when a point is not in front of the light
+// camera's near plane.
+Camera fitted_shadow_map_camera(const LightCameras& cams, vec3 eye, std::span<const vec3> points, float focal_px);
 
 // Exact visibility: an Embree shadow ray from each receiver (offset ε = 1e-4 × scene
 // diagonal along its normal) to each light sample (stopping ε short).

@@ -30,6 +30,9 @@ struct OccluderOptions {
   int resolution = 1024;  // of the reference images (square)
   Redundancy redundancy = Redundancy::Pixel;  // NRR's redundancy test
   ReconstructionMethod reconstruction = ReconstructionMethod::Hybrid;
+  // Hybrid: planar runs of quads merged (reconstruct_hybrid): the same surface in fewer
+  // triangles, so every shadow map of the occluders costs less.
+  bool merge_planar_runs = true;
 };
 
 struct Occluders {

@@ -29,14 +29,16 @@ struct ShadowsOptions {
   int light_samples = 16;   // --light-samples n: the light is sampled n × n, 1..64
   int ref_res = 1024;       // --ref-res, pixels (square), of the reference depth images
   int out_res = 512;        // --out-res, pixels (square), of the output image
-  int shadow_res = 1024;    // --shadow-res, pixels (square), of the shadow maps
+  int shadow_res = 1024;    // --shadow-res: texel density of a shadow map this side (square) over the light field
+  bool full_maps = false;   // --full-maps: every shadow map covers the whole light field (not fitted to the receivers)
+  float shadow_footprint = 0.0f;  // --shadow-footprint: texels per receiver footprint, 0..16 (0: --shadow-res alone)
   Redundancy redundancy = Redundancy::Pixel;                          // --redundancy: NRR's test
   ReconstructionMethod reconstruction = ReconstructionMethod::Hybrid;  // --reconstruction
   bool no_rays = false;     // --no-rays: skip the Embree shadow-ray ground truth
 };
 
 // Throws InputError naming the flag (--sampling, --light-size, --light-samples, --ref-res,
-// --out-res, --shadow-res) for a value out of range; image sides are 8..kMaxImageSide.
+// --out-res, --shadow-res, --shadow-footprint) for a value out of range; image sides are 8..kMaxImageSide.
 void validate(const ShadowsOptions& options);
 // The options on `scene`: validate(options), and the camera choice resolves (errors name
 // --camera, --path or --frame).
@@ -53,6 +55,7 @@ struct ShadowSetting {
   LightCameras cams;
   ShadowMapOptions shadow_maps;
   LightVisibility truth, exact;
+  ShadowMapStats truth_stats;
   double truth_ms = 0.0, rays_ms = 0.0;
 };
 ShadowSetting shadow_setting(const Scene& scene, const RayScene& rays, const Camera& view,
@@ -64,6 +67,7 @@ ShadowSetting shadow_setting(const Scene& scene, const RayScene& rays, const Cam
 struct ShadowSamplingRun {
   Occluders occluders;
   LightVisibility visibility;
+  ShadowMapStats stats;  // of the shadow maps (the setting's ground truth's for Geometry)
   double shadow_ms = 0.0;
 };
 ShadowSamplingRun run_shadow_sampling(const Scene& scene, const RayScene& rays, const ShadowSetting& setting,
@@ -72,9 +76,10 @@ ShadowSamplingRun run_shadow_sampling(const Scene& scene, const RayScene& rays, 
 // Runs the study. Metrics per sampling (prefixed "<sampling>_" when several run):
 // intensity_error_mean/_max, visibility_error_mean/_max (0..255, vs the geometry's shadow
 // maps), with rays also intensity_error_rays_mean/_max, visibility_error_rays_mean/_max;
-// time_reference_ms, time_reconstruct_ms, time_shadow_ms, occluder_triangles,
-// reference_samples. Also light_size, light_samples (n²), receivers, triangles,
-// light_fov_deg and, with rays, geometry_vs_rays_intensity_error_mean,
+// time_reference_ms, time_reconstruct_ms, time_shadow_ms (of which time_shadow_raster_ms
+// rasterizes the maps), shadow_texels and shadow_triangles_drawn (over all maps),
+// occluder_triangles, reference_samples. Also light_size, light_samples (n²), receivers, triangles,
+// light_fov_deg, time_geometry_shadow_ms, shadow_focal_px and, with rays, geometry_vs_rays_intensity_error_mean,
 // geometry_vs_rays_visibility_error_mean, time_rays_ms. Tables: errors vs the geometry's
 // shadow maps (thesis Table 8 shape), vs rays, time per step (Table 11 shape). Images:
 // geometry_shadow, rays_shadow, <sampling>_shadow, <sampling>_error (green too bright, red
