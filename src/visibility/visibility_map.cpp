@@ -36,10 +36,14 @@ double shoelace(const LPoly& poly) {
 }
 
 // Removes vertices closer than `tol` pixels to their successor (the edge that follows the
-// removed vertex keeps its label) and the tips of spikes (a turn of ~180°: the polygon runs
-// out along a line and back). A near-zero edge has an arbitrary direction, and a spike's
-// two edges are one line in both directions; used as clipping lines either cuts away part
-// of a later beam (holes in the map).
+// removed vertex keeps its label) and reflex vertices: a vertex where the boundary turns
+// against the polygon's orientation by more than 1e-9 rad with a dent of at most 1e-6 px²,
+// and the tips of spikes (a turn of ~180°: the polygon runs out along a line and back). The polygon is convex in
+// exact arithmetic; rounding in a clip near a vertex leaves near-zero edges with arbitrary
+// directions and dents, and each of their supporting lines, used to clip a later beam,
+// cuts away a wedge of it (holes in the map). Removing a reflex vertex fills its dent
+// (the triangle it makes with its neighbors, of rounding size): the merged edge keeps the
+// longer edge's label.
 void drop_tiny_edges(LPoly& poly, double tol = 1e-6) {
   const double tol2 = tol * tol;
   size_t i = 0;
@@ -54,13 +58,17 @@ void drop_tiny_edges(LPoly& poly, double tol = 1e-6) {
       ++i;
     }
   }
+  const double orient = shoelace(poly) < 0.0 ? -1.0 : 1.0;
   for (bool changed = true; changed && poly.size() >= 3;) {
     changed = false;
     for (size_t k = 0; k < poly.size() && poly.size() >= 3; ++k) {
-      const size_t n = poly.size();
-      const dvec2 a = poly[k].p - poly[(k + n - 1) % n].p, b = poly[(k + 1) % n].p - poly[k].p;
-      if (glm::dot(a, b) < 0.0 && std::abs(cross2(a, b)) <= 1e-9 * glm::length(a) * glm::length(b)) {
-        poly.erase(poly.begin() + long(k));  // the incoming edge's label stays on the remaining edge
+      const size_t n = poly.size(), prev = (k + n - 1) % n;
+      const dvec2 a = poly[k].p - poly[prev].p, b = poly[(k + 1) % n].p - poly[k].p;
+      const double la = glm::length(a), lb = glm::length(b), turn = orient * cross2(a, b);
+      const bool spike = glm::dot(a, b) < 0.0 && std::abs(turn) <= 1e-9 * la * lb;
+      if (spike || (turn < -1e-9 * la * lb && turn > -2e-6)) {
+        if (!spike && lb > la) poly[prev].label = poly[k].label;
+        poly.erase(poly.begin() + long(k));
         changed = true;
         break;
       }
@@ -146,7 +154,10 @@ bool convex_union(const LPoly& a, const LPoly& b, double area, LPoly& out) {
       }
     out.push_back({p, label != kNone ? label : fallback});
   }
-  return true;
+  // Hull vertices a rounding error apart (a vertex of a and one of b meant to be one) leave
+  // a near-zero edge whose direction is arbitrary: cleaned as after every clip.
+  drop_tiny_edges(out);
+  return out.size() >= 3;
 }
 
 // A face of the current cell seen from inside: its projection (made on first use) and the
