@@ -98,7 +98,7 @@ std::vector<Camera> offset_cameras(const std::vector<Camera>& cameras) {
 }
 
 py::list reconstruct_py(const SceneHandle& handle, const std::vector<Camera>& cameras, const std::string& method,
-                        const std::string& reconstruction, int layers) {
+                        const std::string& reconstruction, int layers, bool merge_planar_runs) {
   const study::SamplingMethod m = checked_sampling(cameras, method, layers);
   const bool hybrid = parse_reconstruction(reconstruction, "reconstruction") == ReconstructionMethod::Hybrid;
   std::vector<DepthImage> images;
@@ -111,7 +111,7 @@ py::list reconstruct_py(const SceneHandle& handle, const std::vector<Camera>& ca
         hybrid ? sample_images(handle, offset_cameras(cameras), m, layers, true) : std::vector<DepthImage>{};
     stats.resize(images.size());
     for (size_t i = 0; i < images.size(); ++i)
-      meshes.push_back(hybrid ? reconstruct_hybrid(images[i], offsets[i], &stats[i])
+      meshes.push_back(hybrid ? reconstruct_hybrid(images[i], offsets[i], &stats[i], merge_planar_runs)
                               : reconstruct_conventional(images[i]));
   }
   py::list out;
@@ -260,6 +260,7 @@ void bind_sampling(py::module_& m) {
         "unit world normal facing the camera) and color (H×W×3 float32, linear direct light without shadows).");
   m.def("reconstruct", &reconstruct_py, py::arg("scene"), py::arg("cameras"), py::arg("method") = "nrr-pixel",
         py::kw_only(), py::arg("reconstruction") = "hybrid", py::arg("layers") = 4,
+        py::arg("merge_planar_runs") = false,
         "Triangle meshes reconstructed from depth images (thesis ch. 3, docs/shadows.md): the images of "
         "sample_depth_images(scene, cameras, method, layers=layers) each become a mesh. reconstruction "
         "'hybrid' (Algorithm 4: one quad per sample, corners from the half-pixel offset image H — sampled "
@@ -268,7 +269,9 @@ void bind_sampling(py::module_& m) {
         "list of dicts, one per image: positions (V×3 float32, world m), normals (V×3 float32 unit, 0×3 "
         "when the method makes none), triangles "
         "(T×3 uint32, counter-clockwise seen from the image's camera), camera, samples (pixels holding a "
-        "sample) and with 'hybrid' corners_from_h, corners_fitted.");
+        "sample) and with 'hybrid' corners_from_h, corners_fitted. merge_planar_runs (hybrid): consecutive "
+        "quads of a row that share their corners and lie on one plane become one quad (the same surface, "
+        "fewer triangles; the soft-shadow occluders are built so).");
 }
 
 void bind_soft_shadows(py::module_& m) {

@@ -81,13 +81,16 @@ def test_geometry_sampling_is_the_truth(shadows):
 
 
 def test_reconstruct_equals_the_occluders(city, shadows):
-    """Reconstructing the light cameras' NRR images gives the study's occluders: the same
-    samples and triangle count (and, meshes concatenated, the same triangles)."""
+    """Reconstructing the light cameras' NRR images with planar runs merged gives the study's
+    occluders: the same samples and triangle count (and, meshes concatenated, the same
+    triangles); unmerged, more triangles."""
     r = shadows.render("nrr", ref_res=SIZE)
     cams = shadows.light_cameras("nrr", ref_res=SIZE)
     assert len(cams) == 4 and all(c.width == SIZE for c in cams)
-    meshes = proxima.reconstruct(city, cams, "nrr-pixel", reconstruction="hybrid")
+    meshes = proxima.reconstruct(city, cams, "nrr-pixel", reconstruction="hybrid", merge_planar_runs=True)
     assert len(meshes) == 4
+    unmerged = proxima.reconstruct(city, cams, "nrr-pixel", reconstruction="hybrid")
+    assert sum(len(m["triangles"]) for m in unmerged) > sum(len(m["triangles"]) for m in meshes)
     assert sum(m["samples"] for m in meshes) == r["stats"]["reference_samples"]
     assert sum(len(m["triangles"]) for m in meshes) == r["stats"]["occluder_triangles"]
     offset, positions, triangles = 0, [], []

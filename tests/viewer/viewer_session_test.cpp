@@ -83,7 +83,7 @@ TEST(ViewerSession, BadKeysUnavailableSlotsAndResizesDoNotBreakIt) {
   ViewerSession s = small_session();
   s.frame(0.03f);
   const int before = s.status().technique;
-  for (const char* key : {"", "f13", "9", "0", "\xff", "backspace", "Ü"}) s.key_down(key), s.key_up(key);
+  for (const char* key : {"", "f13", "0", "\xff", "backspace", "Ü"}) s.key_down(key), s.key_up(key);
   EXPECT_EQ(s.status().technique, before);
   const int gibr = index_of(s, "gibr");
   ASSERT_GE(gibr, 0);
