@@ -595,17 +595,21 @@ GibrOptions gibr_options(const OptionValues& options) { return apply_options("gi
 
 namespace {
 
+// The value of a command's --method, or "".
+std::string command_method(const std::vector<std::string>& a) {
+  for (size_t i = 1; i + 1 < a.size(); ++i)
+    if (a[i] == "--method") return a[i + 1];
+  return "";
+}
+
 // The catalog study of a command and the arguments after the command's name.
 std::pair<std::string, size_t> command_study(const std::vector<std::string>& a) {
   if (a.empty()) fail_input("an empty command");
-  auto method = [&]() -> std::string {
-    for (size_t i = 1; i + 1 < a.size(); ++i)
-      if (a[i] == "--method") return a[i + 1];
-    return "";
-  };
   if (a[0] == "reflect") {
-    const std::string m = method();
-    return {m == "temporal" ? "temporal_reflect" : m == "cluster" ? "cluster_reflect" : "envmap_reflect", 1};
+    const std::string m = command_method(a);
+    // --method ssr is the cluster study with screen-space reflections beside it
+    const bool cluster = m == "cluster" || m == "ssr";
+    return {m == "temporal" ? "temporal_reflect" : cluster ? "cluster_reflect" : "envmap_reflect", 1};
   }
   if (a[0] == "bench" && a.size() > 1 && (a[1] == "raster" || a[1] == "trace")) return {a[1] + "_bench", 2};
   static const std::map<std::string, std::string> kCommands{
@@ -675,6 +679,7 @@ CatalogRun catalog_run_from_command(const std::vector<std::string>& a) {
     else if (!command_flag) run.options[key] = parse_option(*info, value, flag);
   }
   if (!floors.empty()) run.scene += ":floors=" + floors;
+  if (name == "cluster_reflect" && command_method(a) == "ssr") run.options["ssr"] = true;
   if (name == "sampling" && !run.options.count("height") && run.options.count("width"))
     run.options["height"] = run.options["width"];
   return run;

@@ -126,6 +126,10 @@ TEST(SweepManifest, CommandsMapToCatalogRuns) {
   EXPECT_EQ(std::get<std::int64_t>(t.options.at("glossy_rays")), 8);
   EXPECT_TRUE(std::get<bool>(t.options.at("compare")));
   EXPECT_FALSE(t.options.contains("method"));
+  EXPECT_FALSE(t.options.contains("ssr"));
+  const study::CatalogRun ssr = study::catalog_run_from_command({"reflect", "--method", "ssr", "--scene", "bathroom"});
+  EXPECT_EQ(ssr.study, "cluster_reflect");
+  EXPECT_TRUE(std::get<bool>(ssr.options.at("ssr")));
   const study::CatalogRun v =
       study::catalog_run_from_command({"visibility", "--scene", "building", "--floors", "3", "--no-oracle"});
   EXPECT_EQ(v.scene, "building:floors=3");
