@@ -209,7 +209,7 @@ std::vector<TechniquePoint> technique_points(const std::string& technique, const
     return &p.back();
   };
   if (technique == "envmap") {
-    for (const char* method : {"envmap", "rectified", "average", "layered"}) {
+    for (const char* method : {"envmap", "rectified", "average", "layered", "boxprobe"}) {
       TechniquePoint* t = point(method, m(std::string(method) + "_ms"), m("reference_ms"),
                                 m(std::string(method) + "_mae"), "MAE 0–255");
       t->approximation_build_ms = m(std::string(method) + "_with_build_ms") - t->ms;

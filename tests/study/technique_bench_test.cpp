@@ -38,16 +38,19 @@ TEST(TechniqueBench, EnvmapPointsComeFromTheStudysMetrics) {
       {"reference_ms", 300},        {"envmap_ms", 10},        {"envmap_with_build_ms", 610}, {"envmap_mae", 20},
       {"rectified_ms", 20},         {"rectified_with_build_ms", 620}, {"rectified_mae", 1},
       {"average_ms", 12},           {"average_with_build_ms", 615},   {"average_mae", 11},
-      {"layered_ms", 600},          {"layered_with_build_ms", 1400},  {"layered_mae", 0.5}};
+      {"layered_ms", 600},          {"layered_with_build_ms", 1400},  {"layered_mae", 0.5},
+      {"boxprobe_ms", 9},           {"boxprobe_with_build_ms", 609},  {"boxprobe_mae", 1.3}};
   const auto points = study::technique_points("envmap", "room-reflector", "cube size", 256, true,
                                               [&](const std::string& n) { return m.at(n); });
-  ASSERT_EQ(points.size(), 4u);
+  ASSERT_EQ(points.size(), 5u);
   EXPECT_EQ(points[1].method, "rectified");
   EXPECT_EQ(points[1].ms, 20);
   EXPECT_EQ(points[1].reference_ms, 300);
   EXPECT_EQ(points[1].approximation_build_ms, 600);
   EXPECT_EQ(points[1].error, 1);
   EXPECT_EQ(points[3].approximation_build_ms, 800);
+  EXPECT_EQ(points[4].method, "boxprobe");
+  EXPECT_EQ(points[4].error, 1.3);
 }
 
 TEST(TechniqueBench, RatiosAndTheSettingsThatBeatEmbree) {
