@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "proxima/core/parallel.h"
 #include "proxima/scene/light.h"
 
 namespace proxima {
@@ -38,20 +37,6 @@ EnvLookup box_probe_lookup(const DistanceCubeMap& map, const Environment& env, v
   r.color = s.empty ? environment_radiance(env, dir) : s.color;
   r.object = s.object;
   return r;
-}
-
-std::vector<vec3> box_probe_frame_reflections(const Scene& scene, const ReflectionFrame& frame,
-                                              const DistanceCubeMap& map, const Bounds3& box) {
-  std::vector<vec3> out(frame.sample_count(), vec3(0.0f));
-  parallel_for(frame.sample_count(), 256, [&](size_t b, size_t e) {
-    for (size_t i = b; i < e; ++i) {
-      vec3 sum(0.0f);
-      for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r)
-        sum += box_probe_lookup(map, scene.environment, frame.origin[i], frame.direction[r], box).color;
-      out[i] = sum / float(frame.first_ray[i + 1] - frame.first_ray[i]);
-    }
-  });
-  return out;
 }
 
 }  // namespace proxima

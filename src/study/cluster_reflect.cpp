@@ -158,7 +158,7 @@ void run_ssr(const Scene& scene, const ClusterReflectOptions& o, const DistanceC
   f.ssr = render_ssr_reflections(scene, f.frame, o.ssr_options, {&map, box}, bounds);
   ssr_ms.push_back(step1 + w.elapsed_ms());
   w.restart();
-  f.box_radiance = box_probe_frame_reflections(scene, f.frame, map, box);
+  f.box_radiance = envmap_frame_reflections(scene, f.frame, map, EnvmapMethod::BoxProbe, {}, box);
   box_ms.push_back(step1 + w.elapsed_ms());
 }
 

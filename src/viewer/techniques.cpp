@@ -116,7 +116,7 @@ Technique baseline_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<Re
       reflected = std::move(r.radiance);
     } else {
       Stopwatch w;
-      reflected = box_probe_frame_reflections(vs->scene, frame, map, box);
+      reflected = envmap_frame_reflections(vs->scene, frame, map, EnvmapMethod::BoxProbe, {}, box);
       out.steps.push_back({"box probe lookups", w.elapsed_ms()});
     }
     out.color = compose(frame, reflected, out.steps);

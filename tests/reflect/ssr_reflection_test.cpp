@@ -8,6 +8,7 @@
 #include "proxima/core/parallel.h"
 #include "proxima/eval/image_error.h"
 #include "proxima/reflect/box_probe.h"
+#include "proxima/reflect/envmap_frame_reflections.h"
 #include "proxima/reflect/envmap_reflection.h"
 #include "reflect_test_scenes.h"
 #include "test_util.h"
@@ -105,7 +106,7 @@ TEST(SsrReflection, OffScreenReflectionsFallBackToTheBoxProbeAndAreCounted) {
   EXPECT_GT(st.outcome_rays[size_t(SsrOutcome::OffScreen)], st.rays / 2);
   EXPECT_GT(double(st.fallback_samples), 0.5 * double(st.samples));
   // The count is the samples whose rays took the fallback; those with confidence 0 are the probe's.
-  const std::vector<vec3> box = box_probe_frame_reflections(scene, with_probe.frame, map, probe.box);
+  const std::vector<vec3> box = envmap_frame_reflections(scene, with_probe.frame, map, EnvmapMethod::BoxProbe, {}, probe.box);
   size_t counted = 0, zero = 0;
   for (size_t i = 0; i < st.samples; ++i) {
     counted += with_probe.ssr.confidence[i] < 1.0f;

@@ -6,12 +6,10 @@
 #pragma once
 
 #include <optional>
-#include <vector>
 
 #include "proxima/core/math.h"
 #include "proxima/reflect/distance_cube_map.h"
 #include "proxima/reflect/envmap_lookup.h"
-#include "proxima/reflect/reflection_frame.h"
 #include "proxima/scene/scene.h"
 
 namespace proxima {
@@ -28,10 +26,5 @@ std::optional<vec3> box_exit_point(const Bounds3& box, vec3 x, vec3 dir);
 // ray has no exit point, environment_radiance(dir) where the texel is empty (miss = true).
 EnvLookup box_probe_lookup(const DistanceCubeMap& map, const Environment& env, vec3 x, vec3 dir,
                            const Bounds3& box);
-
-// Per reflective sample of `frame`, the mean over its rays of box_probe_lookup from the ray
-// origin (as envmap_frame_reflections). Deterministic, parallel.
-std::vector<vec3> box_probe_frame_reflections(const Scene& scene, const ReflectionFrame& frame,
-                                              const DistanceCubeMap& map, const Bounds3& box);
 
 }  // namespace proxima
