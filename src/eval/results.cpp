@@ -1,6 +1,7 @@
 #include "proxima/eval/results.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -102,7 +103,10 @@ Results read_results_json(const std::filesystem::path& path) {
     auto number = [](const nlohmann::json& v) { return v.is_null() ? std::nan("") : v.get<double>(); };
     Results r;
     r.command = j.at("command").get<std::vector<std::string>>();
-    r.threads = j.at("threads").get<int>();
+    const nlohmann::json& threads = j.at("threads");
+    if (!threads.is_number_unsigned() || threads.get<std::uint64_t>() > 1u << 20)
+      fail_input(path.string() + ": \"threads\" must be an integer in 0..1048576");
+    r.threads = int(threads.get<std::uint64_t>());
     r.build = j.value("build", std::string());
     r.commit = j.value("commit", std::string());
     if (j.contains("machine")) r.cpu = j["machine"].value("cpu", std::string());

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -239,6 +240,15 @@ void read_lens(const nlohmann::json& p, CalibratedPhoto& c, const std::filesyste
   }
 }
 
+// An image dimension: a JSON integer in 1..65536 (a real number or a huge value would not
+// convert to int safely).
+int image_size(const nlohmann::json& v, const std::string& where) {
+  if (!v.is_number_integer() || v.get<std::int64_t>() < 1 || v.get<std::int64_t>() > 65536 ||
+      (v.is_number_unsigned() && v.get<std::uint64_t>() > 65536))
+    fail_input(where + "width and height must be integers in 1..65536");
+  return int(v.get<std::int64_t>());
+}
+
 }  // namespace
 
 std::vector<CalibratedPhoto> read_camera_file(const std::filesystem::path& path) {
@@ -247,13 +257,14 @@ std::vector<CalibratedPhoto> read_camera_file(const std::filesystem::path& path)
   std::vector<CalibratedPhoto> out;
   try {
     const nlohmann::json j = nlohmann::json::parse(in);
-    if (j.value("format", "") != "proxima-cameras" || j.value("version", 0) != 1)
+    if (j.value("format", "") != "proxima-cameras" || j.value("version", nlohmann::json(0)) != 1)
       fail_input("camera file " + path.string() + ": not a proxima-cameras version 1 file");
     for (const auto& p : j.at("photos")) {
       CalibratedPhoto c;
       c.image = p.at("image").get<std::string>();
-      c.camera.width = p.at("width").get<int>();
-      c.camera.height = p.at("height").get<int>();
+      const std::string where = "camera file " + path.string() + ": ";
+      c.camera.width = image_size(p.at("width"), where);
+      c.camera.height = image_size(p.at("height"), where);
       c.camera.vfov_deg = p.at("vfov_deg").get<float>();
       const auto& pos = p.at("position");
       const auto& q = p.at("orientation");

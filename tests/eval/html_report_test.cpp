@@ -82,6 +82,12 @@ TEST(HtmlReport, MalformedResultsJsonNamesTheFile) {
     EXPECT_NE(std::string(e.what()).find("bad.json"), std::string::npos);
   }
   EXPECT_THROW(read_results_json(dir.path / "missing.json"), InputError);
+  // A thread count no int holds is refused, not converted.
+  for (const char* threads : {"1e300", "-1", "2.5", "\"4\""}) {
+    std::ofstream(dir.path / "bad.json")
+        << "{\"command\": [], \"threads\": " << threads << ", \"metrics\": {}, \"tables\": []}";
+    EXPECT_THROW(read_results_json(dir.path / "bad.json"), InputError) << threads;
+  }
 }
 
 }  // namespace

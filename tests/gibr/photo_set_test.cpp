@@ -60,7 +60,12 @@ TEST(GibrCameraFile, MalformedFilesNameTheFile) {
                            "{\"format\": \"proxima-cameras\", \"version\": 1, \"photos\": [{\"image\": \"a.png\"}]}",
                            "{\"format\": \"proxima-cameras\", \"version\": 1, \"photos\": [{\"image\": \"a.png\", "
                            "\"width\": 0, \"height\": 2, \"vfov_deg\": 60, \"position\": [0,0,0], "
-                           "\"orientation\": [1,0,0,0]}]}"}) {
+                           "\"orientation\": [1,0,0,0]}]}",
+                           // Numbers no int holds are refused, not converted.
+                           "{\"format\": \"proxima-cameras\", \"version\": 1, \"photos\": [{\"image\": \"a.png\", "
+                           "\"width\": 1e300, \"height\": 2, \"vfov_deg\": 60, \"position\": [0,0,0], "
+                           "\"orientation\": [1,0,0,0]}]}",
+                           "{\"format\": \"proxima-cameras\", \"version\": 1e300, \"photos\": []}"}) {
     write_file(p, text);
     EXPECT_NE(error_of([&] { read_camera_file(p); }).find("bad.json"), std::string::npos) << text;
   }
