@@ -6,7 +6,7 @@
 set -euo pipefail
 dir=$1
 proxima=$2
-mkdir -p "$dir"/{scene_file,camera_path,gibr_cameras,obj,ply,gltf,png,jpeg,exr,winged_pair,results}
+mkdir -p "$dir"/{scene_file,camera_path,gibr_cameras,photo_bin,obj,ply,gltf,png,jpeg,exr,winged_pair,results}
 
 # ---- JSON scene files ---------------------------------------------------------
 cat >"$dir/scene_file/objects.json" <<'J'
@@ -107,3 +107,12 @@ J
 "$proxima" visibility --scene "$out/box.json" --frames 1 --width 16 --height 12 --no-oracle --no-images --threads 1 \
   --save "$dir/winged_pair/box.wp" --out "$out/box" >/dev/null
 cp "$out/results.json" "$dir/results/render.json"
+
+# ---- a GIBR photograph item's photo.bin, written by proxima sweep ----------------------
+# The settings photo_bin_fuzz.cpp prepares its model with: rooms, one 32×24 photograph.
+cat >"$out/gibr.json" <<'J'
+{"runs": [{"study": "gibr", "scene": "rooms", "options": {"photos": 1, "photo_width": 32, "photo_height": 24,
+  "supersample": 1, "width": 32, "height": 24, "frames": 1, "fps_repeat": 1}}]}
+J
+"$proxima" sweep "$out/gibr.json" --out "$out/sweep" --threads 1 >/dev/null
+cp "$out/sweep/items/i000_gibr_photo/photo.bin" "$dir/photo_bin/rooms.bin"

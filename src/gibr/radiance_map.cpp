@@ -621,6 +621,27 @@ RadianceMaps build_radiance_maps(const ModelPolygons& model, double texel, std::
   return maps;
 }
 
+namespace {
+
+// Layers can come from outside the process (a sweep's photo.bin): each must fit its polygon's
+// texel grid before the merge indexes with it.
+void check_layer(const std::vector<TexelGrid>& grids, size_t photos, uint32_t polygon, const SampleLayer& L) {
+  auto fail = [&](const std::string& what) {
+    fail_input("gibr: a photograph's layer of polygon " + std::to_string(polygon) + " " + what);
+  };
+  if (polygon >= grids.size()) fail("names no polygon of the model");
+  const TexelGrid& g = grids[polygon];
+  if (L.photo >= photos) fail("names no photograph");
+  if (L.x0 < 0 || L.y0 < 0 || L.width < 0 || L.height < 0 || L.x0 > g.width - L.width || L.y0 > g.height - L.height ||
+      L.rgba.size() != size_t(L.width) * size_t(L.height))
+    fail("lies outside its texel grid");
+  const size_t blocks = size_t(L.reach_columns()) * size_t((L.height + kReachBlock - 1) / kReachBlock);
+  if ((!L.reach.empty() && L.reach.size() != blocks) || (!L.reach_mixed.empty() && L.reach_mixed.size() != blocks))
+    fail("has reach tables of the wrong size");
+}
+
+}  // namespace
+
 RadianceMaps merge_photo_layers(const std::vector<TexelGrid>& grids, std::span<const Camera> cameras,
                                 std::vector<PhotoLayers> per) {
   Stopwatch watch;
@@ -632,7 +653,10 @@ RadianceMaps merge_photo_layers(const std::vector<TexelGrid>& grids, std::span<c
   s.photos = cameras.size();
   for (PhotoLayers& pl : per) {
     s.pixels_mapped += pl.pixels_mapped;
-    for (auto& [p, layer] : pl.layers) maps.layers[p].push_back(std::move(layer));
+    for (auto& [p, layer] : pl.layers) {
+      check_layer(grids, cameras.size(), p, layer);
+      maps.layers[p].push_back(std::move(layer));
+    }
   }
   for (size_t p = 0; p < maps.layers.size(); ++p) {
     const TexelGrid& g = maps.grids[p];

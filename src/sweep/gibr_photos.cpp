@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "proxima/core/error.h"
 #include "proxima/study/gibr.h"
 
 namespace proxima::sweep {
@@ -30,8 +31,10 @@ struct Writer {
 struct Reader {
   std::string_view in;
   size_t at = 0;
-  void need(size_t n) const {
-    if (in.size() - at < n) throw std::runtime_error("sweep: truncated photo.bin");
+  [[noreturn]] static void fail(const std::string& what) { fail_input("sweep: photo.bin: " + what); }
+  // `n` elements of `size` bytes are left (no overflow for any n).
+  void need(uint64_t n, size_t size = 1) const {
+    if (n > (in.size() - at) / size) fail("truncated");
   }
   template <typename T>
     requires std::is_trivially_copyable_v<T>
@@ -42,19 +45,24 @@ struct Reader {
     at += sizeof v;
     return v;
   }
+  bool get_bool() {
+    const uint8_t b = get<uint8_t>();
+    if (b > 1) fail("a flag that is neither 0 nor 1");
+    return b == 1;
+  }
   // n elements of T into `dst` (sized n first by the caller).
   template <typename T>
   void get_into(std::span<T> dst) {
     const uint64_t n = get<uint64_t>();
-    if (n != dst.size()) throw std::runtime_error("sweep: photo.bin: an array of the wrong size");
-    need(n * sizeof(T));
-    std::memcpy(dst.data(), in.data() + at, n * sizeof(T));
+    if (n != dst.size()) fail("an array of the wrong size");
+    need(n, sizeof(T));
+    if (n) std::memcpy(dst.data(), in.data() + at, n * sizeof(T));
     at += n * sizeof(T);
   }
   template <typename T>
   std::vector<T> get_vector() {
     const uint64_t n = get<uint64_t>();
-    need(n * sizeof(T));
+    need(n, sizeof(T));
     std::vector<T> v(n);
     if (n) std::memcpy(v.data(), in.data() + at, n * sizeof(T));
     at += n * sizeof(T);
@@ -96,7 +104,7 @@ gibr::PhotoLayers get_layers(Reader& r) {
     L.reach = r.get_vector<uint8_t>();
     L.reach_mixed = r.get_vector<uint8_t>();
     if (L.width < 0 || L.height < 0 || L.rgba.size() != size_t(L.width) * size_t(L.height))
-      throw std::runtime_error("sweep: photo.bin: a layer of the wrong size");
+      Reader::fail("a layer of the wrong size");
     p.layers.emplace_back(polygon, std::move(L));
   }
   return p;
@@ -129,13 +137,15 @@ gibr::PhotoMapping unpack_photo_mapping(std::string_view bytes) {
   Reader r{bytes};
   gibr::PhotoMapping m;
   const int width = r.get<int>(), height = r.get<int>(), channels = r.get<int>();
-  if (width < 0 || height < 0 || channels < 0 || width > 65536 || height > 65536 || channels > 4)
-    throw std::runtime_error("sweep: photo.bin: a bad image size");
+  if (width < 0 || height < 0 || channels < 0 || width > 65536 || height > 65536 || channels > 4 ||
+      (channels == 0 && (width != 0 || height != 0)))
+    Reader::fail("a bad image size");
+  r.need(sizeof(uint64_t) + size_t(width) * size_t(height) * size_t(channels) * sizeof(float));  // before allocating
   if (channels > 0) m.photo = ImageF(width, height, channels);
   r.get_into(m.photo.data());
   m.silhouette_edges = r.get<double>();
   visibility::MapCheck& c = m.check;
-  c.pass = r.get<bool>();
+  c.pass = r.get_bool();
   c.reason = r.get_string();
   c.area_ratio = r.get<double>();
   for (size_t* v : {&c.samples, &c.skipped_near_edge, &c.uncovered, &c.multiply_covered, &c.mismatches,
@@ -145,7 +155,7 @@ gibr::PhotoMapping unpack_photo_mapping(std::string_view bytes) {
   m.layers = get_layers(r);
   m.item_layers = get_layers(r);
   for (double* t : {&m.photo_ms, &m.vismap_ms, &m.itembuffer_ms, &m.map_ms, &m.item_map_ms}) *t = r.get<double>();
-  if (r.at != bytes.size()) throw std::runtime_error("sweep: photo.bin: trailing bytes");
+  if (r.at != bytes.size()) Reader::fail("trailing bytes");
   return m;
 }
 

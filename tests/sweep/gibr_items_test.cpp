@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "proxima/core/error.h"
 #include "proxima/gibr/gibr_model.h"
 #include "proxima/scene/load.h"
 #include "proxima/study/gibr.h"
@@ -64,8 +65,43 @@ TEST(SweepGibr, PhotographMappingRoundTripsThroughItsBytes) {
   EXPECT_TRUE(b.photo == a.photo);
   EXPECT_EQ(b.layers.layers.size(), a.layers.layers.size());
   EXPECT_EQ(b.layers.layers.front().second.rgba, a.layers.layers.front().second.rgba);
-  EXPECT_THROW(unpack_photo_mapping(std::string_view(bytes).substr(0, bytes.size() - 1)), std::runtime_error);
-  EXPECT_THROW(unpack_photo_mapping(bytes + "x"), std::runtime_error);
+  EXPECT_THROW(unpack_photo_mapping(std::string_view(bytes).substr(0, bytes.size() - 1)), InputError);
+  EXPECT_THROW(unpack_photo_mapping(bytes + "x"), InputError);
+}
+
+// photo.bin is read from a sweep directory: a layer that does not fit the model it is merged
+// into is refused before the merge indexes with it.
+TEST(SweepGibr, ALayerOutsideTheModelIsRefusedAtTheMerge) {
+  const study::GibrOptions o = study::gibr_options(gibr_manifest().items[0].options);
+  const gibr::GibrModelOptions mo = study::gibr_model_options(o);
+  const gibr::GibrModel g = gibr::prepare_gibr_model(load_scene("rooms"), mo);
+  const gibr::PhotoMapping good = gibr::map_photograph(g, 1, mo);
+  ASSERT_FALSE(good.layers.layers.empty());
+  auto merge = [&](void (*corrupt)(gibr::PhotoMapping&, const gibr::GibrModel&)) {
+    gibr::GibrModel m;
+    m.cameras = g.cameras;
+    m.maps.grids = g.maps.grids;
+    std::vector<gibr::PhotoMapping> photos;
+    for (size_t i = 0; i < g.cameras.size(); ++i) {
+      photos.push_back(unpack_photo_mapping(pack_photo_mapping(good)));
+      if (i == 0) corrupt(photos.back(), g);
+    }
+    gibr::add_photographs(m, std::move(photos), mo);
+  };
+  EXPECT_NO_THROW(merge([](gibr::PhotoMapping&, const gibr::GibrModel&) {}));
+  EXPECT_THROW(merge([](gibr::PhotoMapping& p, const gibr::GibrModel& m) {
+                 p.layers.layers.front().first = uint32_t(m.maps.grids.size());
+               }),
+               InputError);
+  EXPECT_THROW(merge([](gibr::PhotoMapping& p, const gibr::GibrModel& m) {
+                 auto& [polygon, layer] = p.layers.layers.front();
+                 layer.x0 = m.maps.grids[polygon].width - layer.width + 1;
+               }),
+               InputError);
+  EXPECT_THROW(merge([](gibr::PhotoMapping& p, const gibr::GibrModel& m) {
+                 p.item_layers.layers.front().second.photo = uint32_t(m.cameras.size());
+               }),
+               InputError);
 }
 
 TEST(SweepGibr, AFailedPhotographFailsItsRunsItemAndTheSweepGoesOn) {
