@@ -1,6 +1,7 @@
 // study/technique_bench.h: the ratio table, the crossover column and the error-vs-ms curves
 // follow from the points; the points follow from each study's metrics; bad flags are named;
-// one real run (visibility) gives a finite, honest point.
+// one real run (visibility) gives a finite, honest point; a real cluster run with SSR gives
+// SSR's point beside the cluster method's.
 #include "proxima/study/technique_bench.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +12,8 @@
 #include <variant>
 
 #include "proxima/core/error.h"
+#include "proxima/scene/load.h"
+#include "proxima/study/cluster_reflect.h"
 #include "test_util.h"
 
 namespace proxima {
@@ -97,6 +100,66 @@ TEST(TechniqueBench, RatiosAndTheSettingsThatBeatEmbree) {
   ASSERT_EQ(r.sections.size(), 1u);
   ASSERT_EQ(r.sections[0].plots.size(), 1u);
   EXPECT_EQ(r.sections[0].plots[0].table, c.title);
+}
+
+// A cluster run with ssr (two small frames of room-reflector's first path, as the cluster
+// study's own tests): SSR's point carries the study's SSR error and frame time, Embree the
+// cluster point's, and the fallback's cube-map build as preparation; without ssr, no point.
+TEST(TechniqueBench, ClusterRunWithSsrGivesAnSsrPoint) {
+  const Scene scene = load_scene("room-reflector");
+  study::ClusterReflectOptions o;
+  o.width = 48;
+  o.height = 32;
+  o.camera.path = "0";
+  o.frames = 2;
+  o.reflection.supersample = 1;
+  o.cube_size = 16;
+  o.compare = true;
+  o.ssr = true;
+  const std::map<std::string, double> m = study::run_cluster_reflect(scene, o, {}).metrics;
+  auto get = [&](const std::string& n) { return m.count(n) ? m.at(n) : std::nan(""); };
+  const auto points = study::technique_points("cluster", "room-reflector", "resolution scale", 1, true, get);
+  ASSERT_EQ(points.size(), 2u);
+  const TechniquePoint& cluster = points[0];
+  const TechniquePoint& ssr = points[1];
+  EXPECT_EQ(cluster.method, "room-reflector");
+  EXPECT_EQ(ssr.method, "ssr room-reflector");
+  EXPECT_EQ(ssr.knob, "max steps");
+  EXPECT_EQ(ssr.knob_value, SsrOptions{}.max_steps);
+  EXPECT_TRUE(std::isfinite(ssr.error));
+  EXPECT_GT(ssr.error, 0);
+  EXPECT_EQ(ssr.error, (m.at("ssr_mae_r") + m.at("ssr_mae_g") + m.at("ssr_mae_b")) / 3.0);
+  EXPECT_NE(ssr.error, cluster.error);
+  EXPECT_TRUE(std::isfinite(ssr.ms));
+  // The frame time holds the depth passes and the walk (with shading and fallback lookups).
+  EXPECT_GE(ssr.ms, m.at("ssr_depth_passes_ms_avg") + m.at("ssr_trace_ms_avg"));
+  EXPECT_GT(ssr.ms, 0);
+  EXPECT_EQ(ssr.reference_ms, cluster.reference_ms);
+  EXPECT_EQ(ssr.reference_build_ms, cluster.reference_build_ms);
+  EXPECT_EQ(ssr.approximation_build_ms, m.at("envmap_build_ms_avg"));
+  EXPECT_GT(ssr.approximation_build_ms, 0);
+
+  const Results r = study::technique_bench_results(points);
+  EXPECT_EQ(r.metrics.at("cluster_ssr_room-reflector_error"), ssr.error);
+  EXPECT_EQ(r.metrics.at("cluster_ssr_room-reflector_ms"), ssr.ms);
+  EXPECT_EQ(table_starting(r, "Techniques vs Embree").rows.size(), 2u);
+  const Table& c = table_starting(r, "Error vs ms: cluster");
+  const size_t col = column(c, "ssr room-reflector");
+  size_t with_ssr = 0;
+  for (const auto& row : c.rows)
+    if (!std::isnan(std::get<double>(row[col]))) {
+      ++with_ssr;
+      EXPECT_EQ(std::get<double>(row[col]), ssr.error);
+      EXPECT_EQ(std::get<std::string>(row[1]), "max steps 256 (demo)");
+    }
+  EXPECT_EQ(with_ssr, 1u);
+
+  o.ssr = false;
+  const std::map<std::string, double> plain = study::run_cluster_reflect(scene, o, {}).metrics;
+  EXPECT_EQ(study::technique_points("cluster", "room-reflector", "resolution scale", 1, true,
+                                    [&](const std::string& n) { return plain.count(n) ? plain.at(n) : std::nan(""); })
+                .size(),
+            1u);
 }
 
 TEST(TechniqueBench, BadFlagsAreNamed) {

@@ -1,5 +1,7 @@
-// Every technique beside its Embree reference, timed side by side: env maps (each method),
-// cluster reflections, temporal reuse, depth-image sampling, soft shadows and visibility
+// Every technique beside its Embree reference, timed side by side: env maps (each method,
+// the box probe among them), cluster reflections (with screen-space reflections and their
+// box-probe fallback on the same frames and rays at the demo's setting), temporal reuse,
+// depth-image sampling, soft shadows and visibility
 // maps, each at the demo's settings (its section of `proxima demo`) and at a few other
 // settings of its main knob (cube size, depth-image resolution, key-frame threshold, shadow-
 // map resolution, image size), so a user can read error against milliseconds and choose.
@@ -55,6 +57,9 @@ struct TechniquePoint {
 // The points one run of `technique`'s study gives at one setting, from its metrics `m`
 // (looked up by the study's metric names; for sampling and visibility also "embree_ms" and
 // "embree_build_ms", Embree's item buffers of the same views). `where` names the scene.
+// A cluster run with ssr (finite "ssr_ms_avg") gives a second point, method "ssr <where>",
+// knob "max steps": ms ssr_ms_avg, error the mean of ssr_mae_r/g/b, preparation the
+// fallback's cube-map build (envmap_build_ms_avg), Embree as the cluster point's.
 std::vector<TechniquePoint> technique_points(const std::string& technique, const std::string& where,
                                              const std::string& knob, double knob_value, bool demo,
                                              const std::function<double(const std::string&)>& m);
