@@ -385,7 +385,10 @@ Results technique_bench_results(const std::vector<TechniquePoint>& points) {
                   "Embree's BVH build is shown where it was timed (0 = not timed). The last column "
                   "lists the other measured settings at which the technique beats Embree. The plots "
                   "show error against milliseconds for each setting measured, beside Embree's point "
-                  "(error 0).",
+                  "(error 0). The cluster plot also shows the engines' baseline, screen-space "
+                  "reflections with the box-probe fallback (ssr), on the same frames and rays: its ms "
+                  "holds the G-buffer step, its depth, back-face and pyramid passes, the walk and the "
+                  "fallback lookups; the fallback's cube-map build is its preparation.",
                   {ratios.title}, {}, {"proxima bench techniques"}};
   r.tables.push_back(ratios);
   for (const std::string& t : technique_bench_names()) {
