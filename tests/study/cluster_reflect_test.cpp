@@ -19,19 +19,6 @@ namespace proxima {
 
 namespace {
 
-// Two frames of room-reflector's first path, 48×32, one sample per pixel, with --compare.
-study::ClusterReflectOptions tiny_options() {
-  study::ClusterReflectOptions o;
-  o.width = 48;
-  o.height = 32;
-  o.camera.path = "0";
-  o.frames = 2;
-  o.reflection.supersample = 1;
-  o.cube_size = 16;
-  o.compare = true;
-  return o;
-}
-
 double cell(const Results& r, const std::string& title_start, size_t row, const std::string& column) {
   for (const Table& t : r.tables) {
     if (t.title.rfind(title_start, 0) != 0) continue;
@@ -46,7 +33,7 @@ double cell(const Results& r, const std::string& title_start, size_t row, const 
 
 TEST(ClusterReflectStudy, ErrorsAgainstEmbreeOnTheSameRaysAreSmall) {
   const Scene scene = load_scene("room-reflector");
-  const Results r = study::run_cluster_reflect(scene, tiny_options(), {});
+  const Results r = study::run_cluster_reflect(scene, tiny_cluster_options(), {});
   const auto& m = r.metrics;
   EXPECT_EQ(m.at("frames"), 2.0);
   EXPECT_EQ(m.at("frames_with_reflections"), 2.0);
@@ -63,7 +50,7 @@ TEST(ClusterReflectStudy, ErrorsAgainstEmbreeOnTheSameRaysAreSmall) {
 
 TEST(ClusterReflectStudy, OcclusionCausesPartitionTheOcclusionErrors) {
   const Scene scene = load_scene("room-reflector");
-  const Results r = study::run_cluster_reflect(scene, tiny_options(), {});
+  const Results r = study::run_cluster_reflect(scene, tiny_cluster_options(), {});
   double causes = 0.0;
   for (const char* name : {"occlusion_behind_near_plane_pct_avg", "occlusion_outside_image_pct_avg",
                            "occlusion_own_curved_reflector_pct_avg", "occlusion_hidden_in_image_pct_avg"})
@@ -80,7 +67,7 @@ TEST(ClusterReflectStudy, SameMetricsAndImagesForOneAndTwoThreads) {
   for (int threads : {1, 2}) {
     ThreadLimit limit(threads);
     runs[threads - 1] =
-        study::run_cluster_reflect(scene, tiny_options(), {dir.path / std::to_string(threads)});
+        study::run_cluster_reflect(scene, tiny_cluster_options(), {dir.path / std::to_string(threads)});
   }
   EXPECT_GT(expect_same_metrics(runs[0], runs[1]), 30u);
   EXPECT_EQ(runs[0].images.size(), 6u);
@@ -91,7 +78,7 @@ TEST(ClusterReflectStudy, SameMetricsAndImagesForOneAndTwoThreads) {
 // method's and the comparison's stay as they were.
 TEST(ClusterReflectStudy, SsrAddsItsFiguresAndChangesNoOther) {
   const Scene scene = load_scene("room-reflector");
-  study::ClusterReflectOptions o = tiny_options();
+  study::ClusterReflectOptions o = tiny_cluster_options();
   const Results plain = study::run_cluster_reflect(scene, o, {});
   o.ssr = true;
   const Results with_ssr = study::run_cluster_reflect(scene, o, {});
@@ -124,20 +111,20 @@ TEST(ClusterReflectStudy, BadOptionsNameTheFlag) {
     }
     return "no error";
   };
-  study::ClusterReflectOptions o = tiny_options();
+  study::ClusterReflectOptions o = tiny_cluster_options();
   o.width = kMaxImageSide + 1;
   EXPECT_NE(message(o).find("--width"), std::string::npos);
-  o = tiny_options();
+  o = tiny_cluster_options();
   o.cube_size = 0;
   EXPECT_NE(message(o).find("--cube-size"), std::string::npos);
-  o = tiny_options();
+  o = tiny_cluster_options();
   o.camera.path = "nope";
   EXPECT_NE(message(o).find("--path"), std::string::npos);
-  o = tiny_options();
+  o = tiny_cluster_options();
   o.compare = false;
   o.full_reference = true;
   EXPECT_NE(message(o).find("--full-reference"), std::string::npos);
-  o = tiny_options();
+  o = tiny_cluster_options();
   o.camera.path.clear();  // the scene camera
   try {
     study::validate(o, load_scene("maze"));  // no reflective object

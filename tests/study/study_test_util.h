@@ -1,5 +1,5 @@
-// Checks the study tests share: two runs of a study (e.g. at 1 and 2 threads) agree on every
-// deterministic metric and write the same image bytes.
+// What the study tests share: two runs of a study (e.g. at 1 and 2 threads) agree on every
+// deterministic metric and write the same image bytes; a tiny cluster-study run.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -11,6 +11,7 @@
 #include <string>
 
 #include "proxima/eval/results.h"
+#include "proxima/study/cluster_reflect.h"
 
 namespace proxima {
 
@@ -41,6 +42,19 @@ inline void expect_same_images(const Results& a, const Results& b, const std::fi
                                const std::filesystem::path& dir_b) {
   ASSERT_EQ(a.images, b.images);
   for (const auto& [role, file] : a.images) EXPECT_EQ(file_bytes(dir_a / file), file_bytes(dir_b / file)) << role;
+}
+
+// Two frames of room-reflector's first path, 48×32, one sample per pixel, with --compare.
+inline study::ClusterReflectOptions tiny_cluster_options() {
+  study::ClusterReflectOptions o;
+  o.width = 48;
+  o.height = 32;
+  o.camera.path = "0";
+  o.frames = 2;
+  o.reflection.supersample = 1;
+  o.cube_size = 16;
+  o.compare = true;
+  return o;
 }
 
 }  // namespace proxima

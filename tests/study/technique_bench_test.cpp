@@ -14,6 +14,7 @@
 #include "proxima/core/error.h"
 #include "proxima/scene/load.h"
 #include "proxima/study/cluster_reflect.h"
+#include "study_test_util.h"
 #include "test_util.h"
 
 namespace proxima {
@@ -102,19 +103,11 @@ TEST(TechniqueBench, RatiosAndTheSettingsThatBeatEmbree) {
   EXPECT_EQ(r.sections[0].plots[0].table, c.title);
 }
 
-// A cluster run with ssr (two small frames of room-reflector's first path, as the cluster
-// study's own tests): SSR's point carries the study's SSR error and frame time, Embree the
+// A tiny cluster run with ssr: SSR's point carries the study's SSR error and frame time, Embree the
 // cluster point's, and the fallback's cube-map build as preparation; without ssr, no point.
 TEST(TechniqueBench, ClusterRunWithSsrGivesAnSsrPoint) {
   const Scene scene = load_scene("room-reflector");
-  study::ClusterReflectOptions o;
-  o.width = 48;
-  o.height = 32;
-  o.camera.path = "0";
-  o.frames = 2;
-  o.reflection.supersample = 1;
-  o.cube_size = 16;
-  o.compare = true;
+  study::ClusterReflectOptions o = tiny_cluster_options();
   o.ssr = true;
   const std::map<std::string, double> m = study::run_cluster_reflect(scene, o, {}).metrics;
   auto get = [&](const std::string& n) { return m.count(n) ? m.at(n) : std::nan(""); };
