@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <variant>
 
 #include "proxima/core/error.h"
@@ -15,11 +16,9 @@
 #include "proxima/scene/camera_path.h"
 #include "proxima/scene/camera_select.h"
 #include "proxima/scene/load.h"
-#include "proxima/study/cluster_reflect.h"
-#include "proxima/study/envmap_reflect.h"
+#include "proxima/study/catalog.h"
+#include "proxima/study/demo.h"
 #include "proxima/study/sampling.h"
-#include "proxima/study/shadows.h"
-#include "proxima/study/temporal_reflect.h"
 #include "proxima/study/visibility.h"
 #include "proxima/trace/reference_renderer.h"
 
@@ -54,52 +53,43 @@ void time_item_buffers(const Scene& scene, const std::vector<Camera>& cameras, s
   m["embree_ms"] = w.elapsed_ms();
 }
 
-// --- The demo's quick settings (src/study/demo_<technique>.cpp) and the swept knobs. ---
+// --- The demo's quick settings and the swept knobs. The reflection and shadow points run the
+// demo's own study runs (study::plan_demo, through the catalog) with the knob changed, so the
+// bench cannot drift from the demo; sampling and visibility keep typed options here, since
+// Embree's item buffers need their views. ---
 
-Case envmap_case(uint64_t seed, int cube, bool demo) {
-  return {"envmap", "room-reflector", "cube size", double(cube), demo, [seed, cube] {
-            EnvmapReflectOptions o;
-            o.compare = true;
-            o.width = 512;
-            o.height = 384;
-            o.cube_size = cube;
-            o.reps = 1;
-            o.seed = seed;
-            return run_envmap_reflect(load_scene("room-reflector"), o, {}).metrics;
-          }};
+// The demo's quick run of `study` on `scene` (the first one, or the first with `option` =
+// `value`), as the catalog runs it.
+CatalogRun demo_run(uint64_t seed, const std::string& study, const std::string& scene, const std::string& option = "",
+                    const OptionValue& value = {}) {
+  DemoOptions d;
+  d.seed = seed;
+  for (const DemoStudyRun& r : plan_demo(d)) {
+    CatalogRun c = catalog_run_from_command(r.args);
+    if (c.study == study && c.scene == scene && (option.empty() || (c.options.count(option) && c.options.at(option) == value)))
+      return c;
+  }
+  throw std::logic_error("technique bench: the demo plans no " + study + " run on " + scene);
 }
 
-// At the demo's setting with SSR beside the cluster method, as the demo's section runs it (at
-// SSR's default options); SSR does not depend on the cluster images' resolution scale.
-Case cluster_case(uint64_t seed, const std::string& scene, float resolution_scale, bool demo) {
-  return {"cluster", scene + " walk", "resolution scale", resolution_scale, demo, [=] {
-            ClusterReflectOptions o;
-            o.camera.path = "walk";
-            o.frames = 900;
-            o.frame_step = 300;
-            o.width = o.height = 256;
-            o.reflection.supersample = 2;
-            o.reflection.glossy_rays = 8;
-            o.reflection.seed = seed;
-            o.cluster.resolution_scale = resolution_scale;
-            o.compare = true;
-            o.ssr = demo;
-            return run_cluster_reflect(load_scene(scene), o, {}).metrics;
-          }};
+// The value of option `name` of `run` as the study sees it (the demo's or the default).
+double option_value(const CatalogRun& run, const std::string& name) {
+  const OptionValue v = resolved_options(run.study, run.options).at(name);
+  if (const std::int64_t* i = std::get_if<std::int64_t>(&v)) return double(*i);
+  return std::get<double>(v);
 }
 
-Case temporal_case(uint64_t seed, const std::string& scene, float threshold, bool demo) {
-  return {"temporal", scene + " walk", "key-frame threshold", threshold, demo, [=] {
-            TemporalReflectOptions o;
-            o.path = "walk";
-            o.frames = 60;
-            o.width = o.height = 128;
-            o.glossy_rays = 8;
-            o.threshold = threshold;
-            o.compare = true;
-            o.seed = seed;
-            return run_temporal_reflect(load_scene(scene), o, {}).metrics;
-          }};
+// `run` with option `knob` at `value` (an int option takes it as an integer), beside its
+// Embree reference as the study times it.
+Case catalog_case(const std::string& technique, const std::string& where, const std::string& knob_name,
+                  CatalogRun run, const std::string& knob, double value) {
+  const bool demo = value == option_value(run, knob);
+  if (std::holds_alternative<std::int64_t>(resolved_options(run.study, run.options).at(knob)))
+    run.options[knob] = std::int64_t(value);
+  else
+    run.options[knob] = value;
+  return {technique, where, knob_name, value, demo,
+          [run] { return run_study(run.study, load_scene(run.scene), run.options, {}).metrics; }};
 }
 
 Case sampling_case(uint64_t seed, int size, bool demo) {
@@ -114,19 +104,6 @@ Case sampling_case(uint64_t seed, int size, bool demo) {
             std::map<std::string, double> m = run_sampling(scene, o, {}).metrics;
             time_item_buffers(scene, sampling_views(scene, o).corners, m);
             return m;
-          }};
-}
-
-Case shadows_case(int shadow_res, bool demo) {
-  return {"shadows", "city", "shadow-map side", double(shadow_res), demo, [=] {
-            ShadowsOptions o;
-            o.samplings = {ShadowSampling::Nrr, ShadowSampling::Conventional, ShadowSampling::Peeling};
-            o.light_size = 1.0f;
-            o.light_samples = 8;
-            o.ref_res = 512;
-            o.out_res = 256;
-            o.shadow_res = shadow_res;
-            return run_shadows(load_scene("city"), o, {}).metrics;
           }};
 }
 
@@ -153,22 +130,43 @@ std::vector<Case> cases_of(const std::string& technique, uint64_t seed, bool dem
   auto add = [&](bool is_demo, Case k) {
     if (is_demo ? demo : sweep) c.push_back(std::move(k));
   };
-  if (technique == "envmap")
-    for (int cube : {64, 128, 256, 512}) add(cube == 256, envmap_case(seed, cube, cube == 256));
-  if (technique == "cluster") {
-    add(true, cluster_case(seed, "living-room", 1.0f, true));
-    add(true, cluster_case(seed, "bathroom", 1.0f, true));
-    for (float s : {0.5f, 2.0f}) add(false, cluster_case(seed, "living-room", s, false));
+  if (technique == "envmap") {
+    CatalogRun run = demo_run(seed, "envmap_reflect", "room-reflector");
+    run.options["reps"] = std::int64_t{1};  // the bench's repetitions are the medians' samples
+    for (int cube : {64, 128, 256, 512}) {
+      Case k = catalog_case("envmap", "room-reflector", "cube size", run, "cube_size", cube);
+      add(k.demo, std::move(k));
+    }
   }
-  if (technique == "temporal") {
-    add(true, temporal_case(seed, "living-room", 0.3f, true));
-    add(true, temporal_case(seed, "bathroom", 0.3f, true));
-    for (float t : {0.1f, 0.6f}) add(false, temporal_case(seed, "living-room", t, false));
+  for (const char* scene : {"living-room", "bathroom"}) {
+    const std::string where = std::string(scene) + " walk";
+    // SSR (the demo's cluster runs carry it) does not depend on the cluster images' resolution
+    // scale: it runs beside the demo's setting only.
+    if (technique == "cluster") {
+      const CatalogRun run = demo_run(seed, "cluster_reflect", scene);
+      add(true, catalog_case("cluster", where, "resolution scale", run, "resolution_scale",
+                             option_value(run, "resolution_scale")));
+      CatalogRun other = run;
+      other.options["ssr"] = false;
+      if (std::string(scene) == "living-room")
+        for (double v : {0.5, 2.0}) add(false, catalog_case("cluster", where, "resolution scale", other, "resolution_scale", v));
+    }
+    if (technique == "temporal") {
+      const CatalogRun run = demo_run(seed, "temporal_reflect", scene);
+      add(true, catalog_case("temporal", where, "key-frame threshold", run, "threshold", option_value(run, "threshold")));
+      if (std::string(scene) == "living-room")
+        for (double v : {0.1, 0.6}) add(false, catalog_case("temporal", where, "key-frame threshold", run, "threshold", v));
+    }
   }
   if (technique == "sampling")
     for (int size : {128, 256, 512}) add(size == 256, sampling_case(seed, size, size == 256));
-  if (technique == "shadows")
-    for (int res : {256, 512, 1024}) add(res == 1024, shadows_case(res, res == 1024));
+  if (technique == "shadows") {
+    const CatalogRun run = demo_run(seed, "shadows", "city", "light_size", 1.0);
+    for (int res : {256, 512, 1024}) {
+      Case k = catalog_case("shadows", "city", "shadow-map side", run, "shadow_res", res);
+      add(k.demo, std::move(k));
+    }
+  }
   if (technique == "visibility")
     for (int size : {128, 256, 1024}) add(size == 256, visibility_case(size, size == 256));
   return c;

@@ -1,10 +1,11 @@
 // Every technique beside its Embree reference, timed side by side: env maps (each method,
 // the box probe among them), cluster reflections (with screen-space reflections and their
 // box-probe fallback on the same frames and rays at the demo's setting), temporal reuse,
-// depth-image sampling, soft shadows and visibility
-// maps, each at the demo's settings (its section of `proxima demo`) and at a few other
-// settings of its main knob (cube size, depth-image resolution, key-frame threshold, shadow-
-// map resolution, image size), so a user can read error against milliseconds and choose.
+// depth-image sampling, soft shadows and visibility maps, each at the demo's settings (its
+// section of `proxima demo`; env maps, cluster, temporal and shadows run the demo's own
+// planned study runs, study::plan_demo) and at a few other settings of its main knob (cube
+// size, depth-image resolution, key-frame threshold, shadow-map resolution, image size), so
+// a user can read error against milliseconds and choose.
 // What `proxima bench techniques` runs; the demo's "bench" section shows the same tables.
 //
 // Timing: a repetition runs every point once, technique by technique; each run measures the
