@@ -291,7 +291,8 @@ void add_full_reference_errors(const Scene& scene, const FrameRun& f, const Came
   s.traced_full.add(compare_images(reference, full, &mask).mae_avg);
 }
 
-// SSR figures of a frame: times, fallback shares, outcome shares, steps, confidence.
+// SSR figures of a frame: times (every frame), and where it has reflective samples the
+// fallback shares, outcome shares, steps and confidence.
 void add_ssr_frame(const FrameRun& f, ClusterSeries& s) {
   const SsrStats& st = f.ssr.stats;
   s.ssr_ms.add(f.ssr_ms);
@@ -336,7 +337,6 @@ void add_frame(const FrameRun& f, size_t reflective, size_t pixels, bool compare
   }
   s.fallback_pct.add(100.0 * double(st.env_fallback_samples) / samples);
   s.fill_pct.add(100.0 * double(st.behind_fill_samples) / samples);
-  if (!f.ssr.radiance.empty()) add_ssr_frame(f, s);
   if (compare) {
     s.reference_ms.add(f.reference_ms);
     s.reference_dynamic_ms.add(f.reference_ms + f.build_ms);
@@ -594,6 +594,7 @@ Results run_cluster_reflect(const Scene& rest, const ClusterReflectOptions& o, c
     size_t reflective = 0;
     for (uint8_t m : mask.data()) reflective += m;
     add_frame(f, reflective, mask.pixel_count(), o.compare, s);
+    if (o.ssr) add_ssr_frame(f, s);  // its times over every frame, as the cluster method's
     const ImageF color = compose_reflections(f.frame, f.cluster.radiance);
     const ImageF reference = o.compare ? compose_reflections(f.frame, f.traced.radiance) : ImageF();
     const ImageF envmap = o.compare ? compose_reflections(f.frame, f.env_radiance) : ImageF();
