@@ -66,7 +66,8 @@ CatalogRun demo_run(uint64_t seed, const std::string& study, const std::string& 
   d.seed = seed;
   for (const DemoStudyRun& r : plan_demo(d)) {
     CatalogRun c = catalog_run_from_command(r.args);
-    if (c.study == study && c.scene == scene && (option.empty() || (c.options.count(option) && c.options.at(option) == value)))
+    if (c.study == study && c.scene == scene &&
+        (option.empty() || (c.options.count(option) && c.options.at(option) == value)))
       return c;
   }
   throw std::logic_error("technique bench: the demo plans no " + study + " run on " + scene);
@@ -127,16 +128,14 @@ Case visibility_case(int size, bool demo) {
 
 std::vector<Case> cases_of(const std::string& technique, uint64_t seed, bool demo, bool sweep) {
   std::vector<Case> c;
-  auto add = [&](bool is_demo, Case k) {
-    if (is_demo ? demo : sweep) c.push_back(std::move(k));
+  auto add_case = [&](Case k) {
+    if (k.demo ? demo : sweep) c.push_back(std::move(k));
   };
   if (technique == "envmap") {
     CatalogRun run = demo_run(seed, "envmap_reflect", "room-reflector");
     run.options["reps"] = std::int64_t{1};  // the bench's repetitions are the medians' samples
-    for (int cube : {64, 128, 256, 512}) {
-      Case k = catalog_case("envmap", "room-reflector", "cube size", run, "cube_size", cube);
-      add(k.demo, std::move(k));
-    }
+    for (int cube : {64, 128, 256, 512})
+      add_case(catalog_case("envmap", "room-reflector", "cube size", run, "cube_size", cube));
   }
   for (const char* scene : {"living-room", "bathroom"}) {
     const std::string where = std::string(scene) + " walk";
@@ -144,31 +143,32 @@ std::vector<Case> cases_of(const std::string& technique, uint64_t seed, bool dem
     // scale: it runs beside the demo's setting only.
     if (technique == "cluster") {
       const CatalogRun run = demo_run(seed, "cluster_reflect", scene);
-      add(true, catalog_case("cluster", where, "resolution scale", run, "resolution_scale",
-                             option_value(run, "resolution_scale")));
+      add_case(catalog_case("cluster", where, "resolution scale", run, "resolution_scale",
+                            option_value(run, "resolution_scale")));
       CatalogRun other = run;
       other.options["ssr"] = false;
       if (std::string(scene) == "living-room")
-        for (double v : {0.5, 2.0}) add(false, catalog_case("cluster", where, "resolution scale", other, "resolution_scale", v));
+        for (double v : {0.5, 2.0})
+          add_case(catalog_case("cluster", where, "resolution scale", other, "resolution_scale", v));
     }
     if (technique == "temporal") {
       const CatalogRun run = demo_run(seed, "temporal_reflect", scene);
-      add(true, catalog_case("temporal", where, "key-frame threshold", run, "threshold", option_value(run, "threshold")));
+      add_case(catalog_case("temporal", where, "key-frame threshold", run, "threshold",
+                            option_value(run, "threshold")));
       if (std::string(scene) == "living-room")
-        for (double v : {0.1, 0.6}) add(false, catalog_case("temporal", where, "key-frame threshold", run, "threshold", v));
+        for (double v : {0.1, 0.6})
+          add_case(catalog_case("temporal", where, "key-frame threshold", run, "threshold", v));
     }
   }
   if (technique == "sampling")
-    for (int size : {128, 256, 512}) add(size == 256, sampling_case(seed, size, size == 256));
+    for (int size : {128, 256, 512}) add_case(sampling_case(seed, size, size == 256));
   if (technique == "shadows") {
     const CatalogRun run = demo_run(seed, "shadows", "city", "light_size", 1.0);
-    for (int res : {256, 512, 1024}) {
-      Case k = catalog_case("shadows", "city", "shadow-map side", run, "shadow_res", res);
-      add(k.demo, std::move(k));
-    }
+    for (int res : {256, 512, 1024})
+      add_case(catalog_case("shadows", "city", "shadow-map side", run, "shadow_res", res));
   }
   if (technique == "visibility")
-    for (int size : {128, 256, 1024}) add(size == 256, visibility_case(size, size == 256));
+    for (int size : {128, 256, 1024}) add_case(visibility_case(size, size == 256));
   return c;
 }
 
@@ -217,7 +217,9 @@ std::vector<TechniquePoint> technique_points(const std::string& technique, const
       t->approximation_build_ms = m(std::string(method) + "_with_build_ms") - t->ms;
     }
   } else if (technique == "cluster") {
-    auto mae = [&](const std::string& pre) { return (m(pre + "_mae_r") + m(pre + "_mae_g") + m(pre + "_mae_b")) / 3.0; };
+    auto mae = [&](const std::string& pre) {
+      return (m(pre + "_mae_r") + m(pre + "_mae_g") + m(pre + "_mae_b")) / 3.0;
+    };
     const double embree_build = m("reference_dynamic_ms_avg") - m("reference_ms_avg");
     point(where, m("cluster_ms_avg"), m("reference_ms_avg"), mae("cluster"), "MAE 0–255")->reference_build_ms =
         embree_build;
