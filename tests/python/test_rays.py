@@ -52,6 +52,23 @@ def test_hit_points_lie_on_their_triangles(cornell, rays):
     assert np.array_equal(h2["t"], h["t"]) and np.array_equal(h2["triangle"], h["triangle"])
 
 
+def test_results_do_not_depend_on_the_batch(rays):
+    # The batch is traced in its own coherent order; each ray's answer is its own: a shuffled
+    # batch and the batch cast in two parts give the same bits.
+    rng = np.random.default_rng(2)
+    n = 30000
+    origins = rng.uniform(-0.9, 0.9, (n, 3)).astype(np.float32)
+    origins[:, 1] += 1.0
+    directions = rng.normal(size=(n, 3)).astype(np.float32)
+    h = rays.cast(origins, directions)
+    perm = rng.permutation(n)
+    shuffled = rays.cast(origins[perm], directions[perm])
+    parts = [rays.cast(origins[s], directions[s]) for s in (slice(0, 1000), slice(1000, n))]
+    for key in h:
+        assert np.array_equal(shuffled[key], h[key][perm]), key
+        assert np.array_equal(np.concatenate([p[key] for p in parts]), h[key]), key
+
+
 def test_tmax_clips(rays):
     h = rays.cast(f32([[0, 1, 0]]), f32([[0, -1, 0]]), tmax=0.5)
     assert h["triangle"][0] == -1
