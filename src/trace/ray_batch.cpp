@@ -1,6 +1,5 @@
 #include "proxima/trace/ray_batch.h"
 
-#include <array>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -16,8 +15,8 @@ namespace proxima {
 namespace {
 
 constexpr size_t kChunk = 4096;
-// How many rays ahead the record of a hit is prefetched: enough to cover a memory access
-// with the few nanoseconds each record's use takes.
+// How many rays ahead a chunk's gather prefetches their origins and directions: enough to
+// cover a memory access with the few nanoseconds each ray's copy takes.
 constexpr size_t kPrefetchAhead = 16;
 
 // Rays are traced in the order of a key: direction octant (3 bits) above the Morton code
@@ -29,6 +28,8 @@ constexpr size_t kPrefetchAhead = 16;
 constexpr int kGridBits = 5;
 constexpr int kKeyBits = 3 + 3 * kGridBits;
 constexpr int kRadixBits = (kKeyBits + 1) / 2;  // two counting-sort passes
+// Rays per block of the parallel sort: fixed, so the order never depends on the threads.
+constexpr size_t kSortBlock = size_t(1) << 16;
 
 // The bits of v (< 2^kGridBits) spread to every third bit.
 uint32_t spread3(uint32_t v) {
@@ -37,7 +38,7 @@ uint32_t spread3(uint32_t v) {
   return out;
 }
 
-std::vector<uint32_t> sort_keys(std::span<const vec3> origins, std::span<const vec3> directions) {
+RayBatchBuffer<uint32_t> sort_keys(std::span<const vec3> origins, std::span<const vec3> directions) {
   vec3 lo(kInf), hi(-kInf);
   for (const vec3& o : origins) {
     lo = glm::min(lo, o);
@@ -47,8 +48,8 @@ std::vector<uint32_t> sort_keys(std::span<const vec3> origins, std::span<const v
   const vec3 extent = hi - lo;
   const vec3 scale(extent.x > 0.0f ? cells / extent.x : 0.0f, extent.y > 0.0f ? cells / extent.y : 0.0f,
                    extent.z > 0.0f ? cells / extent.z : 0.0f);
-  std::vector<uint32_t> keys(origins.size());
-  parallel_for(keys.size(), kChunk * 4, [&](size_t begin, size_t end) {
+  RayBatchBuffer<uint32_t> keys(origins.size());
+  parallel_for(keys.size(), kSortBlock, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
       const vec3 cell = glm::min((origins[i] - lo) * scale, vec3(cells - 1.0f));
       const vec3& d = directions[i];
@@ -60,21 +61,41 @@ std::vector<uint32_t> sort_keys(std::span<const vec3> origins, std::span<const v
   return keys;
 }
 
-// Ray indices in the order of their keys (stable: ties keep their input order), by two
-// counting-sort passes of kRadixBits each.
-std::vector<uint32_t> trace_order(std::span<const vec3> origins, std::span<const vec3> directions) {
-  const std::vector<uint32_t> keys = sort_keys(origins, directions);
-  std::vector<uint32_t> order(keys.size()), tmp(keys.size());
-  for (size_t i = 0; i < keys.size(); ++i) tmp[i] = uint32_t(i);
-  constexpr uint32_t kMask = (1u << kRadixBits) - 1;
-  for (int pass = 0; pass < 2; ++pass) {
-    const int shift = pass * kRadixBits;
-    std::array<size_t, (1u << kRadixBits) + 1> start{};
-    for (const uint32_t i : tmp) ++start[((keys[i] >> shift) & kMask) + 1];
-    for (size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
-    for (const uint32_t i : tmp) order[start[(keys[i] >> shift) & kMask]++] = i;
-    std::swap(order, tmp);
-  }
+// One stable counting-sort pass: `in` reordered into `out` by bits [shift, shift +
+// kRadixBits) of keys[in[k]]. Parallel over fixed blocks (each counts, then places, its
+// own elements), so the result does not depend on the thread count.
+void radix_pass(const RayBatchBuffer<uint32_t>& keys, std::span<const uint32_t> in, std::span<uint32_t> out,
+                int shift) {
+  constexpr size_t kBuckets = size_t(1) << kRadixBits;
+  constexpr uint32_t kMask = uint32_t(kBuckets - 1);
+  const size_t blocks = (in.size() + kSortBlock - 1) / kSortBlock;
+  std::vector<size_t> start(blocks * kBuckets);  // [block][bucket]
+  parallel_for(in.size(), kSortBlock, [&](size_t begin, size_t end) {
+    size_t* count = &start[begin / kSortBlock * kBuckets];
+    for (size_t k = begin; k < end; ++k) ++count[(keys[in[k]] >> shift) & kMask];
+  });
+  size_t sum = 0;  // bucket by bucket, blocks in order within a bucket: stable
+  for (size_t b = 0; b < kBuckets; ++b)
+    for (size_t block = 0; block < blocks; ++block) {
+      const size_t count = start[block * kBuckets + b];
+      start[block * kBuckets + b] = sum;
+      sum += count;
+    }
+  parallel_for(in.size(), kSortBlock, [&](size_t begin, size_t end) {
+    size_t* next = &start[begin / kSortBlock * kBuckets];
+    for (size_t k = begin; k < end; ++k) out[next[(keys[in[k]] >> shift) & kMask]++] = in[k];
+  });
+}
+
+// Ray indices in the order of their keys (stable: ties keep their input order).
+RayBatchBuffer<uint32_t> trace_order(std::span<const vec3> origins, std::span<const vec3> directions) {
+  const RayBatchBuffer<uint32_t> keys = sort_keys(origins, directions);
+  RayBatchBuffer<uint32_t> order(keys.size()), tmp(keys.size());
+  parallel_for(tmp.size(), kSortBlock, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) tmp[i] = uint32_t(i);
+  });
+  radix_pass(keys, tmp, order, 0);
+  radix_pass(keys, order, tmp, kRadixBits);
   return tmp;
 }
 
@@ -121,14 +142,20 @@ RayBatchHits cast_ray_batch(std::span<const TriangleHitRecord> records, const Ra
   out.object.resize(n);
   out.normal.resize(n);
   out.uv.resize(n);
-  const std::vector<uint32_t> order = trace_order(origins, directions);
+  const RayBatchBuffer<uint32_t> order = trace_order(origins, directions);
   std::atomic<bool> foreign_triangle{false};
   parallel_for(n, kChunk, [&](size_t begin, size_t end) {
-    // Gather the chunk's rays, trace them, then scatter the results with the hit records
-    // prefetched ahead (a record's cache miss would otherwise stall each ray).
+    // Gather the chunk's rays, trace them, then scatter the results. Inputs and hit records
+    // are prefetched well before use: they are random accesses (the records' right after
+    // the hit, so they arrive while the next rays are traced).
     std::vector<Ray> chunk(end - begin);
-    for (size_t k = begin; k < end; ++k)
+    for (size_t k = begin; k < end; ++k) {
+      if (k + kPrefetchAhead < end) {
+        __builtin_prefetch(&origins[order[k + kPrefetchAhead]]);
+        __builtin_prefetch(&directions[order[k + kPrefetchAhead]]);
+      }
       chunk[k - begin] = Ray{origins[order[k]], directions[order[k]], tmin, tmax};
+    }
     std::vector<Hit> hits(chunk.size());
     for (size_t j = 0; j < chunk.size(); ++j) {
       hits[j] = rays.intersect(chunk[j]);
@@ -136,10 +163,9 @@ RayBatchHits cast_ray_batch(std::span<const TriangleHitRecord> records, const Ra
         foreign_triangle.store(true, std::memory_order_relaxed);
         hits[j] = Hit{};
       }
+      if (hits[j].valid()) __builtin_prefetch(&records[hits[j].triangle]);
     }
     for (size_t j = 0; j < hits.size(); ++j) {
-      if (j + kPrefetchAhead < hits.size() && hits[j + kPrefetchAhead].valid())
-        __builtin_prefetch(&records[hits[j + kPrefetchAhead].triangle]);
       const Hit& h = hits[j];
       const size_t i = order[begin + j];
       out.t[i] = h.t;

@@ -5,6 +5,8 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
+#include <vector>
 
 #include "proxima/core/large_buffer.h"
 #include "proxima/core/math.h"
@@ -13,14 +15,38 @@
 
 namespace proxima {
 
+// LargeBufferAllocator whose containers leave new elements uninitialized (resize does not
+// zero them): a batch writes every element of its results in parallel, and zero-filling
+// them first would be one more pass over the whole output, on one thread.
+template <typename T>
+struct UninitializedAllocator : LargeBufferAllocator<T> {
+  template <typename U>
+  struct rebind {
+    using other = UninitializedAllocator<U>;
+  };
+  UninitializedAllocator() noexcept = default;
+  template <typename U>
+  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    if constexpr (sizeof...(Args) == 0)
+      ::new (static_cast<void*>(p)) U;
+    else
+      ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+template <typename T>
+using RayBatchBuffer = std::vector<T, UninitializedAllocator<T>>;
+
 // Per ray; index i is ray i. Misses: t = +inf, triangle and object = kNoTriangle
 // (0xFFFFFFFF), normal and uv = 0.
 struct RayBatchHits {
-  LargeBuffer<float> t;             // distance along the ray in units of its direction
-  LargeBuffer<uint32_t> triangle;   // triangle id (index into Scene::triangles)
-  LargeBuffer<uint32_t> object;     // object id (index into Scene::objects)
-  LargeBuffer<vec3> normal;         // unit geometric normal, right-hand rule over the vertex order
-  LargeBuffer<vec2> uv;             // barycentrics (u, v): p = (1−u−v)·p0 + u·p1 + v·p2
+  RayBatchBuffer<float> t;            // distance along the ray in units of its direction
+  RayBatchBuffer<uint32_t> triangle;  // triangle id (index into Scene::triangles)
+  RayBatchBuffer<uint32_t> object;    // object id (index into Scene::objects)
+  RayBatchBuffer<vec3> normal;        // unit geometric normal, right-hand rule over the vertex order
+  RayBatchBuffer<vec2> uv;            // barycentrics (u, v): p = (1−u−v)·p0 + u·p1 + v·p2
 };
 
 // What a hit reports besides t and (u, v), packed in one 16-byte record per triangle: a
