@@ -99,6 +99,16 @@ RayBatchBuffer<uint32_t> trace_order(std::span<const vec3> origins, std::span<co
   return tmp;
 }
 
+// One ray's answer, kept in trace order until it is written back in input order.
+struct TracedRay {
+  float t;
+  uint32_t triangle;
+  vec2 uv;
+  vec3 normal;
+  uint32_t object;
+};
+static_assert(sizeof(TracedRay) == 32);
+
 // First row of a that is not finite (or, for directions, zero); a.size() if none.
 size_t first_bad_row(std::span<const vec3> a, bool nonzero) {
   for (size_t i = 0; i < a.size(); ++i) {
@@ -144,10 +154,12 @@ RayBatchHits cast_ray_batch(std::span<const TriangleHitRecord> records, const Ra
   out.uv.resize(n);
   const RayBatchBuffer<uint32_t> order = trace_order(origins, directions);
   std::atomic<bool> foreign_triangle{false};
+  // Rays in trace order: each chunk gathers its rays, traces them and stores the answers
+  // in trace order (sequential writes); the records are prefetched right after each hit so
+  // they arrive while the next rays are traced.
+  RayBatchBuffer<TracedRay> traced(n);
+  RayBatchBuffer<uint32_t> rank(n);  // position of ray i in the trace order
   parallel_for(n, kChunk, [&](size_t begin, size_t end) {
-    // Gather the chunk's rays, trace them, then scatter the results. Inputs and hit records
-    // are prefetched well before use: they are random accesses (the records' right after
-    // the hit, so they arrive while the next rays are traced).
     std::vector<Ray> chunk(end - begin);
     for (size_t k = begin; k < end; ++k) {
       if (k + kPrefetchAhead < end) {
@@ -167,12 +179,22 @@ RayBatchHits cast_ray_batch(std::span<const TriangleHitRecord> records, const Ra
     }
     for (size_t j = 0; j < hits.size(); ++j) {
       const Hit& h = hits[j];
-      const size_t i = order[begin + j];
-      out.t[i] = h.t;
-      out.triangle[i] = h.triangle;
-      out.uv[i] = vec2(h.u, h.v);  // 0 on a miss
-      out.object[i] = h.valid() ? records[h.triangle].object : kNoTriangle;
-      out.normal[i] = h.valid() ? records[h.triangle].normal : vec3(0.0f);
+      const TriangleHitRecord record = h.valid() ? records[h.triangle] : TriangleHitRecord{vec3(0.0f), kNoTriangle};
+      traced[begin + j] = TracedRay{h.t, h.triangle, vec2(h.u, h.v), record.normal, record.object};
+      rank[order[begin + j]] = uint32_t(begin + j);
+    }
+  });
+  // Back to input order: sequential writes into the results, reads from the trace order
+  // prefetched ahead.
+  parallel_for(n, kChunk, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      if (i + kPrefetchAhead < end) __builtin_prefetch(&traced[rank[i + kPrefetchAhead]]);
+      const TracedRay& r = traced[rank[i]];
+      out.t[i] = r.t;
+      out.triangle[i] = r.triangle;
+      out.uv[i] = r.uv;  // 0 on a miss
+      out.normal[i] = r.normal;
+      out.object[i] = r.object;
     }
   });
   if (foreign_triangle.load())
