@@ -15,6 +15,13 @@ def f32(rows):
     return np.array(rows, dtype=np.float32)
 
 
+def cornell_rays(rng, n):
+    """n rays from random points inside the Cornell box in random directions (N×3 float32 each)."""
+    origins = rng.uniform(-0.9, 0.9, (n, 3)).astype(np.float32)
+    origins[:, 1] += 1.0
+    return origins, rng.normal(size=(n, 3)).astype(np.float32)
+
+
 def test_known_hits_and_misses(cornell, rays):
     # From the middle of the Cornell box: straight down onto the floor (y = 0) and out of its
     # open side (z = +1), where nothing is hit.
@@ -31,11 +38,7 @@ def test_known_hits_and_misses(cornell, rays):
 
 
 def test_hit_points_lie_on_their_triangles(cornell, rays):
-    rng = np.random.default_rng(1)
-    n = 20000
-    origins = rng.uniform(-0.9, 0.9, (n, 3)).astype(np.float32)
-    origins[:, 1] += 1.0
-    directions = rng.normal(size=(n, 3)).astype(np.float32)
+    origins, directions = cornell_rays(np.random.default_rng(1), 20000)
     h = rays.cast(origins, directions)
     hit = h["triangle"] >= 0
     assert hit.mean() > 0.5
@@ -57,9 +60,7 @@ def test_results_do_not_depend_on_the_batch(rays):
     # batch and the batch cast in two parts give the same bits.
     rng = np.random.default_rng(2)
     n = 30000
-    origins = rng.uniform(-0.9, 0.9, (n, 3)).astype(np.float32)
-    origins[:, 1] += 1.0
-    directions = rng.normal(size=(n, 3)).astype(np.float32)
+    origins, directions = cornell_rays(rng, n)
     h = rays.cast(origins, directions)
     perm = rng.permutation(n)
     shuffled = rays.cast(origins[perm], directions[perm])
