@@ -34,7 +34,8 @@ struct Workload {
     const vec3 pad = 0.1f * (hi - lo);
     Pcg32 rng(1);
     for (size_t i = 0; i < kRays; ++i) {
-      origins.push_back(lo + pad + vec3(rng.next_float(), rng.next_float(), rng.next_float()) * (hi - lo - 2.0f * pad));
+      origins.push_back(lo + pad +
+                        vec3(rng.next_float(), rng.next_float(), rng.next_float()) * (hi - lo - 2.0f * pad));
       vec3 d;
       do d = vec3(rng.next_float(), rng.next_float(), rng.next_float()) * 2.0f - 1.0f;
       while (glm::dot(d, d) > 1.0f || glm::dot(d, d) < 1e-6f);

@@ -19,13 +19,15 @@ std::span<const vec3> as_vec3s(const py::array_t<float, py::array::c_style>& a) 
   return {reinterpret_cast<const vec3*>(a.data()), size_t(a.shape(0))};
 }
 
-py::dict cast(const PyRayScene& self, py::handle origins_obj, py::handle directions_obj, float tmin, float tmax) {
+py::dict cast(const PyRayScene& self, py::handle origins_obj, py::handle directions_obj, float tmin,
+              float tmax) {
   const auto origins = checked_rows<float>(origins_obj, "origins", 3);
   const auto directions = checked_rows<float>(directions_obj, "directions", 3);
   RayBatchHits hits;
   {
     py::gil_scoped_release release;
-    hits = cast_ray_batch(*self.records, self.scene->rays(), as_vec3s(origins), as_vec3s(directions), tmin, tmax);
+    hits = cast_ray_batch(*self.records, self.scene->rays(), as_vec3s(origins), as_vec3s(directions), tmin,
+                          tmax);
   }
   const auto n = py::ssize_t(hits.t.size());
   py::dict out;

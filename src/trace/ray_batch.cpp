@@ -135,8 +135,8 @@ RayBatchHits cast_ray_batch(std::span<const TriangleHitRecord> records, const Ra
                             std::span<const vec3> origins, std::span<const vec3> directions, float tmin,
                             float tmax) {
   if (origins.size() != directions.size())
-    fail_input("rays: " + std::to_string(origins.size()) + " origins but " + std::to_string(directions.size()) +
-               " directions");
+    fail_input("rays: " + std::to_string(origins.size()) + " origins but " +
+               std::to_string(directions.size()) + " directions");
   if (!(tmin >= 0.0f) || !std::isfinite(tmin) || !(tmax >= tmin))
     fail_input("rays: need 0 ≤ tmin ≤ tmax (tmin finite)");
   if (const size_t i = first_bad_row(origins, false); i < origins.size())
@@ -180,7 +180,8 @@ RayBatchHits cast_ray_batch(std::span<const TriangleHitRecord> records, const Ra
     }
     for (size_t j = 0; j < hits.size(); ++j) {
       const Hit& h = hits[j];
-      const TriangleHitRecord record = h.valid() ? records[h.triangle] : TriangleHitRecord{vec3(0.0f), kNoTriangle};
+      const TriangleHitRecord record =
+          h.valid() ? records[h.triangle] : TriangleHitRecord{vec3(0.0f), kNoTriangle};
       traced[begin + j] = TracedRay{h.t, h.triangle, vec2(h.u, h.v), record.normal, record.object};
       rank[order[begin + j]] = uint32_t(begin + j);
     }

@@ -29,8 +29,10 @@ Batch random_rays(size_t n, uint64_t seed) {
   Pcg32 rng(seed);
   Batch b;
   for (size_t i = 0; i < n; ++i) {
-    b.origins.push_back(vec3(rng.next_float() * 1.8f - 0.9f, rng.next_float() * 1.8f + 0.1f, rng.next_float() * 1.8f - 0.9f));
-    b.directions.push_back(vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f + 1e-3f));
+    b.origins.push_back(
+        vec3(rng.next_float() * 1.8f - 0.9f, rng.next_float() * 1.8f + 0.1f, rng.next_float() * 1.8f - 0.9f));
+    b.directions.push_back(
+        vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f + 1e-3f));
   }
   return b;
 }
@@ -76,7 +78,8 @@ TEST(RayBatch, SameBitsForAnyThreadCount) {
 
 // Each ray of h equals the single-ray query of the same ray: ids, t, uv bit for bit, the
 // normal and object those of the hit triangle. Returns the number of hits.
-size_t expect_single_ray_results(const Scene& scene, const RayScene& rays, const Batch& b, const RayBatchHits& h) {
+size_t expect_single_ray_results(const Scene& scene, const RayScene& rays, const Batch& b,
+                                 const RayBatchHits& h) {
   size_t hits = 0;
   for (size_t i = 0; i < b.origins.size(); ++i) {
     const Hit s = rays.intersect(Ray{b.origins[i], b.directions[i], 0.0f, kInf});
@@ -107,7 +110,8 @@ TEST(RayBatch, LargeSceneMixedCoherentAndRandomRays) {
   for (int i = 0; i < 6000; ++i) {
     const vec3 u(rng.next_float(), rng.next_float(), rng.next_float());
     b.origins.push_back(lo + pad + u * (hi - lo - 2.0f * pad));
-    b.directions.push_back(vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f + 1e-3f));
+    b.directions.push_back(
+        vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f + 1e-3f));
     b.origins.push_back(center);
     b.directions.push_back(vec3(float(i % 80) / 80.0f - 0.5f, float(i / 80) / 75.0f - 0.5f, -1.0f));
   }
@@ -129,8 +133,8 @@ TEST(RayBatch, ResultsDoNotDependOnTheBatchOrderOrComposition) {
   const RayBatchHits back = cast_ray_batch(scene, rays, reversed.origins, reversed.directions);
   // A part of the batch alone (other origin bounds, so other sort keys).
   const size_t part = 777;
-  const RayBatchHits first = cast_ray_batch(scene, rays, std::span(b.origins).first(part),
-                                            std::span(b.directions).first(part));
+  const RayBatchHits first =
+      cast_ray_batch(scene, rays, std::span(b.origins).first(part), std::span(b.directions).first(part));
   for (size_t i = 0; i < b.origins.size(); ++i) {
     const size_t r = b.origins.size() - 1 - i;
     ASSERT_EQ(whole.triangle[i], back.triangle[r]) << i;
@@ -167,7 +171,8 @@ TEST(RayBatch, RecordsOfAnotherSceneAreRefused) {
 TEST(RayBatch, RejectsBadInput) {
   const Scene scene = make_builtin_scene("cornell");
   const RayScene rays(scene);
-  const std::vector<vec3> one = {vec3(0, 1, 0)}, down = {vec3(0, -1, 0)}, two = {vec3(0, -1, 0), vec3(0, 1, 0)};
+  const std::vector<vec3> one = {vec3(0, 1, 0)}, down = {vec3(0, -1, 0)},
+                          two = {vec3(0, -1, 0), vec3(0, 1, 0)};
   const std::vector<vec3> nan = {vec3(0, NAN, 0)}, zero = {vec3(0.0f)}, inf = {vec3(kInf, 0, 0)};
   EXPECT_THROW(cast_ray_batch(scene, rays, one, two), InputError);
   EXPECT_THROW(cast_ray_batch(scene, rays, nan, down), InputError);

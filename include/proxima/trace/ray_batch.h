@@ -67,11 +67,13 @@ LargeBuffer<TriangleHitRecord> triangle_hit_records(const Scene& scene);
 // them over batches). The rays are traced in a coherent order (sorted by direction octant,
 // then origin cell) over fixed chunks in parallel, each ray on its own (rtcIntersect1), and
 // the normals and object ids read from the records: each ray's result is bit for bit that
-// of RayScene::intersect, for any thread count and any order of the input. Throws InputError when the spans differ in size, a value is not finite
-// (directions may not be zero), or tmin/tmax are not 0 ≤ tmin ≤ tmax (tmax may be +inf).
+// of RayScene::intersect, for any thread count and any order of the input. Throws
+// InputError when the spans differ in size, a value is not finite (directions may not be
+// zero), tmin/tmax are not 0 ≤ tmin ≤ tmax (tmax may be +inf) or there are 2^32 rays or
+// more; std::logic_error when a hit triangle has no record (records of another scene).
 RayBatchHits cast_ray_batch(std::span<const TriangleHitRecord> records, const RayScene& rays,
-                            std::span<const vec3> origins, std::span<const vec3> directions, float tmin = 0.0f,
-                            float tmax = kInf);
+                            std::span<const vec3> origins, std::span<const vec3> directions,
+                            float tmin = 0.0f, float tmax = kInf);
 
 // The same for one batch: makes the scene's records first (one pass over its triangles).
 RayBatchHits cast_ray_batch(const Scene& scene, const RayScene& rays, std::span<const vec3> origins,
