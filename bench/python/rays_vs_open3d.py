@@ -112,14 +112,16 @@ def main():
     t_diff = np.max(np.abs(a["t"][hit] - b["t_hit"].numpy()[hit]) / np.maximum(a["t"][hit], 1e-6)) if hit.any() else 0
     n_diff = np.max(np.abs(a["normal"][hit] - b["primitive_normals"].numpy()[hit])) if hit.any() else 0
 
-    ours_s, theirs_s = [], []
+    # Wall time and the process's CPU time (all its threads) of each call: on a shared machine
+    # the CPU time moves less with the other processes' load than the wall time does.
+    ours_s, theirs_s, ours_cpu, theirs_cpu = [], [], [], []
     for _ in range(args.reps):
-        t0 = time.perf_counter()
-        ours.cast(origins, directions)
-        ours_s.append(time.perf_counter() - t0)
-        t0 = time.perf_counter()
-        theirs.cast_rays(rays6, nthreads=args.threads)
-        theirs_s.append(time.perf_counter() - t0)
+        for call, wall, cpu in ((lambda: ours.cast(origins, directions), ours_s, ours_cpu),
+                                (lambda: theirs.cast_rays(rays6, nthreads=args.threads), theirs_s, theirs_cpu)):
+            c0, t0 = time.process_time(), time.perf_counter()
+            call()
+            wall.append(time.perf_counter() - t0)
+            cpu.append(time.process_time() - c0)
     m_ours, m_theirs = statistics.median(ours_s), statistics.median(theirs_s)
 
     print(f"scene {args.scene}: {scene.triangle_count} triangles; {args.rays} random rays from inside its "
@@ -138,15 +140,18 @@ def main():
         print("WARNING: Open3D misses where proxima hits: its cast is broken here (ray mask; see --mask-shim); "
               "the comparison below is not valid", file=sys.stderr)
     print()
-    print("| | BVH build (s) | cast median (ms) | Mrays/s | min (ms) | max (ms) |")
-    print("| --- | --- | --- | --- | --- | --- |")
-    for name, build, s in (("proxima RayScene.cast", ours_build, ours_s),
-                           ("Open3D RaycastingScene.cast_rays", theirs_build, theirs_s)):
+    print("| | BVH build (s) | cast median (ms) | Mrays/s | min (ms) | max (ms) | CPU median (ms) |")
+    print("| --- | --- | --- | --- | --- | --- | --- |")
+    for name, build, s, cpu in (("proxima RayScene.cast", ours_build, ours_s, ours_cpu),
+                                ("Open3D RaycastingScene.cast_rays", theirs_build, theirs_s, theirs_cpu)):
         med = statistics.median(s)
         print(f"| {name} | {build:.2f} | {1e3 * med:.1f} | {args.rays / med / 1e6:.2f} | {1e3 * min(s):.1f} | "
-              f"{1e3 * max(s):.1f} |")
+              f"{1e3 * max(s):.1f} | {1e3 * statistics.median(cpu):.1f} |")
     print()
-    print(f"proxima / Open3D time: {m_ours / m_theirs:.3f} (below 1 = proxima faster)")
+    print(f"proxima / Open3D time: {m_ours / m_theirs:.3f} (below 1 = proxima faster); CPU time: "
+          f"{statistics.median(ours_cpu) / statistics.median(theirs_cpu):.3f}; per repetition: "
+          f"{' '.join(f'{a / b:.2f}' for a, b in zip(ours_s, theirs_s))}")
+    print(f"load average at the end {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
     return 0
 
 

@@ -8,22 +8,25 @@ namespace proxima::python {
 
 namespace {
 
-// The rays of a scene: holds the scene (and so its BVH) alive.
+// The rays of a scene: holds the scene (and so its BVH) alive, and the per-triangle hit
+// records every cast reads (geometry is read-only from Python, so they stay valid).
 struct PyRayScene {
   std::shared_ptr<SceneHandle> scene;
+  std::shared_ptr<const LargeBuffer<TriangleHitRecord>> records;
 };
 
 std::span<const vec3> as_vec3s(const py::array_t<float, py::array::c_style>& a) {
   return {reinterpret_cast<const vec3*>(a.data()), size_t(a.shape(0))};
 }
 
-py::dict cast(const PyRayScene& self, py::handle origins_obj, py::handle directions_obj, float tmin, float tmax) {
+py::dict cast(const PyRayScene& self, py::handle origins_obj, py::handle directions_obj, float tmin,
+              float tmax) {
   const auto origins = checked_rows<float>(origins_obj, "origins", 3);
   const auto directions = checked_rows<float>(directions_obj, "directions", 3);
   RayBatchHits hits;
   {
     py::gil_scoped_release release;
-    hits = cast_ray_batch(self.scene->scene(), self.scene->rays(), as_vec3s(origins), as_vec3s(directions), tmin,
+    hits = cast_ray_batch(*self.records, self.scene->rays(), as_vec3s(origins), as_vec3s(directions), tmin,
                           tmax);
   }
   const auto n = py::ssize_t(hits.t.size());
@@ -45,11 +48,14 @@ void bind_rays(py::module_& m) {
                          "built on first use.")
       .def(py::init([](std::shared_ptr<SceneHandle> scene) {
              if (!scene) fail_input("RayScene: scene is None");
+             std::shared_ptr<const LargeBuffer<TriangleHitRecord>> records;
              {
                py::gil_scoped_release release;
                scene->rays();  // the build happens here, not in the first cast
+               records = std::make_shared<const LargeBuffer<TriangleHitRecord>>(
+                   triangle_hit_records(scene->scene()));
              }
-             return PyRayScene{std::move(scene)};
+             return PyRayScene{std::move(scene), std::move(records)};
            }),
            py::arg("scene"))
       .def_property_readonly("scene", [](const PyRayScene& r) { return r.scene; })

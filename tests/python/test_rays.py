@@ -15,6 +15,13 @@ def f32(rows):
     return np.array(rows, dtype=np.float32)
 
 
+def cornell_rays(rng, n):
+    """n rays from random points inside the Cornell box in random directions (N×3 float32 each)."""
+    origins = rng.uniform(-0.9, 0.9, (n, 3)).astype(np.float32)
+    origins[:, 1] += 1.0
+    return origins, rng.normal(size=(n, 3)).astype(np.float32)
+
+
 def test_known_hits_and_misses(cornell, rays):
     # From the middle of the Cornell box: straight down onto the floor (y = 0) and out of its
     # open side (z = +1), where nothing is hit.
@@ -31,11 +38,7 @@ def test_known_hits_and_misses(cornell, rays):
 
 
 def test_hit_points_lie_on_their_triangles(cornell, rays):
-    rng = np.random.default_rng(1)
-    n = 20000
-    origins = rng.uniform(-0.9, 0.9, (n, 3)).astype(np.float32)
-    origins[:, 1] += 1.0
-    directions = rng.normal(size=(n, 3)).astype(np.float32)
+    origins, directions = cornell_rays(np.random.default_rng(1), 20000)
     h = rays.cast(origins, directions)
     hit = h["triangle"] >= 0
     assert hit.mean() > 0.5
@@ -50,6 +53,21 @@ def test_hit_points_lie_on_their_triangles(cornell, rays):
     both = np.concatenate([origins, directions], axis=1)
     h2 = rays.cast(both[:, :3], both[:, 3:])
     assert np.array_equal(h2["t"], h["t"]) and np.array_equal(h2["triangle"], h["triangle"])
+
+
+def test_results_do_not_depend_on_the_batch(rays):
+    # The batch is traced in its own coherent order; each ray's answer is its own: a shuffled
+    # batch and the batch cast in two parts give the same bits.
+    rng = np.random.default_rng(2)
+    n = 30000
+    origins, directions = cornell_rays(rng, n)
+    h = rays.cast(origins, directions)
+    perm = rng.permutation(n)
+    shuffled = rays.cast(origins[perm], directions[perm])
+    parts = [rays.cast(origins[s], directions[s]) for s in (slice(0, 1000), slice(1000, n))]
+    for key in h:
+        assert np.array_equal(shuffled[key], h[key][perm]), key
+        assert np.array_equal(np.concatenate([p[key] for p in parts]), h[key]), key
 
 
 def test_tmax_clips(rays):
