@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "proxima/gibr/novel_view.h"
+
 namespace proxima::gibr {
 
 using namespace proxima::visibility;
@@ -81,17 +83,8 @@ std::vector<LiftedEdge> blended_edges(std::span<const LiftedEdge> edges, const R
   std::vector<std::vector<uint32_t>> first(model.polygons.size());
   std::vector<std::pair<float, uint32_t>> keyed;
   for (size_t p = 0; p < model.polygons.size() && p < maps.layers.size(); ++p) {
-    const auto& layers = maps.layers[p];
-    if (layers.empty()) continue;
-    dvec3 c(0.0);
-    for (const dvec3& q : model.polygons[p].vertices) c += q;
-    const vec3 centroid(c / double(model.polygons[p].vertices.size()));
-    const vec3 to_eye = glm::normalize(eye - centroid);
-    keyed.clear();
-    for (uint32_t i = 0; i < layers.size(); ++i)
-      keyed.push_back({-glm::dot(glm::normalize(maps.cameras[layers[i].photo].position - centroid), to_eye), i});
-    std::sort(keyed.begin(), keyed.end());
-    for (size_t r = 0; r < keyed.size() && r < size_t(k); ++r) first[p].push_back(layers[keyed[r].second].photo);
+    rank_layers(maps, model, p, eye, keyed);
+    for (size_t r = 0; r < keyed.size() && r < size_t(k); ++r) first[p].push_back(maps.layers[p][keyed[r].second].photo);
   }
   std::vector<LiftedEdge> out;
   for (const LiftedEdge& e : edges)
