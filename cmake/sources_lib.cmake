@@ -26,9 +26,12 @@ set(PROXIMA_LIB_SOURCES
   src/eval/results_merge.cpp
   src/eval/results_page.cpp
   src/gibr/gibr_model.cpp
+  src/gibr/lens.cpp
+  src/gibr/lens_mapping.cpp
   src/gibr/novel_view.cpp
   src/gibr/photo_set.cpp
   src/gibr/radiance_map.cpp
+  src/gibr/silhouette_band.cpp
   src/raster/depth_peeling.cpp
   src/raster/raster_bench.cpp
   src/raster/rasterizer.cpp

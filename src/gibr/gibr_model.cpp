@@ -9,6 +9,7 @@
 #include "proxima/core/range_check.h"
 #include "proxima/core/rng.h"
 #include "proxima/core/timer.h"
+#include "proxima/gibr/lens_mapping.h"
 #include "proxima/gibr/photo_set.h"
 #include "proxima/scene/camera_select.h"
 #include "proxima/visibility/map_check.h"
@@ -62,8 +63,9 @@ Camera miscalibrated(const Camera& c, double px, uint64_t seed) {
   return out;
 }
 
-// The camera file's cameras and images (linear RGB), each image checked against its camera.
-void load_photos(const std::filesystem::path& camera_file, GibrModel& g, std::vector<ImageU8>& valid) {
+// The camera file's cameras and images (linear RGB, divided by their exposure; taken through
+// a lens, kept as taken: map_lens_photograph), each image checked against its camera.
+void load_photos(const std::filesystem::path& camera_file, GibrModel& g) {
   const std::vector<CalibratedPhoto> photos = read_camera_file(camera_file);
   if (photos.empty()) fail_input(camera_file.string() + ": the camera file lists no photographs");
   for (const CalibratedPhoto& p : photos) {
@@ -73,36 +75,13 @@ void load_photos(const std::filesystem::path& camera_file, GibrModel& g, std::ve
       fail_input(image.string() + ": " + std::to_string(linear.width()) + "×" + std::to_string(linear.height()) +
                  " pixels, but " + camera_file.string() + " gives its camera " + std::to_string(p.camera.width) +
                  "×" + std::to_string(p.camera.height));
-    ImageU8 ok;
-    if (p.k1 != 0.0 || p.k2 != 0.0) linear = undistort_photo(linear, p.camera, p.k1, p.k2, &ok);
     if (p.exposure != 1.0)
       for (float& v : linear.data()) v = float(double(v) / p.exposure);
     g.cameras.push_back(p.camera);
     g.photos.push_back(std::move(linear));
-    valid.push_back(std::move(ok));
+    g.lenses.push_back(Lens{p.k1, p.k2});
   }
-}
-
-// Pixels within √2/2 + 1 px of a silhouette edge (the touched band widened by the bilinear
-// kernel of the undistortion) are mapped onto nothing.
-void drop_resampled_band(ImageU32& labels, const VisibilityMap& map) {
-  const ImageU8 band = silhouette_pixel_mask(map, std::sqrt(0.5) + 1.0);
-  for (int y = 0; y < labels.height(); ++y)
-    for (int x = 0; x < labels.width(); ++x)
-      if (band.at(x, y)) labels.at(x, y) = kNone;
-}
-
-// Pixels without an image (0 in `valid`, when not empty) are mapped onto nothing and unmixed
-// for nothing.
-void drop_invalid(ImageU32& labels, const ImageU8& valid) {
-  if (valid.width() == 0) return;
-  const int uc = unmix_channel(labels);
-  for (int y = 0; y < labels.height(); ++y)
-    for (int x = 0; x < labels.width(); ++x) {
-      if (valid.at(x, y)) continue;
-      labels.at(x, y) = kNone;
-      if (uc >= 0) labels.at(x, y, uc) = kNone;
-    }
+  if (std::all_of(g.lenses.begin(), g.lenses.end(), [](const Lens& l) { return l.pinhole(); })) g.lenses.clear();
 }
 
 void check_given(const GivenPhotos& p) {
@@ -143,7 +122,7 @@ GibrModel prepare(const Scene& model_scene, const GibrModelOptions& o, GivenPhot
     g.cameras = std::move(given->cameras);
     g.photos = std::move(given->images);
   } else if (!o.camera_file.empty()) {
-    load_photos(o.camera_file, g, g.photo_valid);
+    load_photos(o.camera_file, g);
   } else {
     PhotoPoseOptions ppo;
     ppo.count = o.photos;
@@ -184,6 +163,30 @@ GibrModel prepare_gibr_model(const Scene& model_scene, const GibrModelOptions& o
   return prepare(model_scene, o, nullptr);
 }
 
+namespace {
+
+// map_photograph's phases 2–3 for a photograph taken through a lens (not resampled:
+// gibr/lens_mapping.h).
+void map_lens_photograph(const GibrModel& g, size_t i, const GibrModelOptions& o, const VisibilityMap& map,
+                         const ImageF& photo, const Lens& lens, PhotoMapping& pm) {
+  const bool unmix = o.unmix && !o.whole_pixels;
+  LensLabels ll = vismap_lens_pixel_polygons(map, g.cameras[i], lens, o.exclude_boundaries, unmix ? o.supersample : 0);
+  ImageU32 labels = unmix ? unmix_pixels(ll.labels, photo, ll.unmix, o.unmix_two_pass) : std::move(ll.labels);
+  Stopwatch w;
+  pm.layers = map_photo_layers(g.model, g.maps.grids, uint32_t(i), g.cameras[i], photo, labels,
+                               o.whole_pixels ? nullptr : &map, lens);
+  pm.map_ms = w.elapsed_ms();
+  if (!o.item_buffer) return;
+  w.restart();
+  const ImageU32 item_labels = itembuffer_lens_pixel_polygons(*g.rays, g.model, g.cameras[i], lens);
+  pm.itembuffer_ms = w.elapsed_ms();
+  w.restart();
+  pm.item_layers = map_photo_layers(g.model, g.maps.grids, uint32_t(i), g.cameras[i], photo, item_labels, nullptr, lens);
+  pm.item_map_ms = w.elapsed_ms();
+}
+
+}  // namespace
+
 PhotoMapping map_photograph(const GibrModel& g, size_t i, const GibrModelOptions& o) {
   PhotoMapping pm;
   Stopwatch w;
@@ -197,15 +200,15 @@ PhotoMapping map_photograph(const GibrModel& g, size_t i, const GibrModelOptions
   VisibilityMap map = trace_visibility_map(g.winged_pair, g.cameras[i]);
   pm.silhouette_edges = double(map.stats.silhouette_edges);
   pm.check = visibility::check_visibility_map(map, g.model, *g.rays, g.cameras[i]);
+  const Lens lens = i < g.lenses.size() ? g.lenses[i] : Lens{};
+  if (!lens.pinhole()) {
+    map_lens_photograph(g, i, o, map, photo, lens, pm);
+    pm.vismap_ms = w.elapsed_ms();
+    return pm;
+  }
   ImageU32 labels = vismap_pixel_polygons(map, o.exclude_boundaries, false);
-  // An undistorted photograph is a bilinear resample: its pixels within 1 px of a touched
-  // one mix the silhouette's sides too, and no pixel averages the map's sample points.
-  const ImageU8* valid = i < g.photo_valid.size() ? &g.photo_valid[i] : nullptr;
-  const bool resampled = valid && valid->width() > 0;
-  if (resampled) drop_resampled_band(labels, map);
-  if (o.unmix && !o.whole_pixels && !resampled)
+  if (o.unmix && !o.whole_pixels)
     labels = unmix_silhouette_pixels(map, labels, photo, o.supersample, o.exclude_boundaries, o.unmix_two_pass);
-  if (valid) drop_invalid(labels, *valid);
   pm.vismap_ms = w.elapsed_ms();
   // Phase 3: this photograph's radiance-map layers.
   w.restart();
@@ -215,7 +218,6 @@ PhotoMapping map_photograph(const GibrModel& g, size_t i, const GibrModelOptions
   if (o.item_buffer) {
     w.restart();
     ImageU32 item_labels = itembuffer_pixel_polygons(g.scene, g.model, g.cameras[i]);
-    if (valid) drop_invalid(item_labels, *valid);
     pm.itembuffer_ms = w.elapsed_ms();
     w.restart();
     pm.item_layers = map_photo_layers(g.model, g.maps.grids, uint32_t(i), g.cameras[i], photo, item_labels, nullptr);

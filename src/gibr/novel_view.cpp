@@ -165,6 +165,22 @@ struct HoleMemo {
 
 }  // namespace
 
+void rank_layers(const RadianceMaps& maps, const visibility::ModelPolygons& model, size_t p, const vec3& eye,
+                 std::vector<std::pair<float, uint32_t>>& keyed) {
+  const auto& layers = maps.layers[p];
+  keyed.clear();
+  if (layers.empty()) return;
+  dvec3 c(0.0);
+  for (const dvec3& q : model.polygons[p].vertices) c += q;
+  const vec3 centroid(c / double(model.polygons[p].vertices.size()));
+  const vec3 to_eye = glm::normalize(eye - centroid);
+  for (uint32_t i = 0; i < layers.size(); ++i) {
+    const vec3 to_photo = glm::normalize(maps.cameras[layers[i].photo].position - centroid);
+    keyed.push_back({-glm::dot(to_photo, to_eye), i});
+  }
+  std::sort(keyed.begin(), keyed.end());
+}
+
 NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, const RadianceMaps& maps,
                             const Camera& camera, const NovelViewOptions& options, NovelViewScratch* scratch) {
   NovelView nv;
@@ -196,16 +212,7 @@ NovelView render_novel_view(const Scene& scene, const ModelPolygons& model, cons
     const auto& layers = maps.layers[p];
     offset[p + 1] = offset[p] + uint32_t(layers.size());
     if (layers.empty()) continue;
-    dvec3 c(0.0);
-    for (const dvec3& q : model.polygons[p].vertices) c += q;
-    const vec3 centroid(c / double(model.polygons[p].vertices.size()));
-    const vec3 to_eye = glm::normalize(eye - centroid);
-    keyed.clear();
-    for (uint32_t i = 0; i < layers.size(); ++i) {
-      const vec3 to_photo = glm::normalize(maps.cameras[layers[i].photo].position - centroid);
-      keyed.push_back({-glm::dot(to_photo, to_eye), i});
-    }
-    std::sort(keyed.begin(), keyed.end());
+    rank_layers(maps, model, p, eye, keyed);
     for (const auto& kv : keyed) order.push_back(kv.second);
   }
   std::vector<RankedLayer> ranked(order.size());

@@ -14,6 +14,7 @@
 #include "proxima/core/error.h"
 #include "proxima/core/range_check.h"
 #include "proxima/core/rng.h"
+#include "proxima/gibr/lens.h"
 #include "proxima/trace/reference_renderer.h"
 
 namespace proxima::gibr {
@@ -131,14 +132,6 @@ ImageF render_photo(const Scene& scene, const RayScene& rays, const Camera& came
 
 namespace {
 
-// Pixel ↔ normalized image coordinates of a pinhole camera (principal point at the center).
-struct Pinhole {
-  double f, cx, cy;
-  explicit Pinhole(const Camera& c) : f(focal_length_px(c)), cx(0.5 * c.width), cy(0.5 * c.height) {}
-};
-
-double radial(double k1, double k2, double r2) { return 1.0 + k1 * r2 + k2 * r2 * r2; }
-
 // Bilinear sample of pixel position (px, py) (pixel centers at +0.5); false outside the image.
 bool bilinear(const ImageF& img, double px, double py, vec3& out) {
   const double sx = px - 0.5, sy = py - 0.5;
@@ -173,25 +166,13 @@ ImageF resample(const ImageF& image, F&& source, ImageU8* valid) {
 }  // namespace
 
 ImageF undistort_photo(const ImageF& image, const Camera& camera, double k1, double k2, ImageU8* valid) {
-  const Pinhole p(camera);
-  return resample(image, [&](double px, double py) {
-    const double x = (px - p.cx) / p.f, y = (py - p.cy) / p.f, s = radial(k1, k2, x * x + y * y);
-    return glm::dvec2(p.cx + p.f * x * s, p.cy + p.f * y * s);
-  }, valid);
+  const Lens lens{k1, k2};
+  return resample(image, [&](double px, double py) { return distort_pixel(camera, lens, {px, py}); }, valid);
 }
 
 ImageF distort_photo(const ImageF& image, const Camera& camera, double k1, double k2) {
-  const Pinhole p(camera);
-  return resample(image, [&](double px, double py) {
-    const double xd = (px - p.cx) / p.f, yd = (py - p.cy) / p.f;
-    double x = xd, y = yd;
-    for (int it = 0; it < 50; ++it) {
-      const double s = radial(k1, k2, x * x + y * y);
-      x = xd / s;
-      y = yd / s;
-    }
-    return glm::dvec2(p.cx + p.f * x, p.cy + p.f * y);
-  }, nullptr);
+  const Lens lens{k1, k2};
+  return resample(image, [&](double px, double py) { return undistort_pixel(camera, lens, {px, py}); }, nullptr);
 }
 
 void write_camera_file(const std::filesystem::path& path, const std::vector<CalibratedPhoto>& photos) {

@@ -150,19 +150,37 @@ ImageU32 unmix_silhouette_pixels(const VisibilityMap& map, const ImageU32& label
       photo.height() != H || photo.channels() < 3)
     fail_input("unmixing: the labels (1 channel or a sub-pixel record) and photograph must have the map's size");
   if (samples < 1 || samples > 8) fail_input("unmixing: samples per pixel side must be in 1..8");
+  UnmixInputs in;
+  in.samples = samples;
+  in.centers = rasterize_map(map);
+  in.touched = touched_mask(map, exclude_all_boundaries);
+  in.on_any_edge = touched_mask(map, true);
+  in.fine = rasterize_map(scaled_map(map, samples));
+  return unmix_pixels(labels, photo, in, two_pass);
+}
+
+ImageU32 unmix_pixels(const ImageU32& labels, const ImageF& photo, const UnmixInputs& in, bool two_pass) {
+  const int W = labels.width(), H = labels.height();
+  const int L = labels.channels();
+  const int samples = in.samples;
+  if (photo.width() != W || photo.height() != H || photo.channels() < 3 || in.centers.width() != W ||
+      in.centers.height() != H || in.touched.width() != W || in.touched.height() != H || in.on_any_edge.width() != W ||
+      in.on_any_edge.height() != H || samples < 1 || samples > 8 || in.fine.width() != W * samples ||
+      in.fine.height() != H * samples)
+    fail_input("unmixing: the labels, photograph and the map's images must have one size");
   ImageU32 out(W, H, L + 2, kNone);
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {
       for (int c = 0; c < L; ++c) out.at(x, y, c) = labels.at(x, y, c);
       out.at(x, y, L + 1) = 0;
     }
-  const ImageU32 centers = rasterize_map(map);
-  const ImageU8 touched = touched_mask(map, exclude_all_boundaries);
+  const ImageU32& centers = in.centers;
+  const ImageU8& touched = in.touched;
   // The other sides' colors come from pixels wholly inside one polygon's regions (touching
   // no edge between different polygons: a pixel on a crease is a mix too).
-  const ImageU8 on_any_edge = touched_mask(map, true);
+  const ImageU8& on_any_edge = in.on_any_edge;
   // The polygon each of the photograph's s × s samples sees.
-  const ImageU32 fine = rasterize_map(scaled_map(map, samples));
+  const ImageU32& fine = in.fine;
   const int n = samples * samples;
   std::vector<std::pair<uint32_t, int>> sides;  // polygon (kNone = background), samples
   // Pixel (x, y) unmixed for its majority polygon: false when it has none or another side's
@@ -310,20 +328,19 @@ PixelRegions pixel_regions(const VisibilityMap& map, const ImageU8& boundary) {
   return out;
 }
 
-// The convex polygon `poly` clipped to the pixel square (x, y) (Sutherland–Hodgman).
-void clip_to_pixel(std::span<const dvec2> poly, int x, int y, std::vector<dvec2>& out) {
+// The convex polygon `poly` clipped to the rectangle [lo, hi] (Sutherland–Hodgman).
+void clip_to_rect(std::span<const dvec2> poly, const dvec2& lo, const dvec2& hi, std::vector<dvec2>& out) {
   out.assign(poly.begin(), poly.end());
   std::vector<dvec2> in;
   for (int side = 0; side < 4; ++side) {
     in.swap(out);
     out.clear();
-    // Inside: x ≥ x0, x ≤ x0 + 1, y ≥ y0, y ≤ y0 + 1.
     auto dist = [&](const dvec2& v) {
       switch (side) {
-        case 0: return v.x - x;
-        case 1: return x + 1.0 - v.x;
-        case 2: return v.y - y;
-        default: return y + 1.0 - v.y;
+        case 0: return v.x - lo.x;
+        case 1: return hi.x - v.x;
+        case 2: return v.y - lo.y;
+        default: return hi.y - v.y;
       }
     };
     for (size_t k = 0; k < in.size(); ++k) {
@@ -333,6 +350,11 @@ void clip_to_pixel(std::span<const dvec2> poly, int x, int y, std::vector<dvec2>
       if ((da >= 0.0) != (db >= 0.0)) out.push_back(a + (da / (da - db)) * (b - a));
     }
   }
+}
+
+// The same for the pixel square (x, y).
+void clip_to_pixel(std::span<const dvec2> poly, int x, int y, std::vector<dvec2>& out) {
+  clip_to_rect(poly, dvec2(x, y), dvec2(x + 1.0, y + 1.0), out);
 }
 
 // Distance (px) a point must keep from every edge of the region holding it to count as seen
@@ -356,7 +378,8 @@ bool inside_region(const MapRegion& R, const dvec2& q) {
 }
 
 PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& grids, uint32_t photo,
-                      const Camera& cam, const ImageF& image, const ImageU32& labels, const VisibilityMap* vis_map) {
+                      const Camera& cam, const ImageF& image, const ImageU32& labels, const VisibilityMap* vis_map,
+                      const Lens& lens) {
   PhotoLayers out;
   const dvec3 eye(cam.position), R(camera_right(cam)), U(camera_up(cam)), F(camera_forward(cam));
   const double f = focal_length_px(cam), cx = 0.5 * cam.width, cy = 0.5 * cam.height;
@@ -364,13 +387,18 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
   // Texel-coordinate bounds of each polygon's mapped pixels (their corners on its plane).
   std::vector<glm::dvec4> box(model.polygons.size(), glm::dvec4(INFINITY, INFINITY, -INFINITY, -INFINITY));
   std::vector<uint32_t> seen;
+  std::vector<uint8_t> listed(model.polygons.size(), 0);
   // Exact-visible texels: from the map's regions when it is given (exact point test), else from
   // the sub-pixel record's sub-cells.
   const bool exact = vis_map != nullptr, sub = !exact && labels.channels() >= kRecordChannels;
   const int uc = unmix_channel(labels);
   const bool unmix = uc >= 0;
   const ImageU8 boundary = exact ? boundary_pixels(labels) : ImageU8();
-  const PixelRegions candidates = exact ? pixel_regions(*vis_map, boundary) : PixelRegions{};
+  // Through a lens the labels are per pixel of the lens image and the map's regions are
+  // looked up by the pinhole image point: every pixel of the map's grid gets its list.
+  const bool pinhole = lens.pinhole();
+  const PixelRegions candidates =
+      !exact ? PixelRegions{} : pixel_regions(*vis_map, pinhole ? boundary : ImageU8(W, H, 1, 1));
   auto regions_at = [&](int x, int y) {
     const size_t i = size_t(y) * size_t(W) + size_t(x);
     return std::span<const uint32_t>(candidates.region.data() + candidates.first[i], candidates.first[i + 1] - candidates.first[i]);
@@ -384,7 +412,7 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
   auto add_points = [&](uint32_t p, std::span<const dvec2> points) {
     const Plane& pl = model.polygons[p].plane;
     const double d = pl.distance(eye);
-    if (box[p].x == INFINITY) seen.push_back(p);
+    if (!listed[p]) seen.push_back(p), listed[p] = 1;
     for (const dvec2& q : points) {
       const double px = q.x, py = q.y;
       const dvec3 dir = F + ((px - cx) / f) * R - ((py - cy) / f) * U;
@@ -397,8 +425,27 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
     }
   };
   auto add_pixel = [&](uint32_t p, int x, int y) {
-    const dvec2 corners[4] = {{x, y}, {x + 1, y}, {x, y + 1}, {x + 1, y + 1}};
+    dvec2 corners[4] = {{x, y}, {x + 1, y}, {x, y + 1}, {x + 1, y + 1}};
+    if (!pinhole)
+      for (dvec2& c : corners) c = undistort_pixel(cam, lens, c);
     add_points(p, corners);
+  };
+  // Through a lens: the parts of the regions of other polygons than p in the bounding box of
+  // the pinhole image of the lens pixel (x, y).
+  auto add_lens_pixel_regions = [&](uint32_t p, int x, int y, std::vector<dvec2>& clipped) {
+    dvec2 lo(INFINITY), hi(-INFINITY);
+    for (const dvec2 c : {dvec2(x, y), dvec2(x + 1, y), dvec2(x, y + 1), dvec2(x + 1, y + 1)}) {
+      const dvec2 u = undistort_pixel(cam, lens, c);
+      lo = glm::min(lo, u);
+      hi = glm::max(hi, u);
+    }
+    for (int yy = std::max(0, int(std::floor(lo.y))); yy <= std::min(H - 1, int(std::floor(hi.y))); ++yy)
+      for (int xx = std::max(0, int(std::floor(lo.x))); xx <= std::min(W - 1, int(std::floor(hi.x))); ++xx)
+        for (uint32_t r : regions_at(xx, yy))
+          if (const MapRegion& reg = vis_map->regions[r]; reg.polygon != p) {
+            clip_to_rect(reg.vertices, lo, hi, clipped);
+            add_points(reg.polygon, clipped);
+          }
   };
   std::vector<dvec2> clipped;
   for (int y = 0; y < H; ++y)
@@ -411,7 +458,9 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
         for (int k = 0; k < 2; ++k)
           if (any_bits(x, y, k)) add_pixel(labels.at(x, y, 1 + k), x, y);
       }
-      if (exact && boundary.at(x, y)) {
+      if (exact && boundary.at(x, y) && !pinhole) {
+        add_lens_pixel_regions(p, x, y, clipped);
+      } else if (exact && boundary.at(x, y)) {
         // Only the part of each region inside the pixel: a sliver of a polygon seen edge-on
         // would otherwise stretch its box over the whole polygon.
         for (uint32_t r : regions_at(x, y))
@@ -455,16 +504,20 @@ PhotoLayers map_photo(const ModelPolygons& model, const std::vector<TexelGrid>& 
         const dvec3 d = texel_center(g, i, j) - eye;
         const double z = glm::dot(d, F);
         if (z <= 0.0) continue;
-        const double px = cx + f * glm::dot(d, R) / z, py = cy - f * glm::dot(d, U) / z;
+        const double ux = cx + f * glm::dot(d, R) / z, uy = cy - f * glm::dot(d, U) / z;
+        // (px, py): the point in the photograph (through the lens), (ux, uy) in the pinhole image.
+        const dvec2 q = pinhole ? dvec2(ux, uy) : distort_pixel(cam, lens, {ux, uy});
+        const double px = q.x, py = q.y;
         if (!(px >= 0.0 && py >= 0.0 && px < W && py < H)) continue;
         const int ix = int(px), iy = int(py);
         const bool direct = labels.at(ix, iy) == p;
         if (!direct && exact) {
           // A pixel that may show p in part: is the projection itself in a region of p?
           if (!boundary.at(ix, iy)) continue;  // wholly on another polygon
+          if (!(ux >= 0.0 && uy >= 0.0 && ux < W && uy < H)) continue;  // outside the map
           bool seen_here = false;
-          for (uint32_t r : regions_at(ix, iy))
-            if (vis_map->regions[r].polygon == p && inside_region(vis_map->regions[r], dvec2(px, py))) {
+          for (uint32_t r : regions_at(int(ux), int(uy)))
+            if (vis_map->regions[r].polygon == p && inside_region(vis_map->regions[r], dvec2(ux, uy))) {
               seen_here = true;
               break;
             }
@@ -594,8 +647,8 @@ void fill_reach(SampleLayer& L) {
 
 PhotoLayers map_photo_layers(const ModelPolygons& model, const std::vector<TexelGrid>& grids, uint32_t photo,
                              const Camera& camera, const ImageF& image, const ImageU32& pixel_polygons,
-                             const VisibilityMap* vis_map) {
-  return map_photo(model, grids, photo, camera, image, pixel_polygons, vis_map);
+                             const VisibilityMap* vis_map, const Lens& lens) {
+  return map_photo(model, grids, photo, camera, image, pixel_polygons, vis_map, lens);
 }
 
 RadianceMaps build_radiance_maps(const ModelPolygons& model, double texel, std::span<const Camera> cameras,
@@ -614,7 +667,7 @@ RadianceMaps build_radiance_maps(const ModelPolygons& model, double texel, std::
   parallel_for(cameras.size(), 1, [&](size_t b, size_t e) {
     for (size_t k = b; k < e; ++k)
       per[k] = map_photo(model, grids, uint32_t(k), cameras[k], photos[k], pixel_polygons[k],
-                         vis_maps.empty() ? nullptr : &vis_maps[k]);
+                         vis_maps.empty() ? nullptr : &vis_maps[k], Lens{});
   });
   RadianceMaps maps = merge_photo_layers(grids, cameras, std::move(per));
   maps.stats.ms = watch.elapsed_ms();

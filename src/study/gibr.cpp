@@ -7,12 +7,14 @@
 
 #include "proxima/core/error.h"
 #include "proxima/core/image_io.h"
+#include "proxima/core/parallel.h"
 #include "proxima/core/range_check.h"
 #include "proxima/core/rng.h"
 #include "proxima/core/timer.h"
 #include "proxima/eval/image_error.h"
 #include "proxima/gibr/photo_set.h"
 #include "proxima/gibr/radiance_map.h"
+#include "proxima/gibr/silhouette_band.h"
 #include "proxima/scene/camera_path.h"
 
 namespace proxima::study {
@@ -52,7 +54,9 @@ void write_photos(const StudyOutput& out, const GibrModel& g, bool photo_images)
   std::vector<CalibratedPhoto> calibrated;
   std::filesystem::create_directories(out.dir / "photos");
   for (size_t i = 0; i < g.cameras.size(); ++i) {
-    calibrated.push_back({numbered("photo", i, ".png"), g.cameras[i]});
+    // Photographs taken through a lens are kept as taken (equalized): their camera keeps the lens.
+    const Lens lens = i < g.lenses.size() ? g.lenses[i] : Lens{};
+    calibrated.push_back({numbered("photo", i, ".png"), g.cameras[i], lens.k1, lens.k2});
     if (photo_images) write_png_linear(out.dir / "photos" / calibrated.back().image, g.photos[i]);
   }
   write_camera_file(out.dir / "photos" / "cameras.json", calibrated);
@@ -146,6 +150,8 @@ ImageU8 masked(const ImageU8& a, const ImageU8& b) {
 // Errors pooled over the views, per mapping (v = visibility map, i = item buffer).
 struct Errors {
   Pool all_v, all_i, sil_v, sil_i, seen_v, seen_i, silseen_v, silseen_i;
+  // Within 2 px of the view's or a photograph's silhouettes (reprojected_band).
+  Pool band_v, band_i;
   // By region: which mapping saw the pixel's surface (2 bits: vis-map hole, item-buffer
   // hole) × all pixels / within 2 px of silhouettes; [mapping].
   Pool region[4][2][2];
@@ -188,6 +194,29 @@ std::vector<std::variant<std::string, double>> add_view(Errors& e, size_t i, con
   e.covered += double(nv.covered);
   return {double(i), ev.psnr_db, ei.psnr_db, ev.mae_avg, ei.mae_avg, sv.mae_avg, si.mae_avg,
           100.0 * double(nv.holes) / double(std::max<size_t>(1, nv.covered)), nv.raster_ms + nv.blend_ms};
+}
+
+// The photographs' silhouette edges (visibility maps of the cameras the mapping used) lifted
+// onto the polygons on both sides, all photographs in order.
+std::vector<LiftedEdge> photograph_silhouettes(const GibrModel& g) {
+  std::vector<std::vector<LiftedEdge>> per(g.cameras.size());
+  parallel_for(per.size(), 1, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i)
+      per[i] = lift_silhouettes(trace_visibility_map(g.winged_pair, g.cameras[i]), g.cameras[i], g.model, uint32_t(i));
+  });
+  std::vector<LiftedEdge> out;
+  for (const auto& p : per) out.insert(out.end(), p.begin(), p.end());
+  return out;
+}
+
+// Pixels within 2 px of the view's silhouettes (`sil`) or of the silhouette edges of the
+// photographs the view blends first (k) on each polygon, reprojected where the view sees them.
+ImageU8 reprojected_band(const GibrModel& g, std::span<const LiftedEdge> edges, const Camera& cam, int k,
+                         const ImageU8& sil) {
+  const std::vector<LiftedEdge> blended = blended_edges(edges, g.maps, g.model, cam.position, k);
+  ImageU8 band = reprojected_edge_mask(blended, cam, *g.rays, 2.0, g.model.scale);
+  for (size_t p = 0; p < band.data().size(); ++p) band.data()[p] = band.data()[p] || sil.data()[p];
+  return band;
 }
 
 void write_view_images(const StudyOutput& out, Results& results, size_t i, const NovelView& nv, const NovelView& ni,
@@ -234,6 +263,11 @@ void add_error_metrics(Results& results, const Errors& e) {
   m["psnr_seen_itembuffer"] = e.seen_i.psnr();
   m["unseen_pct_vismap"] = 100.0 * e.holes_v / std::max(1.0, e.covered);
   m["unseen_pct_itembuffer"] = 100.0 * e.holes_i / std::max(1.0, e.covered);
+  m["reprojected_silhouette_mae_vismap"] = e.band_v.mae();
+  m["reprojected_silhouette_mae_itembuffer"] = e.band_i.mae();
+  m["reprojected_silhouette_psnr_vismap"] = e.band_v.psnr();
+  m["reprojected_silhouette_psnr_itembuffer"] = e.band_i.psnr();
+  m["reprojected_silhouette_pct"] = 100.0 * e.band_v.pixels / std::max(1.0, e.region_total);
 }
 
 // Phase 4's times: metrics and the rows of the time-per-phase table.
@@ -363,6 +397,7 @@ Results run_gibr(const Scene& model_scene, const GibrOptions& o, const StudyOutp
                  {"view", "psnr vismap", "psnr itembuffer", "mae vismap", "mae itembuffer", "sil mae vismap",
                   "sil mae itembuffer", "unseen % vismap", "ms vismap"},
                  {}};
+  const std::vector<LiftedEdge> photo_edges = photograph_silhouettes(g);
   if (progress) progress->begin("novel views of " + name, int(views.size()));
   for (size_t i = 0; i < views.size(); ++i) {
     if (progress) progress->step("view " + std::to_string(i));
@@ -373,6 +408,9 @@ Results run_gibr(const Scene& model_scene, const GibrOptions& o, const StudyOutp
     t.truth_ms += w.elapsed_ms();
     const ImageU8 sil = silhouette_pixel_mask(trace_visibility_map(g.winged_pair, cam), 2.0);
     per_view.rows.push_back(add_view(e, i, nv, ni, truth, sil));
+    const ImageU8 band = reprojected_band(g, photo_edges, cam, o.k, sil);
+    e.band_v.add(compare_images(nv.color, truth, &band));
+    e.band_i.add(compare_images(ni.color, truth, &band));
     write_view_images(out, results, i, nv, ni, truth);
   }
   if (progress) progress->end();

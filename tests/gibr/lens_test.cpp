@@ -10,6 +10,8 @@
 #include "../test_util.h"
 #include "proxima/core/image_io.h"
 #include "proxima/gibr/gibr_model.h"
+#include "proxima/gibr/lens.h"
+#include "proxima/gibr/lens_mapping.h"
 #include "proxima/gibr/photo_set.h"
 #include "proxima/scene/load.h"
 #include "proxima/study/gibr.h"
@@ -18,6 +20,14 @@ namespace proxima::gibr {
 namespace {
 
 constexpr int kFine = 4;
+
+// The rows of the per-view table ("novel views of …").
+const std::vector<std::vector<std::variant<std::string, double>>>& per_view(const Results& r) {
+  for (const Table& t : r.tables)
+    if (t.title.rfind("novel views of", 0) == 0) return t.rows;
+  static const std::vector<std::vector<std::variant<std::string, double>>> none;
+  return none;
+}
 
 ImageF box_down(const ImageF& fine, int factor) {
   ImageF out(fine.width() / factor, fine.height() / factor, 3, 0.0f);
@@ -56,6 +66,56 @@ TEST(GibrLens, UndistortInvertsDistortAwayFromTheBorder) {
   EXPECT_EQ(valid.at(40, 30), 1);
 }
 
+// undistorted_radius holds the undistorted image of the disk: points on the circle of the
+// given radius around q land within it of undistort(q), across the image (barrel and
+// pincushion), and not much inside it (the bound is tight to its margin).
+TEST(GibrLens, UndistortedRadiusHoldsThePixelsFootprint) {
+  const Camera cam = look_at({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 65.0f, 160, 120);
+  for (const Lens lens : {Lens{-0.15, 0.03}, Lens{0.2, 0.0}, Lens{-0.3, 0.1}}) {
+    double tightest = INFINITY;
+    for (int y = 0; y < 120; y += 7)
+      for (int x = 0; x < 160; x += 7) {
+        const glm::dvec2 q(x + 0.5, y + 0.5);
+        EXPECT_LT(glm::length(distort_pixel(cam, lens, undistort_pixel(cam, lens, q)) - q), 1e-9);
+        const glm::dvec2 u = undistort_pixel(cam, lens, q);
+        const double r = undistorted_radius(cam, lens, q, std::sqrt(0.5));
+        double reach = 0.0;
+        for (int k = 0; k < 64; ++k) {
+          const double a = 2.0 * 3.141592653589793 * k / 64.0;
+          const glm::dvec2 p = q + std::sqrt(0.5) * glm::dvec2(std::cos(a), std::sin(a));
+          reach = std::max(reach, glm::length(undistort_pixel(cam, lens, p) - u));
+        }
+        EXPECT_LE(reach, r) << x << "," << y;
+        tightest = std::min(tightest, r / reach);
+      }
+    EXPECT_LT(tightest, 1.03);
+  }
+}
+
+// A lens with a negligible distortion labels the lens image as the pinhole mapping labels
+// the pinhole image (point and segment queries on the map instead of its rasterization).
+TEST(GibrLens, NegligibleLensLabelsLikeThePinhole) {
+  const Scene rooms = load_scene("rooms");
+  GibrModelOptions mo;
+  mo.photos = 3;
+  mo.photo_width = 160;
+  mo.photo_height = 120;
+  const GibrModel g = prepare_gibr_model(rooms, mo);
+  size_t differ = 0, touched = 0;
+  for (size_t i = 0; i < g.cameras.size(); ++i) {
+    const visibility::VisibilityMap map = trace_visibility_map(g.winged_pair, g.cameras[i]);
+    const ImageU32 pinhole = vismap_pixel_polygons(map, false, false);
+    const LensLabels lens = vismap_lens_pixel_polygons(map, g.cameras[i], Lens{1e-12, 0.0}, false, 2);
+    for (int y = 0; y < 120; ++y)
+      for (int x = 0; x < 160; ++x) {
+        differ += pinhole.at(x, y) != lens.labels.at(x, y);
+        touched += lens.unmix.touched.at(x, y);
+      }
+  }
+  EXPECT_GT(touched, 100u);
+  EXPECT_LE(differ, 3u);  // pixels exactly at the touch radius or a region's edge
+}
+
 TEST(GibrLens, CameraFileLensFieldsRoundTripAndBadOnesNameTheFile) {
   TempDir dir;
   const Camera cam = look_at({1.0f, 1.6f, 2.0f}, {4.0f, 1.2f, 1.0f}, {0, 1, 0}, 65.0f, 320, 240, 0.01f, 500.0f);
@@ -83,9 +143,11 @@ TEST(GibrLens, CameraFileLensFieldsRoundTripAndBadOnesNameTheFile) {
 }
 
 // Photographs of the rooms model through a barrel lens (k1 = −0.15, k2 = 0.03) at exposures
-// 0.55–0.9: after undistortion and equalization the novel views' error over all pixels is
-// within 10 % of the same photographs taken through a pinhole at exposure 1, and within 2 px
-// of silhouettes at least three quarters of the error the lens adds is removed.
+// 0.55–0.9, mapped as taken (through the lens, equalized): the visibility map's novel views
+// are within 10 % of the same photographs taken through a pinhole at exposure 1, over all
+// pixels and within 2 px of silhouettes, pooled and in every view; the item buffer's over all
+// pixels pooled (docs/gibr.md: per view and at silhouettes it loses more — it maps the mixed
+// pixels, which the lens widens).
 TEST(GibrLens, DistortedExposedPhotographsMapWithinTenPercentOfPinholeOnes) {
   TempDir dir;
   const Scene rooms = load_scene("rooms");
@@ -139,12 +201,24 @@ TEST(GibrLens, DistortedExposedPhotographsMapWithinTenPercentOfPinholeOnes) {
                 b.metrics.at(m), b.metrics.at(m) / a.metrics.at(m), c.metrics.at(m));
     EXPECT_GT(c.metrics.at(m), 1.10 * a.metrics.at(m)) << m;
   }
-  // The bound, over all pixels: within 10 % of the pinhole photographs' error.
-  for (const char* m : {"mae_vismap", "mae_itembuffer"}) EXPECT_LE(b.metrics.at(m), 1.10 * a.metrics.at(m)) << m;
-  // Within 2 px of silhouettes the undistortion's bilinear resampling costs more (docs/gibr.md:
-  // 1.14× for the visibility map); undoing the lens must still remove most of the error.
-  for (const char* m : {"silhouette_mae_vismap", "silhouette_mae_itembuffer"})
-    EXPECT_LT(b.metrics.at(m) - a.metrics.at(m), 0.25 * (c.metrics.at(m) - a.metrics.at(m))) << m;
+  // The bound: within 10 % of the pinhole photographs' error.
+  for (const char* m : {"mae_vismap", "mae_itembuffer", "silhouette_mae_vismap"})
+    EXPECT_LE(b.metrics.at(m), 1.10 * a.metrics.at(m)) << m;
+  // Per view, the visibility map (views without silhouette pixels have a silhouette MAE of 0).
+  const auto& va = per_view(a), &vb = per_view(b);
+  ASSERT_EQ(va.size(), vb.size());
+  int with_silhouettes = 0;
+  for (size_t v = 0; v < va.size(); ++v) {
+    for (size_t col : {size_t(3), size_t(5)}) {  // mae vismap, sil mae vismap
+      const double pa = std::get<double>(va[v][col]), pb = std::get<double>(vb[v][col]);
+      EXPECT_LE(pb, 1.10 * pa) << "view " << v << " column " << col;
+      with_silhouettes += col == 5 && pa > 0.0;
+    }
+  }
+  EXPECT_GE(with_silhouettes, 1);
+  // The item buffer at silhouettes: most of the error the lens adds is removed.
+  EXPECT_LT(b.metrics.at("silhouette_mae_itembuffer") - a.metrics.at("silhouette_mae_itembuffer"),
+            0.25 * (c.metrics.at("silhouette_mae_itembuffer") - a.metrics.at("silhouette_mae_itembuffer")));
 }
 
 }  // namespace

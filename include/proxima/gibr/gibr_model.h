@@ -15,6 +15,7 @@
 
 #include "proxima/core/camera.h"
 #include "proxima/core/image.h"
+#include "proxima/gibr/lens.h"
 #include "proxima/gibr/radiance_map.h"
 #include "proxima/scene/scene.h"
 #include "proxima/trace/ray_scene.h"
@@ -61,9 +62,9 @@ struct GibrModelOptions {
   // Non-empty: the photographs are the images of this camera file (photo_set.h; e.g. real
   // photographs of the model), not rendered; `photos`, `photo_width` / `photo_height` are
   // then unused and `supersample` only tells the unmixing how finely the images average.
-  // Each image is undistorted with its camera's k1, k2 and divided by its exposure as it is
-  // loaded (photo_set.h); pixels the undistortion has no source for are mapped by neither
-  // mapping.
+  // Each image is divided by its exposure as it is loaded and kept as the lens took it: both
+  // mappings label its pixels where they are and sample it once, through the camera's k1, k2
+  // (gibr/lens_mapping.h).
   std::filesystem::path camera_file;
 };
 
@@ -87,9 +88,9 @@ struct GibrModel {
   visibility::WingedPair winged_pair;   // phase 1
   double texel = 0.0, far = 0.0;        // texel size used; far plane of every camera
   std::vector<Camera> cameras;          // per photograph, as the mapping uses it (calibrated)
-  std::vector<ImageF> photos;           // linear RGB (camera-file photographs undistorted and equalized)
+  std::vector<ImageF> photos;           // linear RGB (camera-file photographs divided by their exposure)
   std::vector<Camera> render_poses;     // rendered photographs: the poses they are taken from
-  std::vector<ImageU8> photo_valid;     // camera-file photographs: empty, or 0 where undistortion had no source
+  std::vector<Lens> lenses;             // camera-file photographs' lenses (images kept as taken); empty: all pinhole
   RadianceMaps maps;                    // visibility-map mapping (phase 3)
   RadianceMaps item_maps;               // item-buffer mapping; empty unless options.item_buffer
   GibrModelStats stats;

@@ -27,6 +27,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "proxima/core/camera.h"
@@ -66,6 +67,11 @@ struct NovelView {
 struct NovelViewScratch {
   RasterImages raster;
 };
+
+// Polygon p's layers in a frame's order: (−cos of the angle at p's centroid between the
+// directions to the layer's photograph and to `eye`, layer index), closest direction first.
+void rank_layers(const RadianceMaps& maps, const visibility::ModelPolygons& model, size_t p, const vec3& eye,
+                 std::vector<std::pair<float, uint32_t>>& keyed);
 
 // `scene` and `model` as used for the maps (model = extract_polygons(scene)).
 NovelView render_novel_view(const Scene& scene, const visibility::ModelPolygons& model, const RadianceMaps& maps,

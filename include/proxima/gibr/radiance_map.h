@@ -26,6 +26,7 @@
 
 #include "proxima/core/camera.h"
 #include "proxima/core/image.h"
+#include "proxima/gibr/lens.h"
 #include "proxima/scene/scene.h"
 #include "proxima/visibility/polygons.h"
 #include "proxima/visibility/visibility_map.h"
@@ -149,6 +150,22 @@ ImageU32 vismap_pixel_polygons(const visibility::VisibilityMap& map, bool exclud
 ImageU32 unmix_silhouette_pixels(const visibility::VisibilityMap& map, const ImageU32& labels, const ImageF& photo,
                                  int samples, bool exclude_all_boundaries = false, bool two_pass = false);
 
+// What the unmixing reads from a photograph's visibility map, per pixel of the photograph:
+// `centers` the polygon at its center (kNone: background, or not known), `touched` 1 for the
+// pixels to unmix (touching a silhouette — with exclude_all_boundaries any edge between
+// different polygons), `on_any_edge` 1 for pixels touching an edge between different polygons
+// (not wholly on one: the other sides' colors come from the others), and `fine` (width·s ×
+// height·s) the polygon each of the pixel's s × s samples sees (all known where touched).
+struct UnmixInputs {
+  ImageU32 centers, fine;
+  ImageU8 touched, on_any_edge;
+  int samples = 1;
+};
+// unmix_silhouette_pixels from those inputs (it builds them from the map: rasterized pixel
+// centers, the map scaled ×s; gibr/lens_mapping.h builds them through a lens). InputError
+// when the sizes disagree or samples is outside 1..8.
+ImageU32 unmix_pixels(const ImageU32& labels, const ImageF& photo, const UnmixInputs& inputs, bool two_pass);
+
 // First of unmix_silhouette_pixels' two channels in labels (1 + 2 or kRecordChannels + 2
 // channels), −1 for labels without them.
 inline int unmix_channel(const ImageU32& labels) {
@@ -188,10 +205,14 @@ struct PhotoLayers {
 };
 
 // The layers photograph `photo` (index into the maps' cameras) adds, as build_radiance_maps
-// makes them (grids: make_texel_grids of the model and texel; vis_map may be null).
+// makes them (grids: make_texel_grids of the model and texel; vis_map may be null). With a
+// `lens` (gibr/lens.h), `image` and `pixel_polygons` are the photograph as the lens took it,
+// not resampled (gibr/lens_mapping.h): a texel center is projected through the pinhole
+// camera, then through the lens, and the image is sampled there once; the exact-visible test
+// runs at the pinhole point, in the map.
 PhotoLayers map_photo_layers(const visibility::ModelPolygons& model, const std::vector<TexelGrid>& grids,
                              uint32_t photo, const Camera& camera, const ImageF& image, const ImageU32& pixel_polygons,
-                             const visibility::VisibilityMap* vis_map);
+                             const visibility::VisibilityMap* vis_map, const Lens& lens = {});
 
 // The radiance maps of every photograph's layers (`per`, in photograph order: each polygon's
 // layers come out in photograph order, whatever computed them where) and their statistics;

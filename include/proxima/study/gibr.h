@@ -60,7 +60,10 @@ gibr::GibrModelOptions gibr_model_options(const GibrOptions& options);
 // Metrics: texel_m, photos, layers_vismap, samples_{vismap,itembuffer},
 // samples_unmixed_vismap, samples_extrapolated_vismap, texels_covered_pct_vismap,
 // pixels_mapped_{vismap,itembuffer}, and per mapping ({vismap,itembuffer}) psnr, mae,
-// silhouette_mae, silhouette_psnr, silhouette_mae_seen, psnr_seen, unseen_pct; novel_view_ms,
+// silhouette_mae, silhouette_psnr, silhouette_mae_seen, psnr_seen, unseen_pct,
+// reprojected_silhouette_{mae,psnr} (within 2 px of the view's silhouettes or of a
+// photograph's silhouette edges reprojected where the view sees them, gibr/silhouette_band.h)
+// and reprojected_silhouette_pct (that band's share of the pixels); novel_view_ms,
 // novel_view_fps, novel_view_cpu_ms, novel_view_ss, novel_view_{ms,fps}_1spp (supersampled
 // only), bsp_ms, vismap_ms_avg, silhouette_edges_avg, maps_failed_selfcheck,
 // selfcheck_ms_avg. Tables: summary, error by region, radiance maps, time per phase, per view.
