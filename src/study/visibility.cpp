@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <iterator>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
-#include <cstdio>
-#include <sstream>
 
 #include "proxima/core/atomic_file.h"
 #include "proxima/core/error.h"
@@ -104,14 +104,14 @@ WingedPair winged_pair_for(const ModelPolygons& model, const VisibilityOptions& 
 }
 
 // The winged pair's figures, in the order of kBuildNames.
-constexpr const char* kBuildNames[] = {"polygons", "cells",      "faces",          "edges",
-                                       "vertices", "build_ms",   "unplaced_fragments", "rejected_planes"};
+constexpr const char* kBuildNames[] = {"polygons", "cells",    "faces",              "edges",
+                                       "vertices", "build_ms", "unplaced_fragments", "rejected_planes"};
 constexpr size_t kBuildFigures = std::size(kBuildNames);
 
 std::vector<double> build_figures(const ModelPolygons& model, const WingedPair& wp, const BspStats& bsp) {
   return {double(model.polygons.size()), double(wp.cells.size()),      double(wp.faces.size()),
-          double(wp.edges.size()),       double(wp.vertices.size()),   bsp.build_ms,
-          double(bsp.unplaced_fragments), double(bsp.rejected_planes)};
+          double(wp.edges.size()),         double(wp.vertices.size()),   bsp.build_ms,
+          double(bsp.unplaced_fragments),  double(bsp.rejected_planes)};
 }
 
 void add_build_metrics(Results& results, const Scene& scene, const std::vector<double>& build) {

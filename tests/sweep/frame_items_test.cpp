@@ -5,6 +5,7 @@
 // later part; a rerun redoes only the missing parts; a failing part fails its run's item.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <map>
 #include <regex>
 #include <string>
@@ -12,6 +13,7 @@
 #include "proxima/scene/load.h"
 #include "proxima/study/catalog.h"
 #include "proxima/study/frame_split.h"
+#include "proxima/sweep/frame_parts.h"
 #include "proxima/sweep/sweep.h"
 #include "study/study_test_util.h"
 #include "test_util.h"
@@ -102,6 +104,27 @@ TEST(SweepFrames, FramePartsCoverEveryFrameOnceInOrder) {
     }
 }
 
+TEST(SweepFrames, PartBytesRoundTripAndMalformedOnesAreRefused) {
+  FramePartData part;
+  part.figures.series = {{1.0, -0.0, 1e300}, {}, {std::numeric_limits<double>::infinity()}};
+  part.images = {{"cluster", "cluster.png"}};
+  part.files.files = {{"cluster.png", std::string("\x89PNG\0bytes", 10)}};
+  const std::string bytes = pack_frame_part(part);
+  const FramePartData back = unpack_frame_part(bytes);
+  EXPECT_EQ(back.figures.series, part.figures.series);
+  EXPECT_EQ(back.images, part.images);
+  EXPECT_EQ(back.files.files, part.files.files);
+  for (size_t cut : {size_t(0), size_t(8), bytes.size() / 2, bytes.size() - 1})
+    EXPECT_THROW(unpack_frame_part(std::string_view(bytes).substr(0, cut)), std::runtime_error) << cut;
+  EXPECT_THROW(unpack_frame_part(bytes + "x"), std::runtime_error);
+  EXPECT_THROW(unpack_frame_part(pack_item(part.files)), std::runtime_error);  // no figures
+  study::FrameFigures all;
+  study::append_figures(all, part.figures);
+  study::append_figures(all, part.figures);
+  EXPECT_EQ(all.series[0].size(), 6u);
+  EXPECT_THROW(study::append_figures(all, study::FrameFigures{{{1.0}}}), std::runtime_error);
+}
+
 TEST(SweepFrames, ARunBecomesFramePartsAndTheRunsItem) {
   const Manifest m = parse_manifest(kManifest, ".", "frames.json");
   ASSERT_EQ(m.items.size(), 12u);
@@ -133,9 +156,11 @@ TEST(SweepFrames, SplitRunsGiveTheStudyRunsResultsBitForBitAndResume) {
   fs::remove_all(out / "items" / m.items[3].id);
   EXPECT_EQ(SweepCoordinator(m, out, nullptr).skipped(), m.items.size() - 2);
   EXPECT_EQ(run_sweep(m, out, {"test"}, nullptr).failed, 0u);
-  for (const SweepItem& item : m.items)
-    if (item.id != m.items[1].id && item.id != m.items[3].id)
+  for (const SweepItem& item : m.items) {
+    if (item.id != m.items[1].id && item.id != m.items[3].id) {
       EXPECT_EQ(fs::last_write_time(out / "items" / item.id / "item.json"), times[item.id]) << item.id;
+    }
+  }
   expect_item_is_the_study_run(m, 3, out, dir.path / "direct2");
 }
 
