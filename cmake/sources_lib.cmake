@@ -90,6 +90,7 @@ set(PROXIMA_LIB_SOURCES
   src/study/demo_util.cpp
   src/study/demo_visibility.cpp
   src/study/envmap_reflect.cpp
+  src/study/frame_split.cpp
   src/study/gibr.cpp
   src/study/raster_bench.cpp
   src/study/reference.cpp
@@ -100,6 +101,7 @@ set(PROXIMA_LIB_SOURCES
   src/study/temporal_reflect.cpp
   src/study/trace_bench.cpp
   src/study/visibility.cpp
+  src/sweep/frame_parts.cpp
   src/sweep/gibr_photos.cpp
   src/sweep/item.cpp
   src/sweep/manifest.cpp

@@ -238,6 +238,12 @@ struct Entry {
   StudyInfo info;
   std::function<OptionValues(const OptionValues&)> resolve;
   std::function<Results(const Scene&, const OptionValues&, const StudyOutput&, Progress*)> run;
+  // A study that splits into frame parts (study/frame_split.h): a part, and the results
+  // from every part's figures; empty for the others.
+  std::function<Results(const Scene&, const OptionValues&, const FramePart&, const StudyOutput&, FrameFigures&,
+                        Progress*)>
+      run_part;
+  std::function<Results(const Scene&, const OptionValues&, const FrameFigures&)> part_results;
 };
 
 template <typename O>
@@ -258,11 +264,17 @@ O apply_options(const std::string& study, const std::vector<Field<O>>& fields, c
 
 template <typename O>
 using RunFn = Results (*)(const Scene&, const O&, const StudyOutput&, Progress*);
+template <typename O>
+using PartFn = Results (*)(const Scene&, const O&, const FramePart&, const StudyOutput&, FrameFigures&, Progress*);
+template <typename O>
+using PartResultsFn = Results (*)(const Scene&, const O&, const FrameFigures&);
 
-// `finish`, when given, sets what the command line derives from the flags given.
+// `finish`, when given, sets what the command line derives from the flags given; `part` and
+// `part_results`, when given, run the study split into frame parts.
 template <typename O>
 Entry entry(const char* name, const char* summary, std::vector<Field<O>> fields, RunFn<O> run,
-            void (*finish)(O&, const OptionValues&) = nullptr) {
+            void (*finish)(O&, const OptionValues&) = nullptr, PartFn<O> part = nullptr,
+            PartResultsFn<O> part_results = nullptr) {
   auto table = std::make_shared<const std::vector<Field<O>>>(std::move(fields));
   Entry e;
   e.info.name = name;
@@ -282,6 +294,16 @@ Entry entry(const char* name, const char* summary, std::vector<Field<O>> fields,
   e.run = [make, run](const Scene& scene, const OptionValues& values, const StudyOutput& out, Progress* progress) {
     return run(scene, make(values), out, progress);
   };
+  if (part && part_results) {
+    e.run_part = [make, part](const Scene& scene, const OptionValues& values, const FramePart& p,
+                              const StudyOutput& out, FrameFigures& figures, Progress* progress) {
+      return part(scene, make(values), p, out, figures, progress);
+    };
+    e.part_results = [make, part_results](const Scene& scene, const OptionValues& values,
+                                          const FrameFigures& figures) {
+      return part_results(scene, make(values), figures);
+    };
+  }
   return e;
 }
 
@@ -409,7 +431,8 @@ Entry cluster_entry() {
   f.push_back(field<O>("march_block", "block size of the depth minima the march skips with (0 = none; same result)",
                        &O::cluster, &C::march_block));
   return entry<O>("cluster_reflect", "reflections from clustered depth images (proxima reflect --method cluster)",
-                  std::move(f), run_cluster_reflect, cluster_finish);
+                  std::move(f), run_cluster_reflect, cluster_finish, run_cluster_reflect_part,
+                  cluster_reflect_results);
 }
 
 Entry temporal_entry() {
@@ -467,7 +490,7 @@ Entry visibility_entry() {
   f.push_back(field<O>("load", "winged-pair file traced instead of building one; empty = build", &O::load));
   f.push_back(field<O>("save", "file the winged pair is written to; empty = none", &O::save));
   return entry<O>("visibility", "exact visibility maps along a camera path (proxima visibility)", std::move(f),
-                  run_visibility);
+                  run_visibility, nullptr, run_visibility_part, visibility_results);
 }
 
 std::vector<Field<GibrOptions>> gibr_fields() {
@@ -589,6 +612,22 @@ OptionValues resolved_options(std::string_view name, const OptionValues& options
 Results run_study(std::string_view name, const Scene& scene, const OptionValues& options, const StudyOutput& out,
                   Progress* progress) {
   return find_entry(name).run(scene, options, out, progress);
+}
+
+bool splits_by_frames(std::string_view name) { return bool(find_entry(name).run_part); }
+
+Results run_study_part(std::string_view name, const Scene& scene, const OptionValues& options, const FramePart& part,
+                       const StudyOutput& out, FrameFigures& figures, Progress* progress) {
+  const Entry& e = find_entry(name);
+  if (!e.run_part) fail_input("study " + std::string(name) + " does not split into frame parts");
+  return e.run_part(scene, options, part, out, figures, progress);
+}
+
+Results study_part_results(std::string_view name, const Scene& scene, const OptionValues& options,
+                           const FrameFigures& figures) {
+  const Entry& e = find_entry(name);
+  if (!e.part_results) fail_input("study " + std::string(name) + " does not split into frame parts");
+  return e.part_results(scene, options, figures);
 }
 
 GibrOptions gibr_options(const OptionValues& options) { return apply_options("gibr", gibr_fields(), options); }

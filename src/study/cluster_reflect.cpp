@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <memory>
+#include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -571,18 +573,18 @@ void validate(const ClusterReflectOptions& o, const Scene& scene) {
   if (reflective_objects(scene).empty()) fail_input("--scene: '" + scene.name + "' has no reflective object");
 }
 
-Results run_cluster_reflect(const Scene& rest, const ClusterReflectOptions& o, const StudyOutput& out,
-                            Progress* progress) {
-  validate(o);
-  validate(o, rest);
-  const Schedule sched = schedule(rest, o);
+namespace {
+
+// Frames [first, last) of the schedule into `s`; the images, when the image frame (the first
+// one rendered unless --image-frame) is among them, into `out` and `results`.
+void run_frames(const Scene& rest, const ClusterReflectOptions& o, const Schedule& sched, int first, int last,
+                const StudyOutput& out, ClusterSeries& s, Results& results, Progress* progress) {
   const float far = scene_far_plane(rest);
   const ReflectionOptions& ro = o.reflection;
-  ClusterSeries s;
-  Results results;
-  bool wrote_images = false;
-  if (progress) progress->begin("reflect cluster", int(sched.indices.size()));
-  for (const int frame_index : sched.indices) {
+  const int image_index = o.image_frame < 0 ? sched.indices.front() : o.image_frame;
+  if (progress) progress->begin("reflect cluster", last - first);
+  for (int k = first; k < last; ++k) {
+    const int frame_index = sched.indices[size_t(k)];
     if (progress) progress->step("frame " + std::to_string(frame_index) + "/" + std::to_string(sched.frames));
     const float t = sched.time_of(frame_index);
     const Scene posed = has_animation(rest) ? pose_scene(rest, t) : Scene{};
@@ -605,7 +607,7 @@ Results run_cluster_reflect(const Scene& rest, const ClusterReflectOptions& o, c
       if (o.full_reference) add_full_reference_errors(scene, f, camera, ro, color, reference, mask, s);
       if (o.ssr) add_ssr_errors(f, reference, mask, s);
     }
-    if (!wrote_images && (o.image_frame < 0 || o.image_frame == frame_index)) {
+    if (frame_index == image_index) {
       write_image(out, results, "cluster", "cluster.png", color);
       write_image(out, results, "clusters", "clusters.png", cluster_image(f.frame, f.cluster, color));
       if (o.compare) {
@@ -618,10 +620,14 @@ Results run_cluster_reflect(const Scene& rest, const ClusterReflectOptions& o, c
                     error_heatmap(error_image(envmap, reference, &mask), kErrorHeatmapMax, &mask));
       }
       if (o.ssr) write_ssr_images(f, reference, mask, o.compare, out, results);
-      wrote_images = true;
     }
   }
   if (progress) progress->end();
+}
+
+// The run's metrics and tables from every frame's series.
+void add_results(const Scene& rest, const ClusterReflectOptions& o, const Schedule& sched, const ClusterSeries& s,
+                 Results& results) {
   add_metrics(o, s, results);
   const std::string where =
       rest.name + " / " +
@@ -630,6 +636,77 @@ Results run_cluster_reflect(const Scene& rest, const ClusterReflectOptions& o, c
   add_tables(o, s, where, results);
   if (o.compare) add_compare_tables(o, s, where, results);
   if (o.compare && o.ssr) add_ssr_table(s, where, results);
+}
+
+// Every series of ClusterSeries, in declaration order: a frame part's figures.
+template <typename S, typename F>
+void for_each_series(S& s, F&& f) {
+  for (auto* x : {&s.reflective_pct, &s.cluster_ms, &s.reference_ms, &s.reference_dynamic_ms, &s.envmap_ms,
+                  &s.envmap_build_ms, &s.step1_ms, &s.cameras_ms, &s.images_ms, &s.intersection_ms, &s.clusters,
+                  &s.samples_per_cluster, &s.occlusion_pct, &s.fallback_pct, &s.planar_pct, &s.mae_r, &s.mae_g,
+                  &s.mae_b, &s.env_r, &s.env_g, &s.env_b, &s.texels, &s.fill_pct, &s.occlusion_ray_pct,
+                  &s.occlusion_mirror_pct, &s.occlusion_glossy_pct, &s.full_r, &s.full_g, &s.full_b,
+                  &s.traced_full, &s.second_texels, &s.second_ray_pct, &s.cluster_cpu_ms, &s.reference_cpu_ms,
+                  &s.reference_dynamic_cpu_ms, &s.step1_cpu_ms, &s.cameras_cpu_ms, &s.images_cpu_ms,
+                  &s.intersection_cpu_ms, &s.texel_shading_ms, &s.triangles_drawn, &s.shaded_texels})
+    f(*x);
+  for (auto& x : s.cause_pct) f(x);
+  for (auto& x : s.cause_mirror_pct) f(x);
+  for (auto* x : {&s.ssr_ms, &s.box_ms, &s.ssr_r, &s.ssr_g, &s.ssr_b, &s.box_r, &s.box_g, &s.box_b,
+                  &s.ssr_fallback_pct, &s.ssr_fallback_rays_pct, &s.ssr_steps, &s.ssr_confidence})
+    f(*x);
+  for (auto& x : s.ssr_outcome_pct) f(x);
+  for (auto* x : {&s.ssr_depth_ms, &s.ssr_trace_ms}) f(*x);
+}
+
+// A series added to ClusterSeries but not listed above would be lost by a split run.
+constexpr size_t kClusterSeries = 42 + 2 * kOcclusionCauses + 12 + 5 + 2;
+static_assert(sizeof(ClusterSeries) == kClusterSeries * sizeof(Series), "list every series in for_each_series");
+
+}  // namespace
+
+Results run_cluster_reflect(const Scene& rest, const ClusterReflectOptions& o, const StudyOutput& out,
+                            Progress* progress) {
+  validate(o);
+  validate(o, rest);
+  const Schedule sched = schedule(rest, o);
+  ClusterSeries s;
+  Results results;
+  run_frames(rest, o, sched, 0, int(sched.indices.size()), out, s, results, progress);
+  add_results(rest, o, sched, s, results);
+  return results;
+}
+
+Results run_cluster_reflect_part(const Scene& rest, const ClusterReflectOptions& o, const FramePart& part,
+                                 const StudyOutput& out, FrameFigures& figures, Progress* progress) {
+  validate(o);
+  validate(o, rest);
+  const Schedule sched = schedule(rest, o);
+  const auto [first, last] = frame_span(part, int(sched.indices.size()));
+  ClusterSeries s;
+  Results results;
+  run_frames(rest, o, sched, first, last, out, s, results, progress);
+  figures.series.clear();
+  std::set<const Series*> listed;
+  for_each_series(s, [&](const Series& x) {
+    figures.series.push_back(x.values);
+    listed.insert(&x);
+  });
+  if (listed.size() != kClusterSeries) throw std::logic_error("cluster_reflect: for_each_series lists a series twice");
+  return results;
+}
+
+Results cluster_reflect_results(const Scene& rest, const ClusterReflectOptions& o, const FrameFigures& figures) {
+  validate(o);
+  validate(o, rest);
+  if (figures.series.size() != kClusterSeries)
+    throw std::runtime_error("cluster_reflect: " + std::to_string(figures.series.size()) + " series of frame figures, " +
+                             std::to_string(kClusterSeries) + " expected");
+  ClusterSeries s;
+  size_t i = 0;
+  for_each_series(s, [&](Series& x) { x.values = figures.series[i++]; });
+  Results results;
+  add_results(rest, o, schedule(rest, o), s, results);
   return results;
 }
 

@@ -1,8 +1,12 @@
 #include "proxima/study/visibility.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
+#include <iterator>
 #include <sstream>
+#include <stdexcept>
+#include <vector>
 
 #include "proxima/core/atomic_file.h"
 #include "proxima/core/error.h"
@@ -99,17 +103,20 @@ WingedPair winged_pair_for(const ModelPolygons& model, const VisibilityOptions& 
   return wp;
 }
 
-void add_build_metrics(Results& results, const Scene& scene, const ModelPolygons& model, const WingedPair& wp,
-                       const BspStats& bsp) {
+// The winged pair's figures, in the order of kBuildNames.
+constexpr const char* kBuildNames[] = {"polygons", "cells",    "faces",              "edges",
+                                       "vertices", "build_ms", "unplaced_fragments", "rejected_planes"};
+constexpr size_t kBuildFigures = std::size(kBuildNames);
+
+std::vector<double> build_figures(const ModelPolygons& model, const WingedPair& wp, const BspStats& bsp) {
+  return {double(model.polygons.size()), double(wp.cells.size()),      double(wp.faces.size()),
+          double(wp.edges.size()),         double(wp.vertices.size()),   bsp.build_ms,
+          double(bsp.unplaced_fragments),  double(bsp.rejected_planes)};
+}
+
+void add_build_metrics(Results& results, const Scene& scene, const std::vector<double>& build) {
   auto& m = results.metrics;
-  m["polygons"] = double(model.polygons.size());
-  m["cells"] = double(wp.cells.size());
-  m["faces"] = double(wp.faces.size());
-  m["edges"] = double(wp.edges.size());
-  m["vertices"] = double(wp.vertices.size());
-  m["build_ms"] = bsp.build_ms;
-  m["unplaced_fragments"] = double(bsp.unplaced_fragments);
-  m["rejected_planes"] = double(bsp.rejected_planes);
+  for (size_t i = 0; i < kBuildFigures; ++i) m[kBuildNames[i]] = build[i];
   results.tables.push_back({"winged pair of " + scene.name + " (Table 1)",
                             {"polygons", "cells", "faces", "edges", "vertices", "build_ms"},
                             {{m["polygons"], m["cells"], m["faces"], m["edges"], m["vertices"], m["build_ms"]}}});
@@ -206,6 +213,114 @@ VisibilityMap trace_map(const WingedPair& wp, const Camera& cam, const Visibilit
   }
 }
 
+// One viewpoint's figures: its map's statistics, self-check and oracle counts.
+enum ViewField { kFrame, kBeams, kRegions, kMerged, kVisible, kSilhouettes, kMapMs, kPass, kCheckMs, kTies,
+                 kMismatches, kJudged, kSamples, kAgree, kInterior, kInteriorAgree, kOccluded, kOracleTies,
+                 kInteriorTies, kViewFields };
+using ViewFigures = std::array<double, kViewFields>;
+
+ViewFigures view_figures(int frame, const MapStats& s, const MapCheck& check, const OracleCounts& c) {
+  ViewFigures v{};
+  v[kFrame] = double(frame);
+  v[kBeams] = double(s.beams);
+  v[kRegions] = double(s.regions);
+  v[kMerged] = double(s.merged_regions);
+  v[kVisible] = double(s.visible_polygons);
+  v[kSilhouettes] = double(s.silhouette_edges);
+  v[kMapMs] = s.ms;
+  v[kPass] = check.pass ? 1.0 : 0.0;
+  v[kCheckMs] = check.ms;
+  v[kTies] = double(check.coplanar_ties);
+  v[kMismatches] = double(check.mismatches);
+  v[kJudged] = double(check.samples);
+  const size_t* counts[] = {&c.samples, &c.agree, &c.interior, &c.interior_agree, &c.occluded_label, &c.ties,
+                            &c.interior_ties};
+  for (int k = 0; k < 7; ++k) v[size_t(kSamples + k)] = double(*counts[k]);
+  return v;
+}
+
+// A viewpoint into the totals and the per-view table (counts are exact in a double).
+void add_view(const ViewFigures& v, bool oracle, ViewTotals& totals, Table& per_view) {
+  MapStats s;
+  s.beams = size_t(v[kBeams]);
+  s.regions = size_t(v[kRegions]);
+  s.merged_regions = size_t(v[kMerged]);
+  s.visible_polygons = size_t(v[kVisible]);
+  s.silhouette_edges = size_t(v[kSilhouettes]);
+  s.ms = v[kMapMs];
+  MapCheck check;
+  check.pass = v[kPass] != 0.0;
+  check.ms = v[kCheckMs];
+  check.coplanar_ties = size_t(v[kTies]);
+  check.mismatches = size_t(v[kMismatches]);
+  check.samples = size_t(v[kJudged]);
+  totals.add(s, check);
+  OracleCounts c;
+  size_t* counts[] = {&c.samples, &c.agree, &c.interior, &c.interior_agree, &c.occluded_label, &c.ties,
+                      &c.interior_ties};
+  for (int k = 0; k < 7; ++k) *counts[k] = size_t(v[size_t(kSamples + k)]);
+  if (oracle) totals.add(c);
+  per_view.rows.push_back({v[kFrame], double(s.beams), double(s.regions), double(s.merged_regions),
+                           double(s.visible_polygons), double(s.silhouette_edges), s.ms, c.agreement_pct(),
+                           c.interior_pct(), c.interior_with_ties_pct(), v[kPass], check.ms});
+}
+
+// The frames of the chosen path the run covers.
+int run_frames(const VisibilityOptions& o, const CameraPath& path) {
+  return o.frames > 0 ? std::min(o.frames, path.frames) : path.frames;
+}
+
+// Frames [first, last): the winged pair built (or loaded, and saved when `save`), each map
+// traced, checked and compared; the build's figures into `build`, each viewpoint's into
+// `views`, the map images into `out` and `results`.
+void trace_frames(const Scene& scene, const VisibilityOptions& o, int first, int last, bool save,
+                  const StudyOutput& out, Progress* progress, std::vector<double>& build,
+                  std::vector<ViewFigures>& views, Results& results) {
+  const CameraPath& path = chosen_path(scene, o);
+  const ModelPolygons model = extract_polygons(scene);
+  BspStats bsp;
+  const WingedPair wp = winged_pair_for(model, o, bsp);
+  if (out.writes()) std::filesystem::create_directories(out.dir);
+  if (save && !o.save.empty()) save_winged_pair(o.save, wp);
+  build = build_figures(model, wp, bsp);
+
+  // Embree rays serve the oracle and every map's self-check, on the welded geometry the map
+  // is exact for (docs/visibility.md, "What the map is exact for").
+  const Scene welded = welded_scene(scene, model);
+  const RayScene rays(welded);
+  const float far = scene_far_plane(scene);
+  MapCheckOptions check_options;
+  check_options.rays = o.selfcheck_rays;
+  if (progress) progress->begin("visibility maps of " + scene.name, last - first);
+  for (int frame = first; frame < last; ++frame) {
+    if (progress) progress->step("frame " + std::to_string(frame));
+    const Camera cam = camera_at_time(path, frame_time(path, frame), o.width, o.height, 1e-3f, far);
+    const VisibilityMap map = trace_map(wp, cam, o);
+    const MapCheck check = check_visibility_map(map, model, rays, cam, check_options);
+    if (!check.pass)
+      std::fprintf(stderr, "warning: %s: visibility map of frame %d (eye %.3f %.3f %.3f) failed its self-check: %s\n",
+                   scene.name.c_str(), frame, double(cam.position.x), double(cam.position.y), double(cam.position.z),
+                   check.reason.c_str());
+    OracleCounts c;
+    if (o.oracle) c = compare_with_ray_casts(map, model, welded, rays, cam);
+    views.push_back(view_figures(frame, map.stats, check, c));
+    if (o.images) write_map_images(out, results, frame, map);
+  }
+  if (progress) progress->end();
+}
+
+// The run's metrics and tables from the build's and every viewpoint's figures.
+void add_results(const Scene& scene, const VisibilityOptions& o, const std::vector<double>& build,
+                 const std::vector<ViewFigures>& views, Results& results) {
+  add_build_metrics(results, scene, build);
+  ViewTotals totals;
+  Table per_view = per_view_table(scene, chosen_path(scene, o));
+  for (const ViewFigures& v : views) add_view(v, o.oracle, totals, per_view);
+  add_view_metrics(results, totals, int(views.size()), o.oracle);
+  results.tables.push_back(summary_table(scene, results));
+  results.tables.push_back(std::move(per_view));
+}
+
 }  // namespace
 
 void validate(const VisibilityOptions& o) {
@@ -216,48 +331,48 @@ void validate(const VisibilityOptions& o) {
 
 Results run_visibility(const Scene& scene, const VisibilityOptions& o, const StudyOutput& out, Progress* progress) {
   validate(o);
-  const CameraPath& path = chosen_path(scene, o);
-  const int frames = o.frames > 0 ? std::min(o.frames, path.frames) : path.frames;
+  const int frames = run_frames(o, chosen_path(scene, o));
   Results results;
-  const ModelPolygons model = extract_polygons(scene);
-  BspStats bsp;
-  const WingedPair wp = winged_pair_for(model, o, bsp);
-  if (out.writes()) std::filesystem::create_directories(out.dir);
-  if (!o.save.empty()) save_winged_pair(o.save, wp);
-  add_build_metrics(results, scene, model, wp, bsp);
+  std::vector<double> build;
+  std::vector<ViewFigures> views;
+  trace_frames(scene, o, 0, frames, true, out, progress, build, views, results);
+  add_results(scene, o, build, views, results);
+  return results;
+}
 
-  // Embree rays serve the oracle and every map's self-check, on the welded geometry the map
-  // is exact for (docs/visibility.md, "What the map is exact for").
-  const Scene welded = welded_scene(scene, model);
-  const RayScene rays(welded);
-  const float far = scene_far_plane(scene);
-  MapCheckOptions check_options;
-  check_options.rays = o.selfcheck_rays;
-  ViewTotals totals;
-  Table per_view = per_view_table(scene, path);
-  if (progress) progress->begin("visibility maps of " + scene.name, frames);
-  for (int frame = 0; frame < frames; ++frame) {
-    if (progress) progress->step("frame " + std::to_string(frame));
-    const Camera cam = camera_at_time(path, frame_time(path, frame), o.width, o.height, 1e-3f, far);
-    const VisibilityMap map = trace_map(wp, cam, o);
-    const MapCheck check = check_visibility_map(map, model, rays, cam, check_options);
-    totals.add(map.stats, check);
-    if (!check.pass)
-      std::fprintf(stderr, "warning: %s: visibility map of frame %d (eye %.3f %.3f %.3f) failed its self-check: %s\n",
-                   scene.name.c_str(), frame, double(cam.position.x), double(cam.position.y), double(cam.position.z),
-                   check.reason.c_str());
-    OracleCounts c;
-    if (o.oracle) totals.add(c = compare_with_ray_casts(map, model, welded, rays, cam));
-    const MapStats& s = map.stats;
-    per_view.rows.push_back({double(frame), double(s.beams), double(s.regions), double(s.merged_regions),
-                             double(s.visible_polygons), double(s.silhouette_edges), s.ms, c.agreement_pct(),
-                             c.interior_pct(), c.interior_with_ties_pct(), check.pass ? 1.0 : 0.0, check.ms});
-    if (o.images) write_map_images(out, results, frame, map);
-  }
-  if (progress) progress->end();
-  add_view_metrics(results, totals, frames, o.oracle);
-  results.tables.push_back(summary_table(scene, results));
-  results.tables.push_back(std::move(per_view));
+Results run_visibility_part(const Scene& scene, const VisibilityOptions& o, const FramePart& part,
+                            const StudyOutput& out, FrameFigures& figures, Progress* progress) {
+  validate(o);
+  const auto [first, last] = frame_span(part, run_frames(o, chosen_path(scene, o)));
+  Results results;
+  std::vector<double> build;
+  std::vector<ViewFigures> views;
+  // Part 0 gives the winged pair's figures (and saves it); a later part without frames
+  // builds nothing.
+  if (part.index == 0 || first < last)
+    trace_frames(scene, o, first, last, part.index == 0, out, progress, build, views, results);
+  figures.series.assign(kBuildFigures + kViewFields, {});
+  if (part.index == 0)
+    for (size_t i = 0; i < kBuildFigures; ++i) figures.series[i].push_back(build[i]);
+  for (const ViewFigures& v : views)
+    for (size_t i = 0; i < kViewFields; ++i) figures.series[kBuildFigures + i].push_back(v[i]);
+  return results;
+}
+
+Results visibility_results(const Scene& scene, const VisibilityOptions& o, const FrameFigures& figures) {
+  validate(o);
+  const auto& f = figures.series;
+  bool shaped = f.size() == kBuildFigures + kViewFields;
+  for (size_t i = 0; shaped && i < f.size(); ++i)
+    shaped = f[i].size() == (i < kBuildFigures ? 1 : f[kBuildFigures].size());
+  if (!shaped) throw std::runtime_error("visibility: frame figures of the wrong shape");
+  std::vector<double> build(kBuildFigures);
+  for (size_t i = 0; i < kBuildFigures; ++i) build[i] = f[i][0];
+  std::vector<ViewFigures> views(f[kBuildFigures].size());
+  for (size_t k = 0; k < views.size(); ++k)
+    for (size_t i = 0; i < kViewFields; ++i) views[k][i] = f[kBuildFigures + i][k];
+  Results results;
+  add_results(scene, o, build, views, results);
   return results;
 }
 

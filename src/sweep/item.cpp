@@ -18,6 +18,7 @@
 #include "proxima/eval/results.h"
 #include "proxima/scene/load.h"
 #include "proxima/scene/visibility_models.h"
+#include "proxima/sweep/frame_parts.h"
 #include "proxima/sweep/gibr_photos.h"
 
 namespace proxima::sweep {
@@ -45,6 +46,8 @@ json item_identity(const SweepItem& item) {
   for (const auto& [name, value] : study::resolved_options(item.study, item.options)) options[name] = value_json(value);
   json id = {{"id", item.id}, {"scene", item.scene}, {"study", item.study}, {"options", options}};
   if (item.photo >= 0) id["photo"] = item.photo;
+  if (item.frame_part >= 0) id["frame_part"] = item.frame_part;
+  if (item.frame_parts > 1) id["frame_parts"] = item.frame_parts;
   return id;
 }
 
@@ -104,6 +107,17 @@ std::string get_bytes(std::string_view in, size_t& at) {
   return s;
 }
 
+// A frame part run into `dir` (then removed), packed as its part.bin.
+std::string run_part(const Scene& scene, const SweepItem& item, const fs::path& dir) {
+  FramePartData part;
+  const Results results = study::run_study_part(item.study, scene, item.options,
+                                                {item.frame_part, item.frame_parts}, {dir}, part.figures);
+  part.images = results.images;
+  if (fs::exists(dir)) part.files = read_dir(dir);
+  fs::remove_all(dir);
+  return pack_frame_part(part);
+}
+
 ItemStatus status_of(const json& record) {
   ItemStatus s;
   s.state = record.value("status", std::string()) == "ok" ? ItemState::Ok : ItemState::Failed;
@@ -151,11 +165,14 @@ ItemFiles run_item(const SweepItem& item, const fs::path& scratch, const std::ve
     const Scene scene = load_item_scene(item.scene);
     if (item.photo >= 0) {
       write_bytes(dir / "photo.bin", run_gibr_photo(scene, item.options, item.photo));
+    } else if (item.frame_part >= 0) {
+      write_bytes(dir / "part.bin", run_part(scene, item, dir / "part"));
     } else {
       if (inputs.size() != item.inputs.size()) throw std::runtime_error("sweep: the item's inputs are missing");
       const study::StudyOutput out{dir};
-      Results results = item.inputs.empty() ? study::run_study(item.study, scene, item.options, out)
-                                            : run_gibr_with_photos(scene, item.options, out, inputs);
+      Results results = item.inputs.empty()   ? study::run_study(item.study, scene, item.options, out)
+                        : item.frame_parts > 1 ? run_with_frame_parts(scene, item.study, item.options, out, inputs)
+                                               : run_gibr_with_photos(scene, item.options, out, inputs);
       results.command = item_command(item);
       results.threads = active_threads();
       write_results_json(dir / "results.json", results);
@@ -207,7 +224,10 @@ ItemFiles failed_item(const SweepItem& item, const std::string& error) {
 
 std::vector<std::string> item_inputs(const Manifest& manifest, const fs::path& out, const SweepItem& item) {
   std::vector<std::string> inputs;
-  for (size_t i : item.inputs) inputs.push_back(read_bytes(out / "items" / manifest.items.at(i).id / "photo.bin"));
+  for (size_t i : item.inputs) {
+    const SweepItem& input = manifest.items.at(i);
+    inputs.push_back(read_bytes(out / "items" / input.id / (input.photo >= 0 ? "photo.bin" : "part.bin")));
+  }
   return inputs;
 }
 

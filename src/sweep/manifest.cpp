@@ -69,8 +69,8 @@ std::vector<study::OptionValues> grid_points(const json& run, const std::string&
 
 void check_keys(const json& run, const std::string& where) {
   for (const auto& [key, value] : run.items())
-    if (key != "study" && key != "scene" && key != "options" && key != "grid")
-      fail_input(where + ": unknown key \"" + key + "\" (study, scene, options, grid)");
+    if (key != "study" && key != "scene" && key != "options" && key != "grid" && key != "frame_items")
+      fail_input(where + ": unknown key \"" + key + "\" (study, scene, options, grid, frame_items)");
 }
 
 }  // namespace
@@ -81,7 +81,34 @@ struct Pending {
   std::string scene, study;
   study::OptionValues options;
   std::string demo_dir;  // the demo run it is, if any
+  int frame_items = 1;   // frame parts (study/frame_split.h); 1 = one item
 };
+
+// A run's "frame_items": 1..10000, and only for a study that splits into frame parts.
+int frame_items(const json& run, const std::string& study, const std::string& where) {
+  if (!run.contains("frame_items")) return 1;
+  const json& k = run["frame_items"];
+  if (!k.is_number_integer() || k.get<std::int64_t>() < 1 || k.get<std::int64_t>() > 10000)
+    fail_input(where + ": \"frame_items\" must be an integer in 1..10000");
+  const int n = static_cast<int>(k.get<std::int64_t>());
+  if (n > 1 && !study::splits_by_frames(study))
+    fail_input(where + ": \"frame_items\": study " + study + " does not split into frame parts (cluster_reflect, visibility)");
+  return n;
+}
+
+// The demo's rule: a cluster_reflect run along a path and a visibility run become up to
+// kDemoFrameItems frame parts (fewer when the options give fewer frames).
+int demo_frame_items(const std::string& study, const study::OptionValues& given) {
+  if (!study::splits_by_frames(study)) return 1;
+  const study::OptionValues o = study::resolved_options(study, given);
+  const std::int64_t frames = std::get<std::int64_t>(o.at("frames"));
+  std::int64_t n = frames > 0 ? frames : kDemoFrameItems;
+  if (study == "cluster_reflect") {
+    if (std::get<std::string>(o.at("path")).empty() || given.contains("frame")) return 1;
+    n = frames > 0 ? (frames + std::get<std::int64_t>(o.at("frame_step")) - 1) / std::get<std::int64_t>(o.at("frame_step")) : n;
+  }
+  return static_cast<int>(std::min<std::int64_t>(n, kDemoFrameItems));
+}
 
 json parse_json(const std::string& json_text, const std::string& source) {
   try {
@@ -116,8 +143,9 @@ std::vector<Pending> expand_runs(const json& runs, const std::filesystem::path& 
         fail_input(where + ": " + e.what());
       }
     }
+    const int parts = frame_items(run, name, where);
     for (const std::string& scene : scenes_of(run, base_dir, where))
-      for (const study::OptionValues& options : points) pending.push_back({scene, name, options, ""});
+      for (const study::OptionValues& options : points) pending.push_back({scene, name, options, "", parts});
   }
   return pending;
 }
@@ -162,7 +190,7 @@ std::vector<Pending> expand_demo(const study::DemoOptions& o, const std::string&
     } catch (const InputError& e) {
       fail_input(where + ": demo run " + run.dir + ": " + e.what());
     }
-    pending.push_back({c.scene, c.study, c.options, run.dir});
+    pending.push_back({c.scene, c.study, c.options, run.dir, demo_frame_items(c.study, c.options)});
   }
   return pending;
 }
@@ -190,6 +218,8 @@ json items_json(const Manifest& m) {
       options[name] = std::visit([](const auto& v) { return json(v); }, value);
     json j = {{"id", item.id}, {"study", item.study}, {"scene", item.scene}, {"options", options}};
     if (item.photo >= 0) j["photo"] = item.photo;
+    if (item.frame_part >= 0) j["frame_part"] = item.frame_part;
+    if (item.frame_parts > 1) j["frame_parts"] = item.frame_parts;
     items.push_back(j);
   }
   return items;
@@ -215,10 +245,22 @@ Manifest parse_manifest(const std::string& json_text, const std::filesystem::pat
   }
   if (pending.empty()) fail_input(source + ": no study runs (the demo sections chosen run none)");
   size_t count = 0;
-  for (const Pending& p : pending) count += 1 + size_t(gibr_photos(p));
+  for (const Pending& p : pending) count += 1 + size_t(gibr_photos(p)) + (p.frame_items > 1 ? size_t(p.frame_items) : 0);
   const size_t digits = std::max<size_t>(3, std::to_string(count - 1).size());
   for (const Pending& p : pending) {
-    SweepItem item{"", p.scene, p.study, p.options, -1, {}};
+    SweepItem item;
+    item.scene = p.scene;
+    item.study = p.study;
+    item.options = p.options;
+    for (int k = 0; p.frame_items > 1 && k < p.frame_items; ++k) {
+      SweepItem part = item;
+      part.id = item_id(m.items.size(), digits, p.study + "_part");
+      part.frame_part = k;
+      part.frame_parts = p.frame_items;
+      item.inputs.push_back(m.items.size());
+      m.items.push_back(std::move(part));
+    }
+    item.frame_parts = p.frame_items;
     for (int k = 0, n = gibr_photos(p); k < n; ++k) {
       SweepItem photo = item;
       photo.id = item_id(m.items.size(), digits, p.study + "_photo");

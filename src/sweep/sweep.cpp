@@ -116,7 +116,7 @@ Results merge_items(const Manifest& manifest, const std::vector<ItemStatus>& sta
   size_t r = 0;
   for (size_t i = 0; i < manifest.items.size(); ++i) {
     const SweepItem& item = manifest.items[i];
-    if (item.photo >= 0) continue;  // its photograph's mapping went into its run's item
+    if (item.is_part()) continue;  // its photograph's mapping or frame figures went into its run's item
     const Results* results = statuses[i].state == ItemState::Ok ? &runs[r++].results : nullptr;
     if (results)
       for (const auto& [role, file] : results->images)
@@ -134,7 +134,11 @@ Table items_table(const Manifest& manifest, const std::vector<ItemStatus>& statu
   Table items{"sweep items", {"id", "study", "scene", "status", "seconds", "error"}, {}};
   for (size_t i = 0; i < manifest.items.size(); ++i) {
     const SweepItem& item = manifest.items[i];
-    items.rows.push_back({item.id, item.photo >= 0 ? item.study + " photograph " + std::to_string(item.photo) : item.study,
+    const std::string what = item.photo >= 0        ? item.study + " photograph " + std::to_string(item.photo)
+                             : item.frame_part >= 0 ? item.study + " frames " + std::to_string(item.frame_part + 1) +
+                                                          "/" + std::to_string(item.frame_parts)
+                                                    : item.study;
+    items.rows.push_back({item.id, what,
                           item.scene, state_name(statuses[i]), statuses[i].seconds, statuses[i].error});
   }
   return items;
@@ -175,7 +179,7 @@ SweepSummary merge_sweep(const Manifest& manifest, const fs::path& out, const st
   for (const SweepItem& item : manifest.items) {
     statuses.push_back(stored_item(out, item));
     if (statuses.back().state != ItemState::Ok) ++summary.failed;
-    else if (item.photo < 0 && !manifest.demo)
+    else if (!item.is_part() && !manifest.demo)
       runs.push_back({item.id, read_results_json(out / "items" / item.id / "results.json")});
   }
   Results merged;

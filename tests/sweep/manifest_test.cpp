@@ -50,6 +50,10 @@ TEST(SweepManifest, MalformedManifestsAreRefusedNamingWhere) {
       {R"({"runs": [{"study": "reference", "scene": "cornell", "grid": {"spp": [1, "x"]}}]})", "'spp'"},
       {R"({"runs": [{"study": "reference", "scene": "cornell", "frames": 3}]})", "unknown key \"frames\""},
       {R"({"runs": [{"study": "reference", "scene": []}]})", "\"scene\""},
+      {R"({"runs": [{"study": "reference", "scene": "cornell", "frame_items": 2}]})", "does not split"},
+      {R"({"runs": [{"study": "visibility", "scene": "rooms", "frame_items": 0}]})", "\"frame_items\""},
+      {R"({"runs": [{"study": "visibility", "scene": "rooms", "frame_items": 1e300}]})", "\"frame_items\""},
+      {R"({"runs": [{"study": "visibility", "scene": "rooms", "frame_items": 20000}]})", "1..10000"},
   };
   for (const auto& [text, part] : cases) {
     const std::string e = error_of([&] { parse_manifest(text, ".", "m.json"); });
@@ -75,14 +79,21 @@ TEST(SweepManifest, DemoManifestHasAnItemPerStudyRunOfTheDemo) {
   ASSERT_TRUE(m.demo.has_value());
   EXPECT_TRUE(m.demo->full);
   ASSERT_EQ(m.demo_items.size(), plan.size());
-  size_t photos = 0;
-  for (const SweepItem& item : m.items) photos += item.photo >= 0;
+  size_t photos = 0, parts = 0;
+  for (const SweepItem& item : m.items) {
+    photos += item.photo >= 0;
+    parts += item.frame_part >= 0;
+  }
   EXPECT_EQ(photos, 100u);  // the full GIBR run's photographs
-  EXPECT_EQ(m.items.size(), plan.size() + photos);
+  // Four cluster runs of 10 frames (900 / 90) and ten visibility runs: kDemoFrameItems parts each.
+  EXPECT_EQ(parts, 14u * size_t(kDemoFrameItems));
+  EXPECT_EQ(m.items.size(), plan.size() + photos + parts);
   for (const study::DemoStudyRun& run : plan) {
     ASSERT_TRUE(m.demo_items.contains(run.dir)) << run.dir;
     const SweepItem& item = m.items[m.demo_items.at(run.dir)];
     EXPECT_EQ(item.photo, -1);
+    EXPECT_EQ(item.frame_part, -1);
+    EXPECT_EQ(item.inputs.size(), item.frame_parts > 1 ? size_t(item.frame_parts) : item.inputs.size()) << run.dir;
     const study::CatalogRun c = study::catalog_run_from_command(run.args);
     EXPECT_EQ(item.study, c.study) << run.dir;
     EXPECT_EQ(item.options, c.options) << run.dir;

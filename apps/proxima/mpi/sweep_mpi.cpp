@@ -126,7 +126,7 @@ void worker(const sweep::Manifest& m, int rank) {
   std::filesystem::remove_all(scratch, ec);
 }
 
-// Sends item `i` and its inputs' photo.bin bytes (packed as files "0", "1", …) to `to`.
+// Sends item `i` and its inputs' photo.bin or part.bin bytes (packed as files "0", "1", …) to `to`.
 void send_item(const sweep::SweepCoordinator& c, size_t i, int to) {
   sweep::ItemFiles inputs;
   for (std::string& bytes : c.inputs(i)) inputs.files.emplace_back(std::to_string(inputs.files.size()), std::move(bytes));

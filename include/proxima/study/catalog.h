@@ -20,6 +20,7 @@
 #include "proxima/core/progress.h"
 #include "proxima/eval/results.h"
 #include "proxima/scene/scene.h"
+#include "proxima/study/frame_split.h"
 #include "proxima/study/gibr.h"
 #include "proxima/study/study.h"
 
@@ -59,6 +60,18 @@ OptionValues resolved_options(std::string_view name, const OptionValues& options
 // out of range (those messages name the flag, "--cube-size", of the option `cube_size`).
 Results run_study(std::string_view name, const Scene& scene, const OptionValues& options, const StudyOutput& out,
                   Progress* progress = nullptr);
+
+// Whether study `name` splits into frame parts (study/frame_split.h): cluster_reflect and
+// visibility. InputError for an unknown study.
+bool splits_by_frames(std::string_view name);
+
+// A frame part of study `name` (run_<name>_part of its header), and the whole run's results
+// from every part's figures concatenated (<name>_results). InputError for a study that does
+// not split, and as run_study.
+Results run_study_part(std::string_view name, const Scene& scene, const OptionValues& options, const FramePart& part,
+                       const StudyOutput& out, FrameFigures& figures, Progress* progress = nullptr);
+Results study_part_results(std::string_view name, const Scene& scene, const OptionValues& options,
+                           const FrameFigures& figures);
 
 // The gibr study's options from values (a sweep runs its per-photograph phases as items).
 GibrOptions gibr_options(const OptionValues& options);

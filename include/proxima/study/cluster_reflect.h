@@ -27,6 +27,7 @@
 #include "proxima/reflect/ssr_reflection.h"
 #include "proxima/scene/camera_select.h"
 #include "proxima/scene/scene.h"
+#include "proxima/study/frame_split.h"
 #include "proxima/study/study.h"
 
 namespace proxima::study {
@@ -72,5 +73,14 @@ void validate(const ClusterReflectOptions& options, const Scene& scene);
 // same for any thread count. `progress`, when given, gets one stage with a step per frame.
 Results run_cluster_reflect(const Scene& scene, const ClusterReflectOptions& options, const StudyOutput& out,
                             Progress* progress = nullptr);
+
+// The run split into frame parts (study/frame_split.h) over the frames it renders (one for a
+// camera; the path's, every frame_step-th, otherwise): one part's frames, their figures into
+// `figures` and, when the image frame is among them, the images into `out`; and the whole
+// run's metrics and tables (no images) from every part's figures concatenated in part
+// order — run_cluster_reflect's, bit for bit (timings aside).
+Results run_cluster_reflect_part(const Scene& scene, const ClusterReflectOptions& options, const FramePart& part,
+                                 const StudyOutput& out, FrameFigures& figures, Progress* progress = nullptr);
+Results cluster_reflect_results(const Scene& scene, const ClusterReflectOptions& options, const FrameFigures& figures);
 
 }  // namespace proxima::study

@@ -10,6 +10,7 @@
 #include "proxima/core/progress.h"
 #include "proxima/eval/results.h"
 #include "proxima/scene/scene.h"
+#include "proxima/study/frame_split.h"
 #include "proxima/study/study.h"
 #include "proxima/visibility/map_check.h"
 
@@ -50,5 +51,15 @@ void validate(const VisibilityOptions& options);
 // Deterministic: the same results (timings aside) at any thread count.
 Results run_visibility(const Scene& scene, const VisibilityOptions& options, const StudyOutput& out,
                        Progress* progress = nullptr);
+
+// The run split into frame parts (study/frame_split.h) over its viewpoints: one part's
+// maps, their figures into `figures` (part 0's also the winged pair's, and part 0 alone
+// saves it) and their images into `out` (the roles map_svg / map_png by the part with
+// frame 0); and the whole run's metrics and tables (no images) from every part's figures
+// concatenated in part order — run_visibility's, bit for bit (timings aside). Every part
+// with frames builds (or loads) the winged pair itself.
+Results run_visibility_part(const Scene& scene, const VisibilityOptions& options, const FramePart& part,
+                            const StudyOutput& out, FrameFigures& figures, Progress* progress = nullptr);
+Results visibility_results(const Scene& scene, const VisibilityOptions& options, const FrameFigures& figures);
 
 }  // namespace proxima::study

@@ -27,15 +27,16 @@ ItemFiles unpack_item(std::string_view packed);
 // Loads the scene and runs the study into scratch/<id> (emptied first), then reads the
 // directory back and removes it. A failure — a bad scene file, a limit exceeded, options out
 // of range, any exception — is recorded in item.json with its message; never thrown. A gibr
-// photograph item writes photo.bin (sweep/gibr_photos.h) instead of results; an item with
-// inputs gets their photo.bin bytes in `inputs` (item_inputs), in the order of item.inputs.
+// photograph item writes photo.bin (sweep/gibr_photos.h) and a frame part part.bin
+// (sweep/frame_parts.h) instead of results; an item with inputs gets their photo.bin or
+// part.bin bytes in `inputs` (item_inputs), in the order of item.inputs.
 ItemFiles run_item(const SweepItem& item, const std::filesystem::path& scratch,
                    const std::vector<std::string>& inputs = {});
 
 // The files of an item that failed without running: item.json with `error`.
 ItemFiles failed_item(const SweepItem& item, const std::string& error);
 
-// The photo.bin of each of the item's inputs, stored under out/items (read by the rank that
+// The photo.bin or part.bin of each of the item's inputs, stored under out/items (read by the rank that
 // owns DIR and sent with the item).
 std::vector<std::string> item_inputs(const Manifest& manifest, const std::filesystem::path& out,
                                      const SweepItem& item);

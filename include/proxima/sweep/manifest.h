@@ -13,12 +13,14 @@
 // of "options". Items are numbered in that order over all runs. A gibr run (without a camera
 // file) becomes one item per photograph (its visibility map and radiance-map layers,
 // gibr/gibr_model.h map_photograph) and the run's item, which merges them in photograph
-// order and renders the novel views.
+// order and renders the novel views. A run with "frame_items": K (cluster_reflect, visibility:
+// study/frame_split.h) becomes K frame-part items and the run's item, which merges them.
 //
 // `proxima demo` as a manifest: {"demo": {"full": true, "seed": 1, "width": 512, "height":
 // 512, "only": ["gibr"]}} (every key optional, as `proxima demo`'s flags) expands into the
 // demo's study runs (study/demo.h plan_demo), each run through the catalog from its
-// reproducing command; merge_sweep then writes the demo's report.
+// reproducing command (its cluster and visibility runs split into kDemoFrameItems frame
+// parts each); merge_sweep then writes the demo's report.
 #pragma once
 
 #include <filesystem>
@@ -42,8 +44,20 @@ struct SweepItem {
   // ≥ 0: the per-photograph phases of photograph `photo` of this gibr run, stored as
   // photo.bin (sweep/gibr_photos.h); −1: the study call.
   int photo = -1;
-  std::vector<size_t> inputs;  // items whose photo.bin this one reads (a gibr run's photographs, in order)
+  // A run split into frame parts (sweep/frame_parts.h): ≥ 0: part `frame_part` of
+  // `frame_parts`, stored as part.bin; −1 with frame_parts > 1: the run's item, reading them.
+  int frame_part = -1;
+  int frame_parts = 1;
+  // Items whose photo.bin or part.bin this one reads (a gibr run's photographs, a split run's
+  // frame parts, in order).
+  std::vector<size_t> inputs;
+
+  // A photograph or a frame part: its bytes go into its run's item, which holds the results.
+  bool is_part() const { return photo >= 0 || frame_part >= 0; }
 };
+
+// The frame parts of each cluster_reflect and visibility run of a demo manifest.
+inline constexpr int kDemoFrameItems = 10;
 
 struct Manifest {
   std::vector<SweepItem> items;
