@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs one libFuzzer target for a fixed time: scripts/fuzz.sh TARGET SECONDS [libFuzzer flags]
-# TARGET is a fuzz/<TARGET>_fuzz.cpp (scene_file, camera_path, gibr_cameras, photo_bin, obj, ply, gltf, png,
-# jpeg, exr, winged_pair, results), or
+# TARGET is a fuzz/<TARGET>_fuzz.cpp (scene_file, camera_path, gibr_cameras, photo_bin, part_bin, obj, ply, gltf,
+# png, jpeg, exr, winged_pair, results), or
 # `all` to run each in turn. Builds build/fuzz (clang, ASan + UBSan + libFuzzer) and the
 # seeds (scripts/fuzz_seeds.sh) when needed; the corpus grows in build/fuzz/corpus/TARGET,
 # crashes land in build/fuzz/artifacts/TARGET/; fuzz/regressions/TARGET/ (inputs of fixed

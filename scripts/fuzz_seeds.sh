@@ -6,7 +6,7 @@
 set -euo pipefail
 dir=$1
 proxima=$2
-mkdir -p "$dir"/{scene_file,camera_path,gibr_cameras,photo_bin,obj,ply,gltf,png,jpeg,exr,winged_pair,results}
+mkdir -p "$dir"/{scene_file,camera_path,gibr_cameras,photo_bin,part_bin,obj,ply,gltf,png,jpeg,exr,winged_pair,results}
 
 # ---- JSON scene files ---------------------------------------------------------
 cat >"$dir/scene_file/objects.json" <<'J'
@@ -116,3 +116,15 @@ cat >"$out/gibr.json" <<'J'
 J
 "$proxima" sweep "$out/gibr.json" --out "$out/sweep" --threads 1 >/dev/null
 cp "$out/sweep/items/i000_gibr_photo/photo.bin" "$dir/photo_bin/rooms.bin"
+
+# ---- frame parts' part.bin, written by proxima sweep -----------------------------------
+# The runs part_bin_fuzz.cpp reduces figures with: cluster and visibility, two parts each.
+cat >"$out/frames.json" <<'J'
+{"runs": [
+  {"study": "cluster_reflect", "scene": "room-reflector", "frame_items": 2,
+   "options": {"width": 32, "height": 24, "path": "0", "frames": 3, "ss": 1, "cube_size": 16, "compare": true}},
+  {"study": "visibility", "scene": "rooms", "frame_items": 2,
+   "options": {"width": 32, "height": 24, "frames": 3, "selfcheck_rays": 50}}]}
+J
+"$proxima" sweep "$out/frames.json" --out "$out/frames" --threads 1 >/dev/null
+for item in "$out"/frames/items/*_part; do cp "$item/part.bin" "$dir/part_bin/$(basename "$item").bin"; done

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iterator>
 #include <sstream>
+#include <cmath>
 #include <stdexcept>
 #include <vector>
 
@@ -239,26 +240,34 @@ ViewFigures view_figures(int frame, const MapStats& s, const MapCheck& check, co
   return v;
 }
 
+// A count stored in a double (exact up to 2⁵³). The figures may come from a frame part's
+// bytes (sweep/frame_parts.h), so anything else is refused before the conversion.
+size_t count(double v) {
+  if (!(v >= 0.0 && v <= 9007199254740992.0 && v == std::floor(v)))
+    throw std::runtime_error("visibility: a frame figure that is not a count");
+  return size_t(v);
+}
+
 // A viewpoint into the totals and the per-view table (counts are exact in a double).
 void add_view(const ViewFigures& v, bool oracle, ViewTotals& totals, Table& per_view) {
   MapStats s;
-  s.beams = size_t(v[kBeams]);
-  s.regions = size_t(v[kRegions]);
-  s.merged_regions = size_t(v[kMerged]);
-  s.visible_polygons = size_t(v[kVisible]);
-  s.silhouette_edges = size_t(v[kSilhouettes]);
+  s.beams = count(v[kBeams]);
+  s.regions = count(v[kRegions]);
+  s.merged_regions = count(v[kMerged]);
+  s.visible_polygons = count(v[kVisible]);
+  s.silhouette_edges = count(v[kSilhouettes]);
   s.ms = v[kMapMs];
   MapCheck check;
   check.pass = v[kPass] != 0.0;
   check.ms = v[kCheckMs];
-  check.coplanar_ties = size_t(v[kTies]);
-  check.mismatches = size_t(v[kMismatches]);
-  check.samples = size_t(v[kJudged]);
+  check.coplanar_ties = count(v[kTies]);
+  check.mismatches = count(v[kMismatches]);
+  check.samples = count(v[kJudged]);
   totals.add(s, check);
   OracleCounts c;
   size_t* counts[] = {&c.samples, &c.agree, &c.interior, &c.interior_agree, &c.occluded_label, &c.ties,
                       &c.interior_ties};
-  for (int k = 0; k < 7; ++k) *counts[k] = size_t(v[size_t(kSamples + k)]);
+  for (int k = 0; k < 7; ++k) *counts[k] = count(v[size_t(kSamples + k)]);
   if (oracle) totals.add(c);
   per_view.rows.push_back({v[kFrame], double(s.beams), double(s.regions), double(s.merged_regions),
                            double(s.visible_polygons), double(s.silhouette_edges), s.ms, c.agreement_pct(),
