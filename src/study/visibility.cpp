@@ -110,6 +110,8 @@ void add_build_metrics(Results& results, const Scene& scene, const ModelPolygons
   m["build_ms"] = bsp.build_ms;
   m["unplaced_fragments"] = double(bsp.unplaced_fragments);
   m["rejected_planes"] = double(bsp.rejected_planes);
+  m["sealed_fragments"] = double(bsp.sealed_fragments);
+  m["sealed_cell_extent_m"] = bsp.sealed_extent;
   results.tables.push_back({"winged pair of " + scene.name + " (Table 1)",
                             {"polygons", "cells", "faces", "edges", "vertices", "build_ms"},
                             {{m["polygons"], m["cells"], m["faces"], m["edges"], m["vertices"], m["build_ms"]}}});
