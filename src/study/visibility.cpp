@@ -105,14 +105,17 @@ WingedPair winged_pair_for(const ModelPolygons& model, const VisibilityOptions& 
 }
 
 // The winged pair's figures, in the order of kBuildNames.
-constexpr const char* kBuildNames[] = {"polygons", "cells",    "faces",              "edges",
-                                       "vertices", "build_ms", "unplaced_fragments", "rejected_planes"};
+constexpr const char* kBuildNames[] = {"polygons",           "cells",           "faces",
+                                       "edges",              "vertices",        "build_ms",
+                                       "unplaced_fragments", "rejected_planes", "sealed_fragments",
+                                       "sealed_cell_extent_m"};
 constexpr size_t kBuildFigures = std::size(kBuildNames);
 
 std::vector<double> build_figures(const ModelPolygons& model, const WingedPair& wp, const BspStats& bsp) {
   return {double(model.polygons.size()), double(wp.cells.size()),      double(wp.faces.size()),
           double(wp.edges.size()),         double(wp.vertices.size()),   bsp.build_ms,
-          double(bsp.unplaced_fragments),  double(bsp.rejected_planes)};
+          double(bsp.unplaced_fragments),  double(bsp.rejected_planes), double(bsp.sealed_fragments),
+          bsp.sealed_extent};
 }
 
 void add_build_metrics(Results& results, const Scene& scene, const std::vector<double>& build) {

@@ -18,7 +18,7 @@
 // once per plane (stamped cache), so faces sharing a vertex never disagree. A split whose
 // classification is not a convex cut is retried with exact sides, then coarser tolerances,
 // then other planes and auxiliary planes; fragments are never dropped while a plane can
-// place them, and what is left is counted.
+// place them; a cell no plane can cut is sealed (made opaque), and what is left is counted.
 #include "proxima/visibility/bsp_build.h"
 
 #include <algorithm>
@@ -110,6 +110,7 @@ class Builder {
   uint32_t split_cell(uint32_t c, uint32_t plane_id, double tol_scale, uint32_t* back_cell, bool* no_cut);
   std::vector<uint32_t> faces_on_plane(uint32_t c, uint32_t plane_id);
   void carve(uint32_t s, const std::vector<Fragment>& coplanar);
+  void seal(uint32_t c, const std::vector<Fragment>& frags);
   std::vector<uint32_t> rank_splitters(const std::vector<Fragment>& frags);
   void make_box();
   WingedPair export_structure() const;
@@ -360,6 +361,34 @@ uint32_t Builder::split_cell(uint32_t c, uint32_t plane_id, double tol_scale, ui
   cells_[back].push_back(s);
   *back_cell = back;
   return s;
+}
+
+// No plane of the cell's fragments (nor an auxiliary plane) cuts cell c consistently: the
+// cell is sealed. Its transparent faces become opaque, labeled with the polygon of its
+// largest fragment, so no sightline passes through the cell and every one that could
+// meet a fragment in it is blocked: conservative (the cell's outline is over-covered),
+// never a hole. Counted, with the largest sealed cell's bounding-box diagonal.
+void Builder::seal(uint32_t c, const std::vector<Fragment>& frags) {
+  const Fragment* largest = &frags.front();
+  double best = -1.0;
+  for (const Fragment& f : frags) {
+    const double a = glm::length(newell_normal(f.v));
+    if (a > best) {
+      best = a;
+      largest = &f;
+    }
+  }
+  dvec3 lo(INFINITY), hi(-INFINITY);
+  for (uint32_t f : cells_[c]) {
+    if (faces_[f].polygon == kNone) faces_[f].polygon = largest->polygon;
+    for (uint32_t v : faces_[f].loop) {
+      lo = glm::min(lo, verts_[v]);
+      hi = glm::max(hi, verts_[v]);
+    }
+  }
+  ++stats_.sealed_cells;
+  stats_.sealed_fragments += frags.size();
+  if (!cells_[c].empty()) stats_.sealed_extent = std::max(stats_.sealed_extent, glm::length(hi - lo));
 }
 
 // The faces of cell c lying on the plane (every vertex on it).
@@ -667,8 +696,7 @@ WingedPair Builder::run() {
       continue;
     }
     if (s == kNone) {
-      // No plane of the cell's fragments cuts it consistently: they stay unplaced.
-      stats_.unplaced_fragments += frags.size();
+      seal(c, frags);
       continue;
     }
     const Plane& h = planes_[id];

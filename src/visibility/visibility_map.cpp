@@ -43,8 +43,9 @@ double shoelace(const LPoly& poly) {
 // directions and dents, and each of their supporting lines, used to clip a later beam,
 // cuts away a wedge of it (holes in the map). Removing a reflex vertex fills its dent
 // (the triangle it makes with its neighbors, of rounding size): the merged edge keeps the
-// longer edge's label.
-void drop_tiny_edges(LPoly& poly, double tol = 1e-6) {
+// longer edge's label. `max_dent` caps the dent a removed reflex vertex may leave; a face's
+// projection passes no cap (see project_face).
+void drop_tiny_edges(LPoly& poly, double tol = 1e-6, double max_dent = 2e-6) {
   const double tol2 = tol * tol;
   size_t i = 0;
   while (poly.size() >= 3 && i < poly.size()) {
@@ -66,7 +67,7 @@ void drop_tiny_edges(LPoly& poly, double tol = 1e-6) {
       const dvec2 a = poly[k].p - poly[prev].p, b = poly[(k + 1) % n].p - poly[k].p;
       const double la = glm::length(a), lb = glm::length(b), turn = orient * cross2(a, b);
       const bool spike = glm::dot(a, b) < 0.0 && std::abs(turn) <= 1e-9 * la * lb;
-      if (spike || (turn < -1e-9 * la * lb && turn > -2e-6)) {
+      if (spike || (turn < -1e-9 * la * lb && turn > -max_dent)) {
         if (!spike && lb > la) poly[prev].label = poly[k].label;
         poly.erase(poly.begin() + long(k));
         changed = true;
@@ -442,7 +443,13 @@ class Tracer {
       if (cam.size() < 3) return;
     }
     for (const auto& [p, l] : cam) out.push_back({{c_.cx + c_.f * p.x / p.z, c_.cy - c_.f * p.y / p.z}, l});
-    drop_tiny_edges(out);
+    // Every reflex vertex goes, whatever its dent: a BSP face is convex only up to the
+    // plane tolerance (a vertex classified on a plane within it lies up to that far off
+    // the face's straight edge), and its projection, passed on as a beam, clips the next
+    // cell's faces by each edge's line, so a reflex vertex there cuts a wedge out of them
+    // (lost area, a hole). Filling the dent covers sightlines of the neighbor face as well:
+    // an overlap of the tolerance's size, never a hole.
+    drop_tiny_edges(out, 1e-6, INFINITY);
     if (out.size() >= 3 && shoelace(out) < 0.0) {
       LPoly rev;
       const size_t m = out.size();

@@ -24,6 +24,9 @@ struct BspStats {
   size_t fragments_split = 0;     // polygon fragments cut by a split plane
   size_t rejected_planes = 0;     // split attempts inconsistent at their tolerance (each retry counts)
   size_t unplaced_fragments = 0;  // fragments that could not be put on a face (degenerate)
+  size_t sealed_cells = 0;        // cells no plane cuts consistently, made opaque (conservative)
+  size_t sealed_fragments = 0;    // the fragments they held
+  double sealed_extent = 0.0;     // largest sealed cell's bounding-box diagonal (meters)
   size_t aux_splits = 0;          // splits by auxiliary planes (around near-degenerate spots)
   size_t displaced_fragments = 0; // fragments carved into the nearest parallel face of their
                                   // cell (their own plane missed the cell by > tolerance)
