@@ -1,10 +1,10 @@
 #include "proxima/sweep/frame_parts.h"
 
-#include <cstring>
-#include <fstream>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
+
+#include "proxima/sweep/bytes.h"
 
 namespace proxima::sweep {
 
@@ -12,40 +12,22 @@ namespace {
 
 using nlohmann::json;
 
-// figures.bin: the number of series, then each as its length and its doubles (host order:
-// the same binary reads them back, on the same cluster).
+// figures.bin: the number of series, then each as its values (sweep/bytes.h).
 std::string pack_figures(const study::FrameFigures& f) {
-  std::string out;
-  const auto put = [&](uint64_t v) { out.append(reinterpret_cast<const char*>(&v), sizeof v); };
-  put(f.series.size());
-  for (const std::vector<double>& s : f.series) {
-    put(s.size());
-    out.append(reinterpret_cast<const char*>(s.data()), s.size() * sizeof(double));
-  }
-  return out;
+  ByteWriter w;
+  w.put(uint64_t(f.series.size()));
+  for (const std::vector<double>& s : f.series) w.put_span(std::span<const double>(s));
+  return std::move(w.out);
 }
 
 study::FrameFigures unpack_figures(std::string_view in) {
-  size_t at = 0;
-  const auto get = [&]() {
-    uint64_t v;
-    if (in.size() - at < sizeof v) throw std::runtime_error("sweep: truncated figures.bin");
-    std::memcpy(&v, in.data() + at, sizeof v);
-    at += sizeof v;
-    return v;
-  };
+  ByteReader r{in, "figures.bin"};
   study::FrameFigures f;
-  const uint64_t n = get();
-  if (n > in.size() / sizeof(uint64_t)) throw std::runtime_error("sweep: figures.bin: too many series");
+  const uint64_t n = r.get<uint64_t>();
+  r.need(n, sizeof(uint64_t));  // each series has at least its count
   f.series.resize(n);
-  for (std::vector<double>& s : f.series) {
-    const uint64_t k = get();
-    if (k > (in.size() - at) / sizeof(double)) throw std::runtime_error("sweep: truncated figures.bin");
-    s.resize(k);
-    if (k) std::memcpy(s.data(), in.data() + at, k * sizeof(double));
-    at += k * sizeof(double);
-  }
-  if (at != in.size()) throw std::runtime_error("sweep: figures.bin: trailing bytes");
+  for (std::vector<double>& s : f.series) s = r.get_vector<double>();
+  r.expect_end();
   return f;
 }
 
@@ -88,13 +70,7 @@ Results run_with_frame_parts(const Scene& scene, const std::string& study, const
     study::append_figures(figures, part.figures);
     images.insert(part.images.begin(), part.images.end());
     if (!out.writes()) continue;
-    for (const auto& [name, data] : part.files.files) {
-      const std::filesystem::path path = out.dir / name;
-      std::filesystem::create_directories(path.parent_path());
-      std::ofstream file(path, std::ios::binary);
-      file.write(data.data(), std::streamsize(data.size()));
-      if (!file) throw std::runtime_error(path.string() + ": cannot write");
-    }
+    for (const auto& [name, data] : part.files.files) write_bytes(out.dir / name, data);
   }
   Results results = study::study_part_results(study, scene, options, figures);
   if (out.writes()) results.images = images;

@@ -4,77 +4,14 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "proxima/core/error.h"
 #include "proxima/study/gibr.h"
+#include "proxima/sweep/bytes.h"
 
 namespace proxima::sweep {
 
 namespace {
 
-// Plain little-endian-as-the-host bytes: items travel between ranks of one cluster, and a
-// stored photo.bin is read back by the same binary (its identity is checked by the sweep).
-struct Writer {
-  std::string out;
-  template <typename T>
-    requires std::is_trivially_copyable_v<T>
-  void put(const T& v) {
-    out.append(reinterpret_cast<const char*>(&v), sizeof v);
-  }
-  template <typename T>
-  void put_span(std::span<const T> v) {
-    put(uint64_t(v.size()));
-    out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
-  }
-  void put_string(const std::string& s) { put_span(std::span<const char>(s.data(), s.size())); }
-};
-
-struct Reader {
-  std::string_view in;
-  size_t at = 0;
-  [[noreturn]] static void fail(const std::string& what) { fail_input("sweep: photo.bin: " + what); }
-  // `n` elements of `size` bytes are left (no overflow for any n).
-  void need(uint64_t n, size_t size = 1) const {
-    if (n > (in.size() - at) / size) fail("truncated");
-  }
-  template <typename T>
-    requires std::is_trivially_copyable_v<T>
-  T get() {
-    need(sizeof(T));
-    T v;
-    std::memcpy(&v, in.data() + at, sizeof v);
-    at += sizeof v;
-    return v;
-  }
-  bool get_bool() {
-    const uint8_t b = get<uint8_t>();
-    if (b > 1) fail("a flag that is neither 0 nor 1");
-    return b == 1;
-  }
-  // n elements of T into `dst` (sized n first by the caller).
-  template <typename T>
-  void get_into(std::span<T> dst) {
-    const uint64_t n = get<uint64_t>();
-    if (n != dst.size()) fail("an array of the wrong size");
-    need(n, sizeof(T));
-    if (n) std::memcpy(dst.data(), in.data() + at, n * sizeof(T));
-    at += n * sizeof(T);
-  }
-  template <typename T>
-  std::vector<T> get_vector() {
-    const uint64_t n = get<uint64_t>();
-    need(n, sizeof(T));
-    std::vector<T> v(n);
-    if (n) std::memcpy(v.data(), in.data() + at, n * sizeof(T));
-    at += n * sizeof(T);
-    return v;
-  }
-  std::string get_string() {
-    const std::vector<char> c = get_vector<char>();
-    return {c.begin(), c.end()};
-  }
-};
-
-void put_layers(Writer& w, const gibr::PhotoLayers& p) {
+void put_layers(ByteWriter& w, const gibr::PhotoLayers& p) {
   w.put(uint64_t(p.pixels_mapped));
   w.put(uint64_t(p.layers.size()));
   for (const auto& [polygon, L] : p.layers) {
@@ -87,7 +24,7 @@ void put_layers(Writer& w, const gibr::PhotoLayers& p) {
   }
 }
 
-gibr::PhotoLayers get_layers(Reader& r) {
+gibr::PhotoLayers get_layers(ByteReader& r) {
   gibr::PhotoLayers p;
   p.pixels_mapped = r.get<uint64_t>();
   const uint64_t n = r.get<uint64_t>();
@@ -104,7 +41,7 @@ gibr::PhotoLayers get_layers(Reader& r) {
     L.reach = r.get_vector<uint8_t>();
     L.reach_mixed = r.get_vector<uint8_t>();
     if (L.width < 0 || L.height < 0 || L.rgba.size() != size_t(L.width) * size_t(L.height))
-      Reader::fail("a layer of the wrong size");
+      r.fail("a layer of the wrong size");
     p.layers.emplace_back(polygon, std::move(L));
   }
   return p;
@@ -113,7 +50,7 @@ gibr::PhotoLayers get_layers(Reader& r) {
 }  // namespace
 
 std::string pack_photo_mapping(const gibr::PhotoMapping& m) {
-  Writer w;
+  ByteWriter w;
   w.put(m.photo.width());
   w.put(m.photo.height());
   w.put(m.photo.channels());
@@ -134,12 +71,12 @@ std::string pack_photo_mapping(const gibr::PhotoMapping& m) {
 }
 
 gibr::PhotoMapping unpack_photo_mapping(std::string_view bytes) {
-  Reader r{bytes};
+  ByteReader r{bytes, "photo.bin"};
   gibr::PhotoMapping m;
   const int width = r.get<int>(), height = r.get<int>(), channels = r.get<int>();
   if (width < 0 || height < 0 || channels < 0 || width > 65536 || height > 65536 || channels > 4 ||
       (channels == 0 && (width != 0 || height != 0)))
-    Reader::fail("a bad image size");
+    r.fail("a bad image size");
   r.need(sizeof(uint64_t) + size_t(width) * size_t(height) * size_t(channels) * sizeof(float));  // before allocating
   if (channels > 0) m.photo = ImageF(width, height, channels);
   r.get_into(m.photo.data());
@@ -155,7 +92,7 @@ gibr::PhotoMapping unpack_photo_mapping(std::string_view bytes) {
   m.layers = get_layers(r);
   m.item_layers = get_layers(r);
   for (double* t : {&m.photo_ms, &m.vismap_ms, &m.itembuffer_ms, &m.map_ms, &m.item_map_ms}) *t = r.get<double>();
-  if (r.at != bytes.size()) Reader::fail("trailing bytes");
+  r.expect_end();
   return m;
 }
 

@@ -18,6 +18,7 @@
 #include "proxima/eval/results.h"
 #include "proxima/scene/load.h"
 #include "proxima/scene/visibility_models.h"
+#include "proxima/sweep/bytes.h"
 #include "proxima/sweep/frame_parts.h"
 #include "proxima/sweep/gibr_photos.h"
 
@@ -68,43 +69,12 @@ std::vector<std::string> item_command(const SweepItem& item) {
   return c;
 }
 
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path.string() + ": cannot read");
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void write_bytes(const fs::path& path, const std::string& bytes) {
-  fs::create_directories(path.parent_path());
-  std::ofstream out(path, std::ios::binary);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
-}
-
 ItemFiles read_dir(const fs::path& dir) {
   ItemFiles files;
   for (const fs::directory_entry& e : fs::recursive_directory_iterator(dir))
     if (e.is_regular_file()) files.files.emplace_back(fs::relative(e.path(), dir).generic_string(), read_bytes(e.path()));
   std::sort(files.files.begin(), files.files.end());
   return files;
-}
-
-void put_u64(std::string& out, uint64_t v) { out.append(reinterpret_cast<const char*>(&v), sizeof v); }
-
-uint64_t get_u64(std::string_view in, size_t& at) {
-  if (in.size() - at < sizeof(uint64_t)) throw std::runtime_error("sweep: truncated item pack");
-  uint64_t v;
-  std::memcpy(&v, in.data() + at, sizeof v);
-  at += sizeof v;
-  return v;
-}
-
-std::string get_bytes(std::string_view in, size_t& at) {
-  const uint64_t n = get_u64(in, at);
-  if (in.size() - at < n) throw std::runtime_error("sweep: truncated item pack");
-  std::string s(in.substr(at, n));
-  at += n;
-  return s;
 }
 
 // A frame part run into `dir` (then removed), packed as its part.bin.
@@ -129,30 +99,40 @@ ItemStatus status_of(const json& record) {
 }  // namespace
 
 std::string pack_item(const ItemFiles& files) {
-  std::string out;
-  put_u64(out, files.files.size());
+  ByteWriter w;
+  w.put(uint64_t(files.files.size()));
   for (const auto& [name, bytes] : files.files) {
-    put_u64(out, name.size());
-    out += name;
-    put_u64(out, bytes.size());
-    out += bytes;
+    w.put_string(name);
+    w.put_string(bytes);
   }
-  return out;
+  return std::move(w.out);
 }
 
 ItemFiles unpack_item(std::string_view packed) {
-  size_t at = 0;
+  ByteReader r{packed, "item pack"};
   ItemFiles files;
-  const uint64_t n = get_u64(packed, at);
+  const uint64_t n = r.get<uint64_t>();
   for (uint64_t i = 0; i < n; ++i) {
-    std::string name = get_bytes(packed, at);
-    std::string bytes = get_bytes(packed, at);
-    if (name.empty() || name.front() == '/' || name.find("..") != std::string::npos)
-      throw std::runtime_error("sweep: bad file name in item pack: " + name);
+    std::string name = r.get_string();
+    std::string bytes = r.get_string();
+    if (name.empty() || name.front() == '/' || name.find("..") != std::string::npos) r.fail("bad file name " + name);
     files.files.emplace_back(std::move(name), std::move(bytes));
   }
-  if (at != packed.size()) throw std::runtime_error("sweep: trailing bytes in item pack");
+  r.expect_end();
   return files;
+}
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path.string() + ": cannot read");
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void write_bytes(const fs::path& path, std::string_view bytes) {
+  fs::create_directories(path.parent_path());
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (!out) throw std::runtime_error(path.string() + ": cannot write");
 }
 
 ItemFiles run_item(const SweepItem& item, const fs::path& scratch, const std::vector<std::string>& inputs) {

@@ -53,11 +53,16 @@ TEST(SweepGibr, PhotographItemsGiveTheStudyRunsResultsBitForBit) {
   EXPECT_GE(direct.images.size(), 4u);
 }
 
+// The manifest's model options, its prepared model and the mapping of its photograph 1.
+struct MappedPhotograph {
+  gibr::GibrModelOptions options = study::gibr_model_options(study::gibr_options(gibr_manifest().items[0].options));
+  gibr::GibrModel model = gibr::prepare_gibr_model(load_scene("rooms"), options);
+  gibr::PhotoMapping mapping = gibr::map_photograph(model, 1, options);
+};
+
 TEST(SweepGibr, PhotographMappingRoundTripsThroughItsBytes) {
-  const study::GibrOptions o = study::gibr_options(gibr_manifest().items[0].options);
-  const gibr::GibrModelOptions mo = study::gibr_model_options(o);
-  const gibr::GibrModel g = gibr::prepare_gibr_model(load_scene("rooms"), mo);
-  const gibr::PhotoMapping a = gibr::map_photograph(g, 1, mo);
+  const MappedPhotograph p;
+  const gibr::PhotoMapping& a = p.mapping;
   ASSERT_FALSE(a.layers.layers.empty());
   const std::string bytes = pack_photo_mapping(a);
   const gibr::PhotoMapping b = unpack_photo_mapping(bytes);
@@ -72,10 +77,10 @@ TEST(SweepGibr, PhotographMappingRoundTripsThroughItsBytes) {
 // photo.bin is read from a sweep directory: a layer that does not fit the model it is merged
 // into is refused before the merge indexes with it.
 TEST(SweepGibr, ALayerOutsideTheModelIsRefusedAtTheMerge) {
-  const study::GibrOptions o = study::gibr_options(gibr_manifest().items[0].options);
-  const gibr::GibrModelOptions mo = study::gibr_model_options(o);
-  const gibr::GibrModel g = gibr::prepare_gibr_model(load_scene("rooms"), mo);
-  const gibr::PhotoMapping good = gibr::map_photograph(g, 1, mo);
+  const MappedPhotograph p;
+  const gibr::GibrModel& g = p.model;
+  const gibr::GibrModelOptions& mo = p.options;
+  const gibr::PhotoMapping& good = p.mapping;
   ASSERT_FALSE(good.layers.layers.empty());
   auto merge = [&](void (*corrupt)(gibr::PhotoMapping&, const gibr::GibrModel&)) {
     gibr::GibrModel m;
