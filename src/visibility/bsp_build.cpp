@@ -51,6 +51,19 @@ struct Fragment {
 
 enum class Pattern { kFront, kBack, kCrossing, kInvalid };
 
+// The outcome of cutting a cell by one candidate plane (Builder::cut_by).
+struct Cut {
+  uint32_t face = kNone;   // the new separating face; kNone when the cell was not split
+  uint32_t back = kNone;   // the new back cell
+  uint32_t plane = kNone;  // the plane that split it: the candidate or a shifted copy of it
+  bool boundary = false;   // the cell lies on one side of the candidate within the tolerance
+  std::vector<uint32_t> on;  // then: the cell's faces on the candidate
+};
+
+// Shifts of a fragment's plane tried when the plane itself cannot cut a cell, in units of
+// the plane tolerance: at most 256 · 1e-8 · scale, well inside the snap tolerance.
+constexpr double kShifts[] = {4.0, 16.0, 64.0, 256.0};
+
 class Builder {
  public:
   Builder(const ModelPolygons& model, const BspOptions& options, BspStats& stats)
@@ -108,6 +121,8 @@ class Builder {
   void split_edge(uint32_t a, uint32_t b);
   uint32_t split_face(uint32_t f);
   uint32_t split_cell(uint32_t c, uint32_t plane_id, double tol_scale, uint32_t* back_cell, bool* no_cut);
+  Cut cut_by(uint32_t c, uint32_t id, bool fragment_plane);
+  bool split_shifted(uint32_t c, uint32_t id, int toward, Cut& cut);
   std::vector<uint32_t> faces_on_plane(uint32_t c, uint32_t plane_id);
   void carve(uint32_t s, const std::vector<Fragment>& coplanar);
   void seal(uint32_t c, const std::vector<Fragment>& frags);
@@ -361,6 +376,63 @@ uint32_t Builder::split_cell(uint32_t c, uint32_t plane_id, double tol_scale, ui
   cells_[back].push_back(s);
   *back_cell = back;
   return s;
+}
+
+// Cuts cell c by candidate plane id: by the plane tolerance, else by exact sides. A plane of
+// the cell's fragments (fragment_plane) that cuts the cell inconsistently at both, or that
+// leaves the cell on one side without a face of the cell on it, is tried shifted
+// (split_shifted): the inconsistency comes from a near-degenerate spot of the cell at the
+// plane — an edge shorter than the tolerance with both ends on the plane, so of arbitrary
+// direction; a face meeting the plane along several vertices within the tolerance — that a
+// parallel plane a few tolerances away misses.
+Cut Builder::cut_by(uint32_t c, uint32_t id, bool fragment_plane) {
+  Cut cut;
+  bool no_cut = false;
+  for (double t : {1.0, 0.0})
+    if (cut.face == kNone && !no_cut) cut.face = split_cell(c, id, t, &cut.back, &no_cut);
+  if (cut.face != kNone) {
+    cut.plane = id;
+    return cut;
+  }
+  if (no_cut) {
+    cut.on = faces_on_plane(c, id);
+    if (!cut.on.empty() || !fragment_plane) {
+      cut.boundary = true;
+      return cut;
+    }
+    // The cell touches the plane (within the tolerance) but has no face on it: the
+    // fragments lie inside the cell, which the plane shifted toward the cell cuts.
+    begin_plane(planes_[id], id);
+    int toward = 0;
+    for (uint32_t f : cells_[c])
+      for (uint32_t v : faces_[f].loop) toward = side(v) != 0 ? side(v) : toward;
+    if (toward == 0 || !split_shifted(c, id, toward, cut)) cut.boundary = true;
+    return cut;
+  }
+  if (fragment_plane) split_shifted(c, id, 0, cut);
+  return cut;
+}
+
+// Splits cell c by plane id moved along its normal by k · eps for k in kShifts (toward > 0:
+// forward only, < 0: backward only, 0: forward then backward at each k). The shifted plane
+// is a new canonical plane no other polygon snaps to (it is not entered in the lookup).
+bool Builder::split_shifted(uint32_t c, uint32_t id, int toward, Cut& cut) {
+  for (double k : kShifts)
+    for (int sign : {1, -1}) {
+      if (toward * sign < 0) continue;
+      Plane h = planes_[id];
+      h.offset -= double(sign) * k * eps_;
+      const uint32_t shifted = uint32_t(planes_.size());
+      planes_.push_back(h);
+      bool no_cut = false;
+      cut.face = split_cell(c, shifted, 1.0, &cut.back, &no_cut);
+      if (cut.face != kNone) {
+        cut.plane = shifted;
+        ++stats_.shifted_splits;
+        return true;
+      }
+    }
+  return false;
 }
 
 // No plane of the cell's fragments (nor an auxiliary plane) cuts cell c consistently: the
@@ -633,9 +705,9 @@ WingedPair Builder::run() {
     // A fragment is never dropped while some plane can still be used.
     constexpr int kMaxAux = 12;
     std::vector<uint32_t> order = rank_splitters(frags);
-    uint32_t s = kNone, id = kNone, back_cell = kNone, aux_id = kNone;
-    bool boundary = false;
-    for (size_t i = 0; s == kNone && !boundary; ++i) {
+    uint32_t id = kNone, aux_id = kNone;
+    Cut cut;
+    for (size_t i = 0; cut.face == kNone && !cut.boundary; ++i) {
       if (i == order.size()) {
         for (const Fragment& f : frags)
           if (std::find(order.begin(), order.end(), poly_plane_[f.polygon]) == order.end())
@@ -658,23 +730,16 @@ WingedPair Builder::run() {
         }
         if (i == order.size()) break;
       }
-      bool no_cut = false;
-      // The tolerance, exact sides, then coarser tolerances (100×, 10⁴×).
-      for (double t : {1.0, 0.0, 1e2, 1e4})
-        if (s == kNone && !no_cut) s = split_cell(c, order[i], t, &back_cell, &no_cut);
-      if (s != kNone) id = order[i];
-      // The cell lies on one side of the plane: its fragments on the plane lie on the cell's
-      // boundary (within eps) and are carved into the faces there.
-      if (no_cut) {
-        id = order[i];
-        boundary = true;
-      }
+      id = order[i];
+      cut = cut_by(c, id, id != aux_id);
     }
     std::vector<Fragment> coplanar, front, back;
-    if (boundary) {
+    // A boundary cut: the cell lies on one side of the plane, its fragments on the plane
+    // lie on the cell's boundary (within eps) and are carved into the faces there.
+    if (cut.boundary) {
       std::vector<Fragment> rest;
       for (Fragment& f : frags) (poly_plane_[f.polygon] == id ? coplanar : rest).push_back(std::move(f));
-      std::vector<uint32_t> on = faces_on_plane(c, id);
+      std::vector<uint32_t>& on = cut.on;
       if (on.empty()) {
         // Beyond the tolerance from the plane's faces (a near-degenerate cell): the faces of
         // the cell parallel to the plane and nearest to it take the fragments, so they still
@@ -695,13 +760,17 @@ WingedPair Builder::run() {
       stack.push_back({c, std::move(rest), aux});
       continue;
     }
-    if (s == kNone) {
+    if (cut.face == kNone) {
       seal(c, frags);
       continue;
     }
-    const Plane& h = planes_[id];
-    for (const Fragment& f : frags) {
+    // The fragments on the candidate plane lie on the separating face (moved onto it when
+    // the plane was shifted: by at most kShifts' largest · eps).
+    const Plane& h = planes_[cut.plane];
+    for (Fragment& f : frags) {
       bool plus = false, minus = false;
+      if (poly_plane_[f.polygon] == id && cut.plane != id)
+        for (dvec3& v : f.v) v -= h.normal * h.distance(v);
       if (poly_plane_[f.polygon] != id)
         for (const dvec3& p : f.v) {
           double d = h.distance(p);
@@ -720,10 +789,10 @@ WingedPair Builder::run() {
       }
     }
     ++stats_.splits;
-    carve(s, coplanar);
+    carve(cut.face, coplanar);
     const int next_aux = aux + (id == aux_id && aux_id != kNone ? 1 : 0);
     stats_.aux_splits += id == aux_id && aux_id != kNone;
-    stack.push_back({back_cell, std::move(back), next_aux});
+    stack.push_back({cut.back, std::move(back), next_aux});
     stack.push_back({c, std::move(front), next_aux});
   }
   WingedPair wp = export_structure();

@@ -28,6 +28,8 @@ struct BspStats {
   size_t sealed_fragments = 0;    // the fragments they held
   double sealed_extent = 0.0;     // largest sealed cell's bounding-box diagonal (meters)
   size_t aux_splits = 0;          // splits by auxiliary planes (around near-degenerate spots)
+  size_t shifted_splits = 0;      // splits by a fragment's plane moved by ≤ 256 · epsilon (its
+                                  // own plane cut the cell inconsistently or left no face)
   size_t displaced_fragments = 0; // fragments carved into the nearest parallel face of their
                                   // cell (their own plane missed the cell by > tolerance)
   double build_ms = 0.0;
