@@ -16,9 +16,10 @@
 // onto theirs); a vertex is on every plane it was made on exactly (membership, no
 // arithmetic), on any other within eps = options.epsilon · scale; each vertex is classified
 // once per plane (stamped cache), so faces sharing a vertex never disagree. A split whose
-// classification is not a convex cut is retried with exact sides, then coarser tolerances,
-// then other planes and auxiliary planes; fragments are never dropped while a plane can
-// place them; a cell no plane can cut is sealed (made opaque), and what is left is counted.
+// classification is not a convex cut is retried with exact sides, then (a plane of the
+// cell's fragments) moved by a few tolerances, then other planes and auxiliary planes;
+// fragments are never dropped while a plane can place them; a cell no plane can cut is
+// sealed (made opaque), and what is left is counted.
 #include "proxima/visibility/bsp_build.h"
 
 #include <algorithm>
@@ -101,9 +102,9 @@ class Builder {
     return side_[v];
   }
 
-  // tol_scale multiplies the tolerance: 0 = exact sides (a vertex not made on the plane is
-  // on it only at distance exactly 0), the fallback when the tolerance classifies a cell
-  // or face inconsistently; larger = a coarser classification, the next fallback.
+  // tol_scale multiplies the tolerance: 1 = the plane tolerance; 0 = exact sides (a vertex
+  // not made on the plane is on it only at distance exactly 0), the fallback when the
+  // tolerance classifies a cell or face inconsistently.
   void begin_plane(const Plane& h, uint32_t id, double tol_scale = 1.0) {
     plane_ = h;
     plane_id_ = id;
