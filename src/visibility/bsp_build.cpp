@@ -62,7 +62,9 @@ struct Cut {
 };
 
 // Shifts of a fragment's plane tried when the plane itself cannot cut a cell, in units of
-// the plane tolerance: at most 256 · 1e-8 · scale, well inside the snap tolerance.
+// the plane tolerance eps: at most 256 · eps (2.56e-6 · scale at the default epsilon), well
+// inside the snap tolerance. ≥ 4 · eps, so that no vertex on the unshifted plane is on the
+// shifted one within the tolerance.
 constexpr double kShifts[] = {4.0, 16.0, 64.0, 256.0};
 
 class Builder {
