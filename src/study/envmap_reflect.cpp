@@ -132,7 +132,9 @@ Maps build_maps(const Scene& scene, const RayScene& rays, const std::vector<uint
                 const EnvmapReflectOptions& o, const std::vector<std::string>& methods, Results& results) {
   auto wants = [&](const char* m) { return std::find(methods.begin(), methods.end(), m) != methods.end(); };
   Maps maps;
+  Stopwatch w;
   maps.groups = group_reflectors(scene, rays, reflectors, {o.group_parallax, o.max_maps});
+  results.metrics["envmap_group_ms"] = w.elapsed_ms();
   maps.group_of = envmap_group_of_objects(scene, maps.groups);
   maps.maps.resize(maps.groups.size());
   if (reflectors.size() > 1) report_groups(maps.groups, results);

@@ -25,8 +25,8 @@ struct EnvmapGroupOptions {
   // Two groups are merged while the merged group's parallax (EnvmapGroup::parallax) is at
   // most this: its reflectors lie close together compared with the surfaces around them.
   float max_parallax = 0.2f;
-  // At most this many groups (maps): beyond it, the pair whose merge has the smallest
-  // parallax is merged even above max_parallax. 1 = one map shared by every reflector.
+  // At most this many groups (maps): beyond it, the pair whose merged group is most compact
+  // (smallest radius) is merged whatever its parallax. 1 = one map shared by every reflector.
   int max_groups = 4;
 };
 inline constexpr int kMaxEnvmapGroups = 64;
@@ -42,11 +42,16 @@ struct EnvmapGroup {
 };
 inline constexpr int kGroupProbeDirections = 128;
 
-// Agglomerative grouping of `reflectors` (object ids): starts from one group per reflector,
-// repeatedly merges the pair whose merged group has the smallest parallax while that is ≤
-// max_parallax or there are more than max_groups groups. Groups come ordered by their
-// smallest object id. Deterministic. `rays` must hold `scene`. Throws InputError for
-// max_groups outside 1..kMaxEnvmapGroups or a negative or non-finite max_parallax.
+// Agglomerative grouping of `reflectors` (object ids), from one group per reflector:
+// (1) repeatedly merges the pair whose merged group has the smallest parallax while that is
+// ≤ max_parallax; (2) while there are more than max_groups groups, merges the pair whose
+// merged group has the smallest radius (from the objects' bounding boxes): the parallax
+// saturates at 1 for groups inside or against their surroundings, the radius still tells
+// reflectors close together from ones far apart. Candidate merges are judged with a radius
+// from the objects' bounding boxes (≥ the vertices'; conservative). Groups come ordered by
+// their smallest object id. Deterministic for any thread count. `rays` must hold `scene`.
+// Throws InputError for max_groups outside 1..kMaxEnvmapGroups or a negative or
+// non-finite max_parallax.
 std::vector<EnvmapGroup> group_reflectors(const Scene& scene, const RayScene& rays,
                                           std::span<const uint32_t> reflectors, const EnvmapGroupOptions& options);
 
