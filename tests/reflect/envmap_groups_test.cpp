@@ -13,6 +13,7 @@
 #include "proxima/reflect/envmap_reflection.h"
 #include "proxima/scene/procedural.h"
 #include "proxima/trace/reference_renderer.h"
+#include "envmap_test_util.h"
 #include "reflect_test_scenes.h"
 
 namespace proxima {
@@ -42,25 +43,21 @@ Scene room_with_spheres(std::span<const vec3> centers, float radius) {
   return s;
 }
 
-// Mean |a − b| over the reflector pixels (linear, channels averaged).
-double reflector_mae(const ImageF& a, const ImageF& b, const ReflectorPixels& pixels) {
-  double sum = 0.0;
-  size_t n = 0;
-  for (int y = 0; y < a.height(); ++y)
-    for (int x = 0; x < a.width(); ++x) {
-      if (pixels.triangle.at(x, y) == kNoTriangle) continue;
-      for (int c = 0; c < 3; ++c) sum += std::abs(double(a.at(x, y, c)) - double(b.at(x, y, c))) / 3.0;
-      ++n;
-    }
-  return n ? sum / double(n) : 0.0;
-}
+using envmap_test::reflector_mae;
+
+struct Grouped {
+  size_t maps = 0;      // groups made
+  double error = 0.0;  // rectified error against the one-bounce reference
+};
 
 // Rectified env mapping of the frame with the reflectors grouped by `options`.
-double rectified_error(const Scene& scene, const RayScene& rays, const Camera& cam, const ImageF& reference,
-                       const EnvmapGroupOptions& options, size_t* maps) {
+Grouped grouped(const Scene& scene, const RayScene& rays, const Camera& cam, const EnvmapGroupOptions& options) {
+  ReferenceOptions ro;
+  ro.area_light_samples = 1;
+  ro.max_bounces = 1;
+  const ImageF reference = render_reference(scene, rays, cam, ro);
   const std::vector<uint32_t> reflectors = reflective_objects(scene);
   const std::vector<EnvmapGroup> groups = group_reflectors(scene, rays, reflectors, options);
-  *maps = groups.size();
   std::vector<EnvmapMaps> group_maps(groups.size());
   for (size_t g = 0; g < groups.size(); ++g) {
     DistanceCubeMapOptions mo;
@@ -78,7 +75,7 @@ double rectified_error(const Scene& scene, const RayScene& rays, const Camera& c
   in.group_of = group_of;
   const ReflectorPixels pixels = rasterize_reflector_pixels(scene, cam, reflectors);
   EXPECT_GT(pixels.count, 1000u);
-  return reflector_mae(shade_reflector_pixels(scene, rays, cam, pixels, in).color, reference, pixels);
+  return {groups.size(), reflector_mae(shade_reflector_pixels(scene, rays, cam, pixels, in).color, reference, pixels)};
 }
 
 TEST(EnvmapGroups, ReflectorsFarApartGetTheirOwnMapsAndASmallerRectifiedError) {
@@ -86,16 +83,10 @@ TEST(EnvmapGroups, ReflectorsFarApartGetTheirOwnMapsAndASmallerRectifiedError) {
   const Scene scene = room_with_spheres(centers, 0.6f);
   const RayScene rays(scene);
   const Camera cam = look_at({0.0f, 2.0f, 3.8f}, {0.0f, 1.0f, -1.0f}, {0, 1, 0}, 90.0f, 320, 240);
-  ReferenceOptions ro;
-  ro.area_light_samples = 1;
-  ro.max_bounces = 1;
-  const ImageF reference = render_reference(scene, rays, cam, ro);
-  size_t own = 0, shared = 0;
-  const double e_own = rectified_error(scene, rays, cam, reference, {}, &own);
-  const double e_shared = rectified_error(scene, rays, cam, reference, {.max_groups = 1}, &shared);
-  EXPECT_EQ(own, 2u);
-  EXPECT_EQ(shared, 1u);
-  EXPECT_LT(e_own, e_shared / 3.0) << "per-reflector " << e_own << " vs shared " << e_shared;
+  const Grouped own = grouped(scene, rays, cam, {}), shared = grouped(scene, rays, cam, {.max_groups = 1});
+  EXPECT_EQ(own.maps, 2u);
+  EXPECT_EQ(shared.maps, 1u);
+  EXPECT_LT(own.error, shared.error / 3.0) << "per-reflector " << own.error << " vs shared " << shared.error;
 }
 
 TEST(EnvmapGroups, ReflectorsCloseTogetherShareAMap) {
@@ -117,16 +108,10 @@ TEST(EnvmapGroups, ReflectorsCloseTogetherShareAMap) {
   EXPECT_EQ(group_of[0], kNoEnvmapGroup);  // a wall
   // The shared map costs the close pair little: its rectified error stays near that of a map each.
   const Camera cam = look_at({0.0f, 2.2f, 1.5f}, {0.0f, 2.0f, 0.0f}, {0, 1, 0}, 45.0f, 320, 240);
-  ReferenceOptions ro;
-  ro.area_light_samples = 1;
-  ro.max_bounces = 1;
-  const ImageF reference = render_reference(scene, rays, cam, ro);
-  size_t shared = 0, own = 0;
-  const double e_shared = rectified_error(scene, rays, cam, reference, {}, &shared);
-  const double e_own = rectified_error(scene, rays, cam, reference, {.max_parallax = 0.0f}, &own);
-  EXPECT_EQ(shared, 2u);
-  EXPECT_EQ(own, 3u);
-  EXPECT_LT(e_shared, 1.5 * e_own) << "shared " << e_shared << " vs a map each " << e_own;
+  const Grouped shared = grouped(scene, rays, cam, {}), own = grouped(scene, rays, cam, {.max_parallax = 0.0f});
+  EXPECT_EQ(shared.maps, 2u);
+  EXPECT_EQ(own.maps, 3u);
+  EXPECT_LT(shared.error, 1.5 * own.error) << "shared " << shared.error << " vs a map each " << own.error;
 }
 
 TEST(EnvmapGroups, TheNumberOfMapsIsBoundedAndTheGroupingDeterministic) {
