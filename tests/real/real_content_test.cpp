@@ -107,7 +107,7 @@ TEST(RealContent, ReferenceRendersEveryScene) {
 
 // Environment maps with distance: rectified ≤ 1/3 of plain's error; layered at or below
 // rectified's in the configuration the bound was set for (640 × 480, the default 512² cube
-// faces). With 128² faces layered misses it (its march steps 2 texels): a known failure.
+// faces). With 128² faces layered misses it (grazing rays at the sphere's rim): a known failure.
 // The layered/single build-time ratio is printed, not asserted (timings belong to runs
 // measured side by side, not to tests); docs/real-content.md has the measured ratio.
 TEST(RealContent, EnvMapsOnTheHouseWithAMirrorSphere) {
