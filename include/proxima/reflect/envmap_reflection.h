@@ -98,6 +98,8 @@ struct EnvmapFrame {
 // (ambient + E/π) with Embree shadows + s·mean over the lobe of the method's lookup.
 // Random numbers per pixel as the reference's (k = 1), so the lobe directions and area
 // light samples match it. Deterministic for any thread count. `rays` must hold `scene`.
+// With `inputs.groups` set, a reflector pixel whose object has no group throws
+// std::invalid_argument (a caller's error, checked before shading).
 EnvmapFrame shade_reflector_pixels(const Scene& scene, const RayScene& rays, const Camera& camera,
                                    const ReflectorPixels& pixels, const EnvmapInputs& inputs);
 
