@@ -55,6 +55,10 @@ void add_envmap_flags(CLI::App* app, study::EnvmapReflectOptions& o) {
       ->capture_default_str();
   app->add_option("--march-steps", o.march_steps, "layered: ray-march samples per lookup at most")
       ->capture_default_str();
+  app->add_option("--max-maps", o.max_maps, "env maps at most: reflectors grouped, one map per group (1 = one shared map)")
+      ->capture_default_str();
+  app->add_option("--group-parallax", o.group_parallax, "reflectors share a map while its mean parallax is at most this")
+      ->capture_default_str();
   app->add_option("--reps", o.reps,
                   "timed frames per method, round-robin over the methods (median reported; cluster: 1 per frame)")
       ->capture_default_str();

@@ -13,6 +13,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "proxima/core/error.h"
@@ -28,18 +30,43 @@ namespace {
 
 constexpr int kTileSize = 16;
 
-EnvLookup lookup(const EnvmapInputs& in, const Environment& env, vec3 x, vec3 dir) {
+// The maps one reflector pixel reads: the inputs' own, or its object's group's.
+struct PixelMaps {
+  const DistanceCubeMap* map = nullptr;
+  float average_distance = kDistanceInf;
+  std::span<const DistanceCubeMap> layers;
+};
+
+PixelMaps maps_of(const EnvmapInputs& in, uint32_t object) {
+  if (in.groups.empty()) return {in.map, in.average_distance, in.layers};
+  const EnvmapMaps& g = in.groups[in.group_of[object]];
+  return {&g.map, g.average_distance, g.layers};
+}
+
+// With per-group maps, every reflector pixel's object must have a group.
+void check_groups(const Scene& scene, const ReflectorPixels& pixels, const EnvmapInputs& in) {
+  if (in.groups.empty()) return;
+  for (uint32_t t : pixels.triangle.data()) {
+    if (t == kNoTriangle) continue;
+    const uint32_t o = scene.triangle_object[t];
+    if (o >= in.group_of.size() || in.group_of[o] >= in.groups.size())
+      throw std::invalid_argument("shade_reflector_pixels: reflector object " + std::to_string(o) +
+                                  " is in no env-map group");
+  }
+}
+
+EnvLookup lookup(const EnvmapInputs& in, const PixelMaps& m, const Environment& env, vec3 x, vec3 dir) {
   switch (in.method) {
     case EnvmapMethod::Plain:
-      return plain_lookup(*in.map, env, dir);
+      return plain_lookup(*m.map, env, dir);
     case EnvmapMethod::Rectified:
-      return rectified_lookup(*in.map, env, x, dir, in.rectify);
+      return rectified_lookup(*m.map, env, x, dir, in.rectify);
     case EnvmapMethod::Average:
-      return average_lookup(*in.map, env, x, dir, in.average_distance);
+      return average_lookup(*m.map, env, x, dir, m.average_distance);
     case EnvmapMethod::Layered:
-      return layered_lookup(in.layers, env, x, dir, in.rectify);
+      return layered_lookup(m.layers, env, x, dir, in.rectify);
     case EnvmapMethod::BoxProbe:
-      return box_probe_lookup(*in.map, env, x, dir, in.box);
+      return box_probe_lookup(*m.map, env, x, dir, in.box);
   }
   return {};
 }
@@ -119,14 +146,16 @@ EnvmapFrame shade_reflector_pixels(const Scene& scene, const RayScene& rays, con
                                    const ReflectorPixels& pixels, const EnvmapInputs& in) {
   const int w = camera.width, h = camera.height;
   EnvmapFrame frame{ImageF(w, h, 3, 0.0f), ImageU32(w, h, 1, kNoObject), {}};
+  check_groups(scene, pixels, in);
   const DirectLight light(scene, rays, in.area_light_samples);
   std::atomic<size_t> n_pixels{0}, n_lookups{0}, n_samples{0}, n_edges{0}, n_fallbacks{0};
   parallel_for_tiles(w, h, kTileSize, [&](const Tile& tile) {
     std::vector<vec2> lobe(size_t(in.glossy_rays));
     size_t tp = 0, tl = 0, ts = 0, te = 0, tf = 0;
     uint32_t first_object = kNoObject;
+    PixelMaps maps;
     auto trace = [&](vec3 x, vec3 dir) {
-      EnvLookup r = lookup(in, scene.environment, x, dir);
+      EnvLookup r = lookup(in, maps, scene.environment, x, dir);
       if (first_object == kNoObject && !r.miss) first_object = r.object;
       ++tl;
       ts += size_t(r.steps);
@@ -140,6 +169,7 @@ EnvmapFrame shade_reflector_pixels(const Scene& scene, const RayScene& rays, con
         if (t == kNoTriangle) continue;
         ++tp;
         first_object = kNoObject;
+        maps = maps_of(in, scene.triangle_object[t]);
         const float u = pixels.barycentric.at(x, y, 0), v = pixels.barycentric.at(x, y, 1);
         const vec3 view = triangle_point(scene, t, u, v) - camera.position;
         SurfacePoint sp = surface_point_seen(scene, t, u, v, view);

@@ -15,6 +15,7 @@
 #include "proxima/eval/image_error.h"
 #include "proxima/reflect/box_probe.h"
 #include "proxima/reflect/distance_cube_map.h"
+#include "proxima/reflect/envmap_groups.h"
 #include "proxima/reflect/envmap_reflection.h"
 #include "proxima/reflect/reflection_comparison.h"
 #include "proxima/scene/camera_path.h"
@@ -44,57 +45,113 @@ std::optional<Scene> posed_scene(const Scene& scene, const CameraChoice& choice)
   return pose_scene(scene, t);
 }
 
+// The maps' memory: per face texel 4 floats (color, distance), 1 float (distance again),
+// 1 object id; 6 faces per map; per group one map for the single-map methods and K layers.
+void check_map_budget(const EnvmapReflectOptions& o, uint64_t groups) {
+  const std::vector<std::string> methods = methods_of(o);
+  const bool single = std::any_of(methods.begin(), methods.end(),
+                                  [](const std::string& m) { return m != "layered" && m != "reference"; });
+  const bool layered = std::find(methods.begin(), methods.end(), "layered") != methods.end();
+  const uint64_t maps = groups * (uint64_t(single) + (layered ? uint64_t(o.layers) : 0));
+  check_image_budget("--cube-size", uint64_t(o.cube_size), uint64_t(o.cube_size), 36 * maps);
+}
+
 double pct(size_t part, size_t whole) { return whole ? 100.0 * double(part) / double(whole) : 0.0; }
 
-// The maps the methods read: one distance cube map for plain / rectified / average (with d̄),
-// K depth layers for layered. Built once (a static environment), timed apart from the
-// per-frame work.
+// The maps the methods read, per group of reflectors (envmap_groups.h): one distance cube
+// map for plain / rectified / average / boxprobe (with d̄), K depth layers for layered, each
+// around the group's center with the group's reflectors left out. Built once (a static
+// environment), timed apart from the per-frame work (build times summed over the groups).
 struct Maps {
-  DistanceCubeMap map;
-  float average_distance = kDistanceInf;
-  std::vector<DistanceCubeMap> layers;
+  std::vector<EnvmapGroup> groups;
+  std::vector<uint32_t> group_of;  // per object id
+  std::vector<EnvmapMaps> maps;    // per group
 };
 
-Maps build_maps(const Scene& scene, const RayScene& rays, const std::vector<uint32_t>& reflectors, vec3 center,
+void build_single(const Scene& scene, const RayScene& rays, const EnvmapReflectOptions& o, DistanceCubeMapOptions mo,
+                  Maps& maps, Results& results) {
+  double build_ms = 0.0, average_ms = 0.0;
+  for (size_t g = 0; g < maps.groups.size(); ++g) {
+    mo.exclude = maps.groups[g].reflectors;
+    Stopwatch w;
+    maps.maps[g].map = render_distance_cube_map(scene, rays, maps.groups[g].center, mo);
+    build_ms += w.elapsed_ms();
+    w.restart();
+    maps.maps[g].average_distance = average_distance(maps.maps[g].map, glm::radians(o.angle_step_deg));
+    average_ms += w.elapsed_ms();
+  }
+  results.metrics["envmap_build_ms"] = build_ms;
+  results.metrics["average_distance_ms"] = average_ms;
+  results.metrics["average_distance_m"] = maps.maps[0].average_distance;
+}
+
+void build_layered(const Scene& scene, const RayScene& rays, const EnvmapReflectOptions& o, DistanceCubeMapOptions mo,
+                   Maps& maps, Results& results) {
+  double build_ms = 0.0, layers = 0.0;
+  float radius = 0.0f;
+  std::vector<double> shaded, hidden;
+  for (size_t g = 0; g < maps.groups.size(); ++g) {
+    mo.exclude = maps.groups[g].reflectors;
+    DistanceCubeLayerOptions lo;
+    lo.layers = o.layers;
+    lo.viewer_radius = maps.groups[g].radius;
+    radius = std::max(radius, lo.viewer_radius);
+    Stopwatch w;
+    maps.maps[g].layers = render_distance_cube_layers(scene, rays, maps.groups[g].center, mo, lo);
+    build_ms += w.elapsed_ms();
+    const std::vector<DistanceCubeMap>& l = maps.maps[g].layers;
+    layers = std::max(layers, double(l.size()));
+    shaded.resize(std::max(shaded.size(), l.size()), 0.0);
+    hidden.resize(shaded.size(), 0.0);
+    for (size_t k = 0; k < l.size(); ++k) {
+      shaded[k] += double(l[k].shaded_texels);
+      hidden[k] += double(l[k].hidden_texels);
+    }
+  }
+  results.metrics["layered_build_ms"] = build_ms;
+  results.metrics["layers"] = layers;
+  results.metrics["viewer_radius_m"] = radius;
+  for (size_t k = 0; k < shaded.size(); ++k) {
+    results.metrics["layer" + std::to_string(k) + "_shaded_texels"] = shaded[k];
+    results.metrics["layer" + std::to_string(k) + "_hidden_texels"] = hidden[k];
+  }
+}
+
+// With more than one reflector: how they were grouped (one map per group).
+void report_groups(const std::vector<EnvmapGroup>& groups, Results& results) {
+  results.metrics["maps"] = double(groups.size());
+  for (size_t g = 0; g < groups.size(); ++g) {
+    const std::string key = "map" + std::to_string(g) + "_";
+    results.metrics[key + "reflectors"] = double(groups[g].reflectors.size());
+    results.metrics[key + "radius_m"] = groups[g].radius;
+    results.metrics[key + "parallax"] = groups[g].parallax;
+  }
+}
+
+Maps build_maps(const Scene& scene, const RayScene& rays, const std::vector<uint32_t>& reflectors,
                 const EnvmapReflectOptions& o, const std::vector<std::string>& methods, Results& results) {
   auto wants = [&](const char* m) { return std::find(methods.begin(), methods.end(), m) != methods.end(); };
+  Maps maps;
+  Stopwatch w;
+  maps.groups = group_reflectors(scene, rays, reflectors, {o.group_parallax, o.max_maps});
+  results.metrics["envmap_group_ms"] = w.elapsed_ms();
+  maps.group_of = envmap_group_of_objects(scene, maps.groups);
+  maps.maps.resize(maps.groups.size());
+  if (reflectors.size() > 1) report_groups(maps.groups, results);
   DistanceCubeMapOptions mo;
   mo.resolution = o.cube_size;
   mo.area_light_samples = o.light_samples;
   mo.seed = o.seed;
-  mo.exclude = reflectors;
-  Maps maps;
-  if (wants("envmap") || wants("rectified") || wants("average") || wants("boxprobe")) {
-    Stopwatch w;
-    maps.map = render_distance_cube_map(scene, rays, center, mo);
-    results.metrics["envmap_build_ms"] = w.elapsed_ms();
-    w.restart();
-    maps.average_distance = average_distance(maps.map, glm::radians(o.angle_step_deg));
-    results.metrics["average_distance_ms"] = w.elapsed_ms();
-    results.metrics["average_distance_m"] = maps.average_distance;
-  }
-  if (wants("layered")) {
-    DistanceCubeLayerOptions lo;
-    lo.layers = o.layers;
-    lo.viewer_radius = viewer_radius(scene, reflectors, center);
-    Stopwatch w;
-    maps.layers = render_distance_cube_layers(scene, rays, center, mo, lo);
-    results.metrics["layered_build_ms"] = w.elapsed_ms();
-    results.metrics["layers"] = double(maps.layers.size());
-    results.metrics["viewer_radius_m"] = lo.viewer_radius;
-    for (size_t k = 0; k < maps.layers.size(); ++k) {
-      results.metrics["layer" + std::to_string(k) + "_shaded_texels"] = double(maps.layers[k].shaded_texels);
-      results.metrics["layer" + std::to_string(k) + "_hidden_texels"] = double(maps.layers[k].hidden_texels);
-    }
-  }
+  if (wants("envmap") || wants("rectified") || wants("average") || wants("boxprobe"))
+    build_single(scene, rays, o, mo, maps, results);
+  if (wants("layered")) build_layered(scene, rays, o, mo, maps, results);
   return maps;
 }
 
 EnvmapInputs inputs_of(const Scene& scene, const Maps& maps, const EnvmapReflectOptions& o) {
   EnvmapInputs in = envmap_inputs(scene, o);
-  in.map = &maps.map;
-  in.average_distance = maps.average_distance;
-  in.layers = maps.layers;
+  in.groups = maps.maps;
+  in.group_of = maps.group_of;
   return in;
 }
 
@@ -107,14 +164,30 @@ struct Judged {
   ImageU32 reference_objects;
 };
 
+// `compared` without the pixels whose reference mirror ray meets a reflector of the pixel's
+// own group: its map leaves those out (the other groups' reflectors are in it).
+PixelMask group_environment_mask(const Scene& scene, const PixelMask& compared, const ReflectorPixels& pixels,
+                                 const ImageU32& reference_objects, const Maps& maps) {
+  PixelMask out{compared.mask, 0};
+  for (size_t i = 0; i < out.mask.data().size(); ++i) {
+    uint8_t& m = out.mask.data()[i];
+    if (!m) continue;
+    const uint32_t t = pixels.triangle.data()[i], hit = reference_objects.data()[i];
+    const uint32_t g = t == kNoTriangle ? kNoEnvmapGroup : maps.group_of[scene.triangle_object[t]];
+    if (g != kNoEnvmapGroup && hit < maps.group_of.size() && maps.group_of[hit] == g) m = 0;
+    out.pixels += m != 0;
+  }
+  return out;
+}
+
 Judged judged_pixels(const Scene& scene, const RayScene& rays, const Camera& camera, const ItemBuffer& item,
-                     const std::vector<uint32_t>& reflectors, Results& results) {
+                     const std::vector<uint32_t>& reflectors, const Maps& maps, Results& results) {
   Judged j;
   j.pixels = rasterize_reflector_pixels(scene, camera, reflectors);
   j.mask = comparison_mask(j.pixels.triangle, item, scene, reflectors);
   results.metrics["reflector_pixels"] = double(j.mask.pixels);
   j.reference_objects = reference_reflected_objects(scene, rays, camera, item, j.mask.mask);
-  j.env_mask = environment_mask(j.mask, j.reference_objects, reflectors);
+  j.env_mask = group_environment_mask(scene, j.mask, j.pixels, j.reference_objects, maps);
   results.metrics["self_reflection_pct"] = pct(j.mask.pixels - j.env_mask.pixels, j.mask.pixels);
   return j;
 }
@@ -239,21 +312,19 @@ void validate(const EnvmapReflectOptions& o) {
   require_in_range(o.reps, 1, 100, "--reps");
   require_in_range(o.layers, 1, kMaxDistanceCubeLayers, "--layers");
   require_in_range(o.march_steps, 1, 4096, "--march-steps");
-  // The maps' memory: per face texel 4 floats (color, distance), 1 float (distance again),
-  // 1 object id; 6 faces per map.
-  const std::vector<std::string> methods = methods_of(o);
-  const bool single = std::any_of(methods.begin(), methods.end(),
-                                  [](const std::string& m) { return m != "layered" && m != "reference"; });
-  const bool layered = std::find(methods.begin(), methods.end(), "layered") != methods.end();
-  const uint64_t maps = uint64_t(single) + (layered ? uint64_t(o.layers) : 0);
-  check_image_budget("--cube-size", uint64_t(o.cube_size), uint64_t(o.cube_size), 36 * maps);
+  check_map_budget(o, 1);
+  require_in_range(o.max_maps, 1, kMaxEnvmapGroups, "--max-maps");
+  if (!(o.group_parallax >= 0.0f) || !std::isfinite(o.group_parallax))
+    fail_input("--group-parallax: must be a number ≥ 0");
 }
 
 void validate(const EnvmapReflectOptions& o, const Scene& scene) {
   validate(o);
   pick_camera(scene, o.camera, o.width, o.height);
   // Posing moves objects, it never changes their materials.
-  if (reflective_objects(scene).empty()) fail_input("--scene: '" + scene.name + "' has no reflective object");
+  const size_t reflectors = reflective_objects(scene).size();
+  if (reflectors == 0) fail_input("--scene: '" + scene.name + "' has no reflective object");
+  check_map_budget(o, std::min<uint64_t>(reflectors, uint64_t(o.max_maps)));  // a set of maps per group
 }
 
 Results run_envmap_reflect(const Scene& input, const EnvmapReflectOptions& o, const StudyOutput& out,
@@ -269,7 +340,6 @@ Results run_envmap_reflect(const Scene& input, const EnvmapReflectOptions& o, co
   Results results;
   if (progress) progress->step("reference");
   RayScene rays(scene);
-  const vec3 center = projection_center(scene, reflectors);
   // The reference: the same camera and pixels, mirror rays one bounce deep.
   ReferenceOptions ro;
   ro.area_light_samples = o.light_samples;
@@ -280,13 +350,13 @@ Results run_envmap_reflect(const Scene& input, const EnvmapReflectOptions& o, co
   const ItemBuffer item = trace_item_buffer(scene, rays, camera);
 
   if (progress) progress->step("maps");
-  const Maps maps = build_maps(scene, rays, reflectors, center, o, methods, results);
+  const Maps maps = build_maps(scene, rays, reflectors, o, methods, results);
   const EnvmapInputs in = inputs_of(scene, maps, o);
   results.metrics["D_m"] = in.rectify.D;
   results.metrics["d_e_m"] = o.d_e;
   results.metrics["N"] = rectify_step_limit(in.rectify.D, o.d_e);
   if (std::find(methods.begin(), methods.end(), "boxprobe") != methods.end()) report_box(in.box, results);
-  const Judged judged = judged_pixels(scene, rays, camera, item, reflectors, results);
+  const Judged judged = judged_pixels(scene, rays, camera, item, reflectors, maps, results);
 
   if (progress) progress->step("frames");
   const Frames frames = render_frames(scene, rays, camera, reflectors, in, ro, methods, o.reps, progress);

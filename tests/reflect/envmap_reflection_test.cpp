@@ -12,6 +12,7 @@
 #include "proxima/scene/builtin_scenes.h"
 #include "proxima/scene/procedural.h"
 #include "proxima/trace/reference_renderer.h"
+#include "envmap_test_util.h"
 #include "reflect_test_scenes.h"
 #include "test_util.h"
 
@@ -62,18 +63,7 @@ struct SceneFixture {
   }
 };
 
-// Mean |a − b| over the pixels where `pixels` has a reflector (linear, channels averaged).
-double reflector_mae(const ImageF& a, const ImageF& b, const ReflectorPixels& pixels) {
-  double sum = 0.0;
-  size_t n = 0;
-  for (int y = 0; y < a.height(); ++y)
-    for (int x = 0; x < a.width(); ++x) {
-      if (pixels.triangle.at(x, y) == kNoTriangle) continue;
-      for (int c = 0; c < 3; ++c) sum += std::abs(double(a.at(x, y, c)) - double(b.at(x, y, c))) / 3.0;
-      ++n;
-    }
-  return n ? sum / double(n) : 0.0;
-}
+using envmap_test::reflector_mae;
 
 // The same reflector pixels shaded with 1 and with 2 threads (determinism checks).
 std::pair<EnvmapFrame, EnvmapFrame> shade_at_one_and_two_threads(const SceneFixture& s, const Camera& cam,

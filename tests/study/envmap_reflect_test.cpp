@@ -115,6 +115,9 @@ TEST(EnvmapReflectStudy, BadOptionsAreRefusedNamingTheFlag) {
       {with([](auto& o) { o.layers = 17; }), "--layers"},
       {with([](auto& o) { o.march_steps = 0; }), "--march-steps"},
       {with([](auto& o) { o.reps = 0; }), "--reps"},
+      {with([](auto& o) { o.max_maps = 0; }), "--max-maps"},
+      {with([](auto& o) { o.max_maps = kMaxEnvmapGroups + 1; }), "--max-maps"},
+      {with([](auto& o) { o.group_parallax = -1.0f; }), "--group-parallax"},
       {with([](auto& o) { o.camera.camera = "nowhere"; }), "--camera"},
       {with([](auto& o) { o.width = kMaxImageSide + 1; }), "--width"},
   };
@@ -144,6 +147,32 @@ TEST(EnvmapReflectStudy, MapsBeyondTheMemoryLimitAreRefused) {
   EXPECT_EQ(message.rfind("--cube-size: ", 0), 0u) << message;
   EXPECT_NE(message.find("--max-memory-mb"), std::string::npos) << message;
   EXPECT_EQ(one_map, "");
+}
+
+// A map per group of reflectors; the group metrics appear only with more than one
+// reflector (a single one keeps the shared map's metrics and bits).
+TEST(EnvmapReflectStudy, MultiReflectorScenesReportTheirMaps) {
+  const Scene scene = make_builtin_scene("cornell");
+  ASSERT_EQ(reflective_objects(scene).size(), 2u);
+  study::EnvmapReflectOptions o = small_options();
+  o.method = "rectified";
+  o.compare = false;
+  const Results own = study::run_envmap_reflect(scene, o, {});
+  o.max_maps = 1;
+  const Results shared = study::run_envmap_reflect(scene, o, {});
+  EXPECT_EQ(metric(shared, "maps"), 1.0);
+  EXPECT_EQ(metric(shared, "map0_reflectors"), 2.0);
+  const double maps = metric(own, "maps");
+  EXPECT_GE(maps, 1.0);
+  EXPECT_LE(maps, 2.0);
+  double reflectors = 0.0;
+  for (int g = 0; g < int(maps); ++g) {
+    reflectors += metric(own, "map" + std::to_string(g) + "_reflectors");
+    EXPECT_GE(metric(own, "map" + std::to_string(g) + "_parallax"), 0.0);
+  }
+  EXPECT_EQ(reflectors, 2.0);
+  const Results single = study::run_envmap_reflect(make_builtin_scene("room-reflector"), small_options(), {});
+  EXPECT_EQ(single.metrics.count("maps"), 0u);
 }
 
 TEST(EnvmapReflectStudy, OneAndTwoThreadsGiveTheSameMetricsAndImageBits) {

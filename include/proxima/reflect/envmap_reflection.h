@@ -51,13 +51,27 @@ struct ReflectorPixels {
 ReflectorPixels rasterize_reflector_pixels(const Scene& scene, const Camera& camera,
                                            std::span<const uint32_t> reflectors);
 
+// The maps of one group of reflectors (envmap_groups.h), around the group's center with
+// the group's reflectors left out: `map` for Plain / Rectified / Average / BoxProbe (with
+// its d̄ for Average), `layers` (render_distance_cube_layers, layer 0 first) for Layered.
+// A method's maps may be left empty when it is not run.
+struct EnvmapMaps {
+  DistanceCubeMap map;
+  float average_distance = kDistanceInf;
+  std::vector<DistanceCubeMap> layers;
+};
+
 // What a method reads: `map` for Plain / Rectified / Average / BoxProbe (with its d̄ for
-// Average, `box` for BoxProbe), `layers` (render_distance_cube_layers, layer 0 first) for Layered.
+// Average, `box` for BoxProbe), `layers` (render_distance_cube_layers, layer 0 first) for
+// Layered — or, when `groups` is set, per reflector pixel the maps of its object's group:
+// groups[group_of[object]] (one map per group of reflectors, envmap_groups.h).
 struct EnvmapInputs {
   EnvmapMethod method = EnvmapMethod::Rectified;
   const DistanceCubeMap* map = nullptr;
   float average_distance = kDistanceInf;
   std::span<const DistanceCubeMap> layers;
+  std::span<const EnvmapMaps> groups;  // set: the per-group maps replace map, average_distance, layers
+  std::span<const uint32_t> group_of;  // per object id, its index in groups (envmap_group_of_objects)
   Bounds3 box;  // BoxProbe: the proxy box (probe_proxy_box)
   RectifyOptions rectify;
   int area_light_samples = 4;  // n×n per area light for the reflector's own direct light
@@ -84,6 +98,8 @@ struct EnvmapFrame {
 // (ambient + E/π) with Embree shadows + s·mean over the lobe of the method's lookup.
 // Random numbers per pixel as the reference's (k = 1), so the lobe directions and area
 // light samples match it. Deterministic for any thread count. `rays` must hold `scene`.
+// With `inputs.groups` set, a reflector pixel whose object has no group throws
+// std::invalid_argument (a caller's error, checked before shading).
 EnvmapFrame shade_reflector_pixels(const Scene& scene, const RayScene& rays, const Camera& camera,
                                    const ReflectorPixels& pixels, const EnvmapInputs& inputs);
 

@@ -12,6 +12,7 @@
 
 #include "proxima/core/progress.h"
 #include "proxima/eval/results.h"
+#include "proxima/reflect/envmap_groups.h"
 #include "proxima/reflect/envmap_reflection.h"
 #include "proxima/scene/camera_select.h"
 #include "proxima/scene/scene.h"
@@ -42,6 +43,8 @@ struct EnvmapReflectOptions {
   int reps = 3;                      // --reps: timed frames per method, round-robin over the methods
   int layers = 3;                    // --layers: layered: depth layers peeled from the map's center
   int march_steps = 64;              // --march-steps: layered: ray-march samples per lookup at most
+  int max_maps = 4;                  // --max-maps: env maps (groups of reflectors) at most; 1 = one shared map
+  float group_parallax = EnvmapGroupOptions{}.max_parallax;  // --group-parallax: reflectors share a map while its parallax is ≤ this
 };
 
 // Throws InputError naming the flag for an option out of range.
