@@ -11,7 +11,15 @@
 namespace proxima {
 namespace {
 
-enum BoxFace : unsigned { kNegX = 1, kPosX = 2, kNegY = 4, kPosY = 8, kNegZ = 16, kPosZ = 32, kAllFaces = 63 };
+enum BoxFace : unsigned {
+  kNegX = 1,
+  kPosX = 2,
+  kNegY = 4,
+  kPosY = 8,
+  kNegZ = 16,
+  kPosZ = 32,
+  kAllFaces = 63
+};
 
 // The faces of the axis-aligned box [lo, hi] selected by `faces` (BoxFace bits), each one
 // outward-facing quad of two triangles, as one object.
@@ -36,21 +44,14 @@ void add_box_faces(Scene& s, vec3 lo, vec3 hi, unsigned faces, uint32_t mat, con
   add_object(s, m, name, mat);
 }
 
-uint32_t add_plain(Scene& s, const std::string& name, vec3 color) {
-  Material m;
-  m.name = name;
-  m.diffuse = color;
-  return add_material(s, m);
-}
-
 }  // namespace
 
 Scene make_vis_balcony() {
   Scene s;
   s.name = "balcony";
-  const uint32_t plaster = add_plain(s, "facade", {0.9f, 0.85f, 0.72f});
-  const uint32_t slab = add_plain(s, "slab", {0.55f, 0.55f, 0.52f});
-  const uint32_t iron = add_plain(s, "railing", {0.06f, 0.06f, 0.07f});
+  const uint32_t plaster = add_material(s, {"facade", {0.9f, 0.85f, 0.72f}});
+  const uint32_t slab = add_material(s, {"slab", {0.55f, 0.55f, 0.52f}});
+  const uint32_t iron = add_material(s, {"railing", {0.06f, 0.06f, 0.07f}});
   // Facade x 0..8 at z = 0, 3.2 m high; a terrace slab 0.15 m high out to z = 1.4; the railing
   // at z = 1.27..1.33: rails 0.04 m high at y 0.08 and 0.98, balusters every 0.125 m between.
   const float L = 8.0f, H = 3.2f, D = 1.4f, z0 = 1.27f, z1 = 1.33f;
@@ -63,8 +64,8 @@ Scene make_vis_balcony() {
   add_box_faces(s, {0.1f, 0.98f, z0}, {L - 0.1f, 1.02f, z1}, kAllFaces, iron, "top_rail");
   for (int i = 0; i < 61; ++i) {
     const float x = 0.25f + 0.125f * float(i);
-    add_box_faces(s, {x - 0.015f, 0.12f, 1.285f}, {x + 0.015f, 0.98f, 1.315f}, kNegX | kPosX | kNegZ | kPosZ, iron,
-                  "baluster_" + std::to_string(i));
+    add_box_faces(s, {x - 0.015f, 0.12f, 1.285f}, {x + 0.015f, 0.98f, 1.315f}, kNegX | kPosX | kNegZ | kPosZ,
+                  iron, "baluster_" + std::to_string(i));
   }
   PointLight sun;
   sun.position = {4.0f, 20.0f, 8.0f};

@@ -3,32 +3,16 @@
 // the visibility map's novel views err less near silhouettes than the item buffer's.
 #include <gtest/gtest.h>
 
-#include "proxima/gibr/gibr_model.h"
 #include "proxima/scene/visibility_models.h"
 #include "proxima/study/gibr.h"
-#include "proxima/visibility/polygons.h"
+#include "scene_checks.h"
 
 namespace proxima::gibr {
 namespace {
 
-using namespace proxima::visibility;
-
 TEST(GibrBalcony, PolygonsPathAndEveryPhotographsMapPassesItsSelfCheck) {
-  const Scene s = make_vis_balcony();
-  const ModelPolygons m = extract_polygons(s);
-  EXPECT_EQ(m.polygons.size(), 262u);
-  EXPECT_EQ(m.polygons.size() * 2, s.triangles.size()) << "every quad merges into one polygon";
-  ASSERT_FALSE(s.camera_paths.empty());
-  EXPECT_GE(s.camera_paths.front().frames, 100);
-  EXPECT_TRUE(is_visibility_model("balcony"));
-  GibrModelOptions o;
-  o.photos = 6;
-  o.photo_width = 80;
-  o.photo_height = 60;
-  o.supersample = 1;
-  const GibrModel g = build_gibr_model(s, o);
-  EXPECT_EQ(g.stats.maps_failed_selfcheck, 0u);
-  EXPECT_GT(g.stats.silhouette_edges_avg, 100.0) << "dozens of balusters in every photograph";
+  EXPECT_GT(check_gibr_test_model(make_vis_balcony(), 262), 100.0)
+      << "dozens of balusters in every photograph";
 }
 
 // 16 photographs at 120 × 90, 2 × 2 supersampled like the ground truth, 2 path views at
@@ -50,7 +34,8 @@ TEST(GibrBalcony, VisibilityMapWinsNearSilhouettesByAFifth) {
   EXPECT_EQ(m.at("maps_failed_selfcheck"), 0.0);
   const double v = m.at("silhouette_mae_vismap"), i = m.at("silhouette_mae_itembuffer");
   EXPECT_LT(v, 0.8 * i) << "silhouette MAE vis-map " << v << ", item buffer " << i;
-  const double rv = m.at("reprojected_silhouette_mae_vismap"), ri = m.at("reprojected_silhouette_mae_itembuffer");
+  const double rv = m.at("reprojected_silhouette_mae_vismap"),
+               ri = m.at("reprojected_silhouette_mae_itembuffer");
   EXPECT_LT(rv, 0.8 * ri) << "photographs' silhouette band MAE vis-map " << rv << ", item buffer " << ri;
   EXPECT_GT(m.at("psnr_vismap"), m.at("psnr_itembuffer"));
 }
