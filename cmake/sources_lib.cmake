@@ -56,6 +56,7 @@ set(PROXIMA_LIB_SOURCES
   src/reflect/temporal_reprojection.cpp
   src/reflect/temporal_reuse.cpp
   src/scene/animation.cpp
+  src/scene/balcony_scene.cpp
   src/scene/builtin_scenes.cpp
   src/scene/camera_path.cpp
   src/scene/camera_select.cpp

@@ -23,7 +23,7 @@ GibrSceneDefaults gibr_scene_defaults(const std::string& scene, double scale) {
   if (scene == "floor" || scene == "building") return {0.03, 1.0};
   if (scene == "vcity") return {0.15, 6.0};
   if (scene == "maze") return {0.03, 1.0};
-  if (scene == "colonnade") return {0.02, 1.0};
+  if (scene == "colonnade" || scene == "balcony") return {0.02, 1.0};
   if (scene == "arena") return {0.05, 2.0};
   return {scale / 500.0, scale / 10.0};
 }

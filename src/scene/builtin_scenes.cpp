@@ -648,6 +648,8 @@ constexpr Entry kScenes[] = {
      [] { return make_vis_building(5); }},
     {"colonnade", "visibility test: thin columns and a railing in front of a textured wall, 57 polygons",
      make_vis_colonnade},
+    {"balcony", "visibility test: a dark railing of 61 thin balusters in front of a bright textured facade, 262 polygons",
+     make_vis_balcony},
     {"level-small", "visibility test: brush-built game level, 3x3 rooms x 2 storeys, no detail brushes, ~2.7k triangles",
      [] { return make_level(level_options("level-small")); }},
     {"level-medium", "visibility test: brush-built game level, 4x3 rooms x 2 storeys, ~6.1k triangles",

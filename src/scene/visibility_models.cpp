@@ -453,7 +453,7 @@ Scene make_vis_colonnade() {
 }
 
 bool is_visibility_model(const std::string& name) {
-  for (const char* m : {"rooms", "maze", "arena", "vcity", "floor", "building", "colonnade"})
+  for (const char* m : {"rooms", "maze", "arena", "vcity", "floor", "building", "colonnade", "balcony"})
     if (name == m) return true;
   return name.rfind("building:", 0) == 0 || is_level_scene(name);
 }

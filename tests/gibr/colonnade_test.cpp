@@ -12,6 +12,7 @@
 #include "proxima/trace/ray_scene.h"
 #include "proxima/visibility/bsp_build.h"
 #include "proxima/visibility/polygons.h"
+#include "scene_checks.h"
 
 namespace proxima::gibr {
 namespace {
@@ -19,21 +20,8 @@ namespace {
 using namespace proxima::visibility;
 
 TEST(GibrColonnade, PolygonsPathAndEveryPhotographsMapPassesItsSelfCheck) {
-  const Scene s = make_vis_colonnade();
-  const ModelPolygons m = extract_polygons(s);
-  EXPECT_EQ(m.polygons.size(), 57u);
-  EXPECT_EQ(m.polygons.size() * 2, s.triangles.size()) << "every quad merges into one polygon";
-  ASSERT_FALSE(s.camera_paths.empty());
-  EXPECT_GE(s.camera_paths.front().frames, 100);
-  EXPECT_TRUE(is_visibility_model("colonnade"));
-  GibrModelOptions o;
-  o.photos = 6;
-  o.photo_width = 80;
-  o.photo_height = 60;
-  o.supersample = 1;
-  const GibrModel g = build_gibr_model(s, o);
-  EXPECT_EQ(g.stats.maps_failed_selfcheck, 0u);
-  EXPECT_GT(g.stats.silhouette_edges_avg, 20.0) << "thin occluders: many silhouette edges per photograph";
+  EXPECT_GT(check_gibr_test_model(make_vis_colonnade(), 57), 20.0)
+      << "thin occluders: many silhouette edges per photograph";
 }
 
 // A flat-colored photograph (each of the s × s samples of a pixel the color of the polygon a

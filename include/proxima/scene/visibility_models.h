@@ -32,9 +32,13 @@ Scene make_vis_building(int floors = 5);
 // Thin occluders in front of a wall: a room whose back wall is seen through a row of thin
 // columns and a railing bar (GIBR's silhouette test scene, docs/gibr.md), 57 polygons.
 Scene make_vis_colonnade();
+// Thin high-contrast occluders: a dark iron railing (61 balusters 3 cm square, two rails) in
+// front of a bright facade, lit from high in front so the railing's shadows fall on the
+// balcony's floor (scene/balcony_scene.cpp; GIBR's thin-occluder regime), 262 polygons.
+Scene make_vis_balcony();
 
 // True for the names of the models above (rooms, maze, arena, vcity, floor, building,
-// building:N, colonnade) and the brush-built levels (level-*, scene/level_scenes.h): the scenes the
+// building:N, colonnade, balcony) and the brush-built levels (level-*, scene/level_scenes.h): the scenes the
 // exact-visibility pipeline (and GIBR) is made for.
 bool is_visibility_model(const std::string& scene_name);
 
