@@ -13,25 +13,55 @@ float glossy_lobe_half_angle(float gloss) {
   return std::clamp(gloss, 0.0f, 1.0f) * glm::radians(kMaxGlossHalfAngleDeg);
 }
 
+namespace {
+
+// The cone around a unit axis: 1 − cos α and the orthonormal basis (t1, t2) around the axis,
+// without branches on its direction (Duff et al. 2017).
+struct Cone {
+  Cone(vec3 a, float half_angle) : axis(a), one_minus_cos(1.0f - std::cos(half_angle)) {
+    const float sign = std::copysign(1.0f, axis.z);
+    const float c = -1.0f / (sign + axis.z);
+    const float b = axis.x * axis.y * c;
+    t1 = {1.0f + sign * axis.x * axis.x * c, sign * b, -sign * axis.x};
+    t2 = {b, sign + axis.y * axis.y * c, -axis.y};
+  }
+  // Uniform in solid angle: cos θ is uniform in [cos α, 1].
+  vec3 direction(float u1, float u2) const {
+    const float cos_theta = 1.0f - u1 * one_minus_cos;
+    const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
+    const float phi = 2.0f * kPi * u2;
+    return glm::normalize(sin_theta * std::cos(phi) * t1 + sin_theta * std::sin(phi) * t2 + cos_theta * axis);
+  }
+  vec3 axis;
+  float one_minus_cos;
+  vec3 t1, t2;
+};
+
+// Reflected back across the tangent plane when below it.
+vec3 above_surface(vec3 d, vec3 n_facing) {
+  const float below = glm::dot(d, n_facing);
+  return below > 0.0f ? d : d - 2.0f * below * n_facing;
+}
+
+}  // namespace
+
 vec3 sample_cone(vec3 axis, float half_angle, float u1, float u2) {
   if (half_angle <= 0.0f) return axis;
-  // Uniform in solid angle: cos θ is uniform in [cos α, 1].
-  float cos_theta = 1.0f - u1 * (1.0f - std::cos(half_angle));
-  float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
-  float phi = 2.0f * kPi * u2;
-  // Orthonormal basis around axis without branches on its direction (Duff et al. 2017).
-  float sign = std::copysign(1.0f, axis.z);
-  float a = -1.0f / (sign + axis.z);
-  float b = axis.x * axis.y * a;
-  vec3 t1{1.0f + sign * axis.x * axis.x * a, sign * b, -sign * axis.x};
-  vec3 t2{b, sign + axis.y * axis.y * a, -axis.y};
-  return glm::normalize(sin_theta * std::cos(phi) * t1 + sin_theta * std::sin(phi) * t2 + cos_theta * axis);
+  return Cone(axis, half_angle).direction(u1, u2);
 }
 
 vec3 glossy_lobe_direction(vec3 mirror, vec3 n_facing, float half_angle, vec2 u) {
-  vec3 d = sample_cone(mirror, half_angle, u.x, u.y);
-  float below = glm::dot(d, n_facing);
-  return below > 0.0f ? d : d - 2.0f * below * n_facing;
+  return above_surface(sample_cone(mirror, half_angle, u.x, u.y), n_facing);
+}
+
+void glossy_lobe_directions(vec3 mirror, vec3 n_facing, float half_angle, std::span<const vec2> u,
+                            std::span<vec3> out) {
+  if (half_angle <= 0.0f) {
+    for (size_t r = 0; r < u.size(); ++r) out[r] = above_surface(mirror, n_facing);
+    return;
+  }
+  const Cone cone(mirror, half_angle);
+  for (size_t r = 0; r < u.size(); ++r) out[r] = above_surface(cone.direction(u[r].x, u[r].y), n_facing);
 }
 
 vec2 stratum_sample(int i, int j, int n, float xi1, float xi2) {
