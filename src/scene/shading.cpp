@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace proxima {
 
@@ -32,6 +35,47 @@ struct Cone {
     const float phi = 2.0f * kPi * u2;
     return glm::normalize(sin_theta * std::cos(phi) * t1 + sin_theta * std::sin(phi) * t2 + cos_theta * axis);
   }
+#if defined(__SSE2__)
+  // above_surface(direction(u[l].x, u[l].y), n) into out[l] for four samples: the angles and
+  // libm's sine and cosine per sample, then the combination, normalization and fold four
+  // lanes at once — per lane the scalar code's IEEE single operations in its order (glm's
+  // dot (x·x' + y·y') + z·z', normalize v·(1/√(v·v)), the fold (2·below)·n; no fused
+  // multiply-add on this target), so the same bits.
+  void directions4(const vec2* u, vec3 n, vec3* out) const {
+    alignas(16) float ct[4], st[4], c[4], s[4];
+    for (int l = 0; l < 4; ++l) {
+      ct[l] = 1.0f - u[l].x * one_minus_cos;
+      st[l] = std::sqrt(std::max(0.0f, 1.0f - ct[l] * ct[l]));
+      const float phi = 2.0f * kPi * u[l].y;
+      c[l] = std::cos(phi);
+      s[l] = std::sin(phi);
+    }
+    const __m128 cos_theta = _mm_load_ps(ct), sin_theta = _mm_load_ps(st);
+    const __m128 a = _mm_mul_ps(sin_theta, _mm_load_ps(c)), b = _mm_mul_ps(sin_theta, _mm_load_ps(s));
+    const auto coord = [&](float e1, float e2, float e) {
+      return _mm_add_ps(_mm_add_ps(_mm_mul_ps(a, _mm_set1_ps(e1)), _mm_mul_ps(b, _mm_set1_ps(e2))),
+                        _mm_mul_ps(cos_theta, _mm_set1_ps(e)));
+    };
+    __m128 x = coord(t1.x, t2.x, axis.x), y = coord(t1.y, t2.y, axis.y), z = coord(t1.z, t2.z, axis.z);
+    const auto dot = [](__m128 ax, __m128 ay, __m128 az, __m128 bx, __m128 by, __m128 bz) {
+      return _mm_add_ps(_mm_add_ps(_mm_mul_ps(ax, bx), _mm_mul_ps(ay, by)), _mm_mul_ps(az, bz));
+    };
+    const __m128 inv = _mm_div_ps(_mm_set1_ps(1.0f), _mm_sqrt_ps(dot(x, y, z, x, y, z)));
+    x = _mm_mul_ps(x, inv), y = _mm_mul_ps(y, inv), z = _mm_mul_ps(z, inv);
+    const __m128 nx = _mm_set1_ps(n.x), ny = _mm_set1_ps(n.y), nz = _mm_set1_ps(n.z);
+    const __m128 below = dot(x, y, z, nx, ny, nz);
+    const __m128 above = _mm_cmpgt_ps(below, _mm_setzero_ps());  // NaN: false, folded as in the scalar code
+    const __m128 twice = _mm_mul_ps(_mm_set1_ps(2.0f), below);
+    const auto pick = [&](__m128 d, __m128 nd) {
+      return _mm_or_ps(_mm_and_ps(above, d), _mm_andnot_ps(above, _mm_sub_ps(d, _mm_mul_ps(twice, nd))));
+    };
+    alignas(16) float ox[4], oy[4], oz[4];
+    _mm_store_ps(ox, pick(x, nx));
+    _mm_store_ps(oy, pick(y, ny));
+    _mm_store_ps(oz, pick(z, nz));
+    for (int l = 0; l < 4; ++l) out[l] = vec3(ox[l], oy[l], oz[l]);
+  }
+#endif
   vec3 axis;
   float one_minus_cos;
   vec3 t1, t2;
@@ -61,7 +105,11 @@ void glossy_lobe_directions(vec3 mirror, vec3 n_facing, float half_angle, std::s
     return;
   }
   const Cone cone(mirror, half_angle);
-  for (size_t r = 0; r < u.size(); ++r) out[r] = above_surface(cone.direction(u[r].x, u[r].y), n_facing);
+  size_t r = 0;
+#if defined(__SSE2__)
+  for (; r + 4 <= u.size(); r += 4) cone.directions4(&u[r], n_facing, &out[r]);
+#endif
+  for (; r < u.size(); ++r) out[r] = above_surface(cone.direction(u[r].x, u[r].y), n_facing);
 }
 
 vec2 stratum_sample(int i, int j, int n, float xi1, float xi2) {
