@@ -399,6 +399,7 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
   ro.object_bounds = object_bounds;
   RasterImages g = take_gbuffer();
   rasterize(scene, frame.sample_camera, ro, g, AcceptAllFragments{});
+  frame.raster_ms = watch.elapsed_ms();
   const int sw = frame.sample_camera.width, sh = frame.sample_camera.height;
   const ViewRays view(frame.sample_camera);
   const LightTable lights(scene, options.area_light_samples);
@@ -409,25 +410,55 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
     std::vector<uint32_t> lit_x;
     for (int y = int(y0); y < int(y1); ++y) shade_base_row(scene, g, view, lights, y, lit, terms, lit_x, frame.base);
   });
+  frame.shading_ms = watch.elapsed_ms() - frame.raster_ms;
 
-  // Reflective samples in row-major order, and their ray counts.
-  for (int y = 0; y < sh; ++y) {
-    const uint32_t* tri = &g.triangle.at(0, y);
-    for (int x = 0; x < sw; ++x) {
-      const uint32_t t = tri[x];
-      if (t == kNoTriangle) continue;
-      const Material& m = scene.materials[scene.triangle_material[t]];
-      if (!m.reflective()) continue;
-      frame.pixel.push_back(uint32_t(y) * uint32_t(sw) + uint32_t(x));
-      frame.reflector.push_back(scene.triangle_object[t]);
-      frame.specular.push_back(m.specular);
-      frame.gloss.push_back(m.gloss);
+  // Reflective samples in row-major order, and their ray counts: counted per row, then
+  // each row written at its offset (the same lists as one pass over the rows).
+  const auto glossy = [&](const Material& m) { return glossy_lobe_half_angle(m.gloss) > 0.0f; };
+  const auto rays_of = [&](const Material& m) { return uint32_t(glossy(m) ? options.glossy_rays : 1); };
+  std::vector<uint32_t> row_samples(size_t(sh) + 1, 0), row_rays(size_t(sh) + 1, 0);
+  parallel_for(size_t(sh), 8, [&](size_t y0, size_t y1) {
+    for (size_t y = y0; y < y1; ++y) {
+      const uint32_t* tri = &g.triangle.at(0, int(y));
+      uint32_t samples = 0, rays = 0;
+      for (int x = 0; x < sw; ++x) {
+        if (tri[x] == kNoTriangle) continue;
+        const Material& m = scene.materials[scene.triangle_material[tri[x]]];
+        if (!m.reflective()) continue;
+        ++samples;
+        rays += rays_of(m);
+      }
+      row_samples[y + 1] = samples, row_rays[y + 1] = rays;
     }
-  }
-  const size_t n = frame.pixel.size();
-  frame.first_ray.assign(n + 1, 0);
-  for (size_t i = 0; i < n; ++i)
-    frame.first_ray[i + 1] = frame.first_ray[i] + (glossy_lobe_half_angle(frame.gloss[i]) > 0.0f ? options.glossy_rays : 1);
+  });
+  for (size_t y = 0; y < size_t(sh); ++y) row_samples[y + 1] += row_samples[y], row_rays[y + 1] += row_rays[y];
+  const size_t n = row_samples[size_t(sh)];
+  frame.pixel.resize(n);
+  frame.reflector.resize(n);
+  frame.specular.resize(n);
+  frame.gloss.resize(n);
+  frame.first_ray.resize(n + 1);
+  frame.first_ray[n] = row_rays[size_t(sh)];
+  parallel_for(size_t(sh), 8, [&](size_t y0, size_t y1) {
+    for (size_t y = y0; y < y1; ++y) {
+      const uint32_t* tri = &g.triangle.at(0, int(y));
+      size_t i = row_samples[y];
+      uint32_t ray = row_rays[y];
+      for (int x = 0; x < sw; ++x) {
+        const uint32_t t = tri[x];
+        if (t == kNoTriangle) continue;
+        const Material& m = scene.materials[scene.triangle_material[t]];
+        if (!m.reflective()) continue;
+        frame.pixel[i] = uint32_t(y) * uint32_t(sw) + uint32_t(x);
+        frame.reflector[i] = scene.triangle_object[t];
+        frame.specular[i] = m.specular;
+        frame.gloss[i] = m.gloss;
+        frame.first_ray[i] = ray;
+        ray += rays_of(m);
+        ++i;
+      }
+    }
+  });
   frame.position.resize(n);
   frame.normal.resize(n);
   frame.origin.resize(n);
@@ -435,6 +466,9 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
 
   // The rays of render_reference's first bounce, from the same random streams.
   const float cell = options.lobe_seed_cell * frame.scene_diagonal;
+  // The reference draws its area-light jitter (two numbers per stratum) before the lobe samples.
+  const uint64_t light_draws = uint64_t(scene.area_lights.size()) * 2u *
+                               uint64_t(options.area_light_samples) * uint64_t(options.area_light_samples);
   parallel_for(n, kSampleGrain, [&](size_t b, size_t e) {
     std::vector<vec2> lobe(size_t(options.glossy_rays));
     for (size_t i = b; i < e; ++i) {
@@ -449,16 +483,14 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
       const uint64_t out_pixel = uint64_t(y / k) * uint64_t(camera.width) + uint64_t(x / k);
       Pcg32 rng(cell > 0.0f ? surface_cell_seed(options.seed, frame.position[i], cell)
                             : derive_seed(options.seed, out_pixel, uint64_t((y % k) * k + (x % k))));
-      // The reference draws its area-light jitter at this point before the lobe samples.
-      if (frame.specular[i] < 1.0f && surface_diffuse(scene, t, u, v) != vec3(0.0f))
-        for (size_t l = 0; l < scene.area_lights.size(); ++l)
-          for (int s = 0; s < 2 * options.area_light_samples * options.area_light_samples; ++s) rng.next_float();
+      if (light_draws > 0 && frame.specular[i] < 1.0f && surface_diffuse(scene, t, u, v) != vec3(0.0f))
+        rng.advance(light_draws);
       const vec3 mirror = reflect(dir, f.n);
       const float half_angle = glossy_lobe_half_angle(frame.gloss[i]);
-      vec3* out = &frame.direction[frame.first_ray[i]];
+      const std::span<vec3> out(&frame.direction[frame.first_ray[i]], frame.first_ray[i + 1] - frame.first_ray[i]);
       if (half_angle > 0.0f) {
         stratified_samples_2d(lobe, rng);
-        for (size_t r = 0; r < lobe.size(); ++r) out[r] = glossy_lobe_direction(mirror, f.ng, half_angle, lobe[r]);
+        glossy_lobe_directions(mirror, f.ng, half_angle, lobe, out);
       } else {
         out[0] = glossy_lobe_direction(mirror, f.ng, 0.0f, vec2(0.0f));
       }
@@ -466,6 +498,7 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
   });
   return_gbuffer(std::move(g));
   frame.ms = watch.elapsed_ms();
+  frame.rays_ms = frame.ms - frame.raster_ms - frame.shading_ms;
   return frame;
 }
 

@@ -31,10 +31,22 @@ class Pcg32 {
 
   uint32_t next_u32() {
     uint64_t old = state_;
-    state_ = old * 6364136223846793005ull + inc_;
+    state_ = old * kMultiplier + inc_;
     uint32_t xorshifted = uint32_t(((old >> 18u) ^ old) >> 27u);
     uint32_t rot = uint32_t(old >> 59u);
     return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31));
+  }
+
+  // Skips `delta` outputs in O(log delta) steps (Brown 1994, LCG jump-ahead): afterwards the
+  // stream gives what it would have given after `delta` calls of next_u32 (or next_float).
+  void advance(uint64_t delta) {
+    uint64_t mul = kMultiplier, add = inc_, acc_mul = 1, acc_add = 0;
+    for (; delta > 0; delta >>= 1) {
+      if (delta & 1u) acc_mul *= mul, acc_add = acc_add * mul + add;
+      add *= mul + 1;
+      mul *= mul;
+    }
+    state_ = acc_mul * state_ + acc_add;
   }
 
   // Uniform in [0, 1).
@@ -44,6 +56,7 @@ class Pcg32 {
   uint32_t next_below(uint32_t bound) { return uint32_t((uint64_t(next_u32()) * bound) >> 32); }
 
  private:
+  static constexpr uint64_t kMultiplier = 6364136223846793005ull;
   uint64_t state_;
   uint64_t inc_;
 };

@@ -59,7 +59,10 @@ struct ReflectionFrame {
   std::vector<uint32_t> first_ray;  // sample i owns directions [first_ray[i], first_ray[i+1])
   std::vector<vec3> direction;      // unit reflection ray directions (lobe samples)
   float scene_diagonal = 0.0f;
-  double ms = 0.0;                  // G-buffer + ray set-up time
+  double ms = 0.0;                  // G-buffer + ray set-up time (wall clock), and its phases:
+  double raster_ms = 0.0;           // rasterizing the G-buffer
+  double shading_ms = 0.0;          // the base shading
+  double rays_ms = 0.0;             // listing the reflective samples and building their rays
 
   size_t sample_count() const { return pixel.size(); }
 };

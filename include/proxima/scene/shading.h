@@ -42,6 +42,12 @@ vec3 sample_cone(vec3 axis, float half_angle, float u1, float u2);
 // reflected back across the tangent plane so every lobe ray leaves the surface.
 vec3 glossy_lobe_direction(vec3 mirror, vec3 n_facing, float half_angle, vec2 u);
 
+// glossy_lobe_direction(mirror, n_facing, half_angle, u[r]) into out[r] for every r (out.size()
+// = u.size()): the same bits, with what depends only on the cone (cos α, the basis around
+// `mirror`) computed once.
+void glossy_lobe_directions(vec3 mirror, vec3 n_facing, float half_angle, std::span<const vec2> u,
+                            std::span<vec3> out);
+
 // Fills `out` with out.size() stratified points in [0, 1)², drawing random numbers from
 // `rng` in a fixed order: a jittered m×m grid (row-major cells) when out.size() = m², else
 // N-rooks (Latin hypercube) with N = out.size(). Empty `out` draws nothing.
