@@ -395,6 +395,16 @@ FrameLease prepare_frame(const Scene& scene, const Camera& camera, const RasterO
   } else {
     for (uint32_t o : drawn) add_vertex_run(scene.objects[o].first_vertex, scene.objects[o].vertex_count);
   }
+  // An id list often names a small part of its objects' triangles (a culled draw list):
+  // only the vertices its triangles use are transformed.
+  const bool listed_only = !options.triangles.empty() && object_count > 0;
+  if (listed_only) {
+    f.vertex_used.assign(scene.positions.size(), 0);
+    for (uint32_t t : options.triangles) {
+      const uvec3 idx = scene.triangles[t];
+      f.vertex_used[idx.x] = f.vertex_used[idx.y] = f.vertex_used[idx.z] = 1;
+    }
+  }
   const size_t vertex_chunks = size_t((vertex_total + kChunkVertices - 1) / kChunkVertices);
   parallel_for(vertex_chunks, 1, [&](size_t c0, size_t c1) {
     for (size_t c = c0; c < c1; ++c) {
@@ -406,6 +416,7 @@ FrameLease prepare_frame(const Scene& scene, const Camera& camera, const RasterO
       for (uint64_t pos = begin; pos < end; ++pos) {
         while (pos >= vertex_runs[r].start + vertex_runs[r].count) ++r;
         const uint32_t i = vertex_runs[r].first + uint32_t(pos - vertex_runs[r].start);
+        if (listed_only && !f.vertex_used[i]) continue;
         const vec4 p(scene.positions[i], 1.0f);
         ClipVertex& v = f.vertices[i];
         v.X = glm::dot(cs.row_x, p);

@@ -56,6 +56,9 @@ struct ClusterDrawList {
   std::span<const uint32_t> triangles;
   uint32_t excluded_object = kNoObject;  // used when not culled
   std::span<const Bounds3> object_bounds;  // as RasterOptions::object_bounds
+  // Meters (> 0, far above float rounding): triangles wholly this far in front of the clip
+  // plane keep every fragment without the per-fragment clip test (the same image).
+  float clip_margin = kInf;
 };
 
 // First layer: depth (−z_cam), triangle id and barycentrics of the nearest surface in
