@@ -116,7 +116,7 @@ RasterOptions cluster_raster_options(const Scene& scene, const ClusterDrawList& 
   ro.outputs = kRasterDepth | kRasterTriangle | kRasterBarycentric;
   ro.object_bounds = draw.object_bounds;
   if (draw.culled) {
-    ro.triangles = draw.triangles;
+    ro.triangle_runs = draw.triangles;
   } else if (draw.excluded_object != kNoObject) {
     for (uint32_t o = 0; o < scene.objects.size(); ++o)
       if (o != draw.excluded_object) others.push_back(o);
@@ -148,14 +148,23 @@ TriangleBlocks triangle_blocks(const Scene& scene, int block_triangles) {
   }
   out.object_first_block.back() = uint32_t(out.first.size());
   out.bounds.resize(out.first.size());
+  out.first_vertex.resize(out.first.size());
+  out.vertex_count.resize(out.first.size());
   parallel_for(out.first.size(), 64, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       Bounds3 box;
+      uint32_t lo = ~0u, hi = 0;
       for (uint32_t t = out.first[i]; t < out.first[i] + out.count[i]; ++t) {
         const uvec3 idx = scene.triangles[t];
-        for (int k = 0; k < 3; ++k) box.extend(scene.positions[idx[k]]);
+        for (int k = 0; k < 3; ++k) {
+          box.extend(scene.positions[idx[k]]);
+          lo = std::min(lo, idx[k]);
+          hi = std::max(hi, idx[k]);
+        }
       }
       out.bounds[i] = box;
+      out.first_vertex[i] = lo;
+      out.vertex_count[i] = hi - lo + 1;
     }
   });
   out.object_bounds.resize(scene.objects.size());
@@ -166,7 +175,7 @@ TriangleBlocks triangle_blocks(const Scene& scene, int block_triangles) {
 }
 
 bool cull_cluster_triangles(const Scene& scene, const TriangleBlocks& blocks, const ClusterCamera& camera,
-                            uint32_t excluded_object, float margin, std::vector<uint32_t>& out) {
+                            uint32_t excluded_object, float margin, std::vector<TriangleRun>& out) {
   out.clear();
   if (scene.objects.empty() || blocks.object_first_block.size() != scene.objects.size() + 1) return false;
   const ClusterVolume volume(camera);
@@ -176,7 +185,7 @@ bool cull_cluster_triangles(const Scene& scene, const TriangleBlocks& blocks, co
     for (uint32_t i = blocks.object_first_block[o]; i < blocks.object_first_block[o + 1]; ++i) {
       if (volume.box_outside(blocks.bounds[i], margin)) continue;
       if (between_pixel_centres(projection, camera.camera.near, blocks.bounds[i], kCentreSlackPx)) continue;
-      for (uint32_t t = blocks.first[i]; t < blocks.first[i] + blocks.count[i]; ++t) out.push_back(t);
+      out.push_back({blocks.first[i], blocks.count[i], blocks.first_vertex[i], blocks.vertex_count[i]});
     }
   }
   return true;

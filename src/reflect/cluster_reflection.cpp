@@ -236,7 +236,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
   clock.add_to(st.depth_images_ms, st.depth_images_cpu_ms);
   RasterImages images, back;
   ImageF color;
-  std::vector<uint32_t> drawn;
+  std::vector<TriangleRun> drawn;
   std::vector<uint8_t> needed;
   out.cameras = cameras;
   for (size_t c = 0; c < nc; ++c) {

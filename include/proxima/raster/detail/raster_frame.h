@@ -73,9 +73,6 @@ struct Frame {
   bool needs_uv = false;
   vec3 camera_position{0.0f};
   std::vector<ClipVertex> vertices;  // by scene vertex index; only drawn objects' are set
-  // With an id list: per scene vertex, whether a listed triangle uses it (only those are
-  // transformed; the setup reads no other vertex).
-  std::vector<uint8_t> vertex_used;
   std::vector<DrawRun> runs;
   const uint32_t* id_list = nullptr;  // RasterOptions::triangles, or null
   std::vector<uint8_t> object_visible;  // per object: 0 not drawn, 1 drawn, 2 culled
