@@ -46,12 +46,7 @@ float focal_length_px(const Camera& cam) {
 
 std::optional<Projection> project(const Camera& cam, vec3 world) { return CameraProjection(cam)(world); }
 
-vec3 unproject(const Camera& cam, vec2 pixel, float depth) {
-  float f = focal_length_px(cam);
-  vec3 c((pixel.x - 0.5f * float(cam.width)) * depth / f,
-         (0.5f * float(cam.height) - pixel.y) * depth / f, -depth);
-  return camera_to_world(cam, c);
-}
+vec3 unproject(const Camera& cam, vec2 pixel, float depth) { return CameraProjection(cam).unproject(pixel, depth); }
 
 Ray ray_through(const Camera& cam, vec2 pixel) {
   float f = focal_length_px(cam);

@@ -316,7 +316,8 @@ TileBuffer::TileBuffer(bool with_uv)
 FrameLease prepare_frame(const Scene& scene, const Camera& camera, const RasterOptions& options,
                          RasterImages& out) {
   validate_camera(camera, "rasterizer camera");
-  assert(options.objects.empty() || options.triangles.empty());
+  assert(int(!options.objects.empty()) + int(!options.triangles.empty()) + int(!options.triangle_runs.empty()) <= 1);
+  assert(options.triangle_runs.empty() || !scene.objects.empty());
   assert(options.object_bounds.empty() || options.object_bounds.size() == scene.objects.size());
   Stopwatch clock;
 
@@ -377,6 +378,9 @@ FrameLease prepare_frame(const Scene& scene, const Camera& camera, const RasterO
     for (uint32_t o : options.objects) consider(o);
   } else if (!options.triangles.empty()) {
     for (uint32_t t : options.triangles) consider(scene.triangle_object[t]);
+  } else if (!options.triangle_runs.empty()) {
+    for (const TriangleRun& run : options.triangle_runs)
+      if (run.count > 0) consider(scene.triangle_object[run.first]);
   } else {
     for (uint32_t o = 0; o < object_count; ++o) consider(o);
   }
@@ -392,6 +396,20 @@ FrameLease prepare_frame(const Scene& scene, const Camera& camera, const RasterO
   };
   if (object_count == 0) {
     add_vertex_run(0, uint32_t(scene.positions.size()));
+  } else if (!options.triangle_runs.empty()) {
+    // The drawn runs' vertex ranges, sorted and merged so that no vertex is transformed
+    // twice (neighbouring runs share vertices).
+    std::vector<std::pair<uint32_t, uint32_t>> ranges;  // [begin, end)
+    for (const TriangleRun& run : options.triangle_runs)
+      if (run.count > 0 && run.vertex_count > 0 && f.object_visible[scene.triangle_object[run.first]] == 1)
+        ranges.emplace_back(run.first_vertex, run.first_vertex + run.vertex_count);
+    std::sort(ranges.begin(), ranges.end());
+    for (size_t i = 0; i < ranges.size();) {
+      const uint32_t begin = ranges[i].first;
+      uint32_t end = ranges[i].second;
+      for (++i; i < ranges.size() && ranges[i].first <= end; ++i) end = std::max(end, ranges[i].second);
+      add_vertex_run(begin, end - begin);
+    }
   } else {
     for (uint32_t o : drawn) add_vertex_run(scene.objects[o].first_vertex, scene.objects[o].vertex_count);
   }
@@ -433,6 +451,16 @@ FrameLease prepare_frame(const Scene& scene, const Camera& camera, const RasterO
   } else if (object_count == 0) {
     f.runs.push_back({0, uint32_t(scene.triangles.size()), 0});
     total = scene.triangles.size();
+  } else if (!options.triangle_runs.empty()) {
+    // The runs of drawn objects, consecutive ones joined.
+    for (const TriangleRun& run : options.triangle_runs) {
+      if (run.count == 0 || f.object_visible[scene.triangle_object[run.first]] != 1) continue;
+      if (!f.runs.empty() && f.runs.back().first + f.runs.back().count == run.first)
+        f.runs.back().count += run.count;
+      else
+        f.runs.push_back({run.first, run.count, total});
+      total += run.count;
+    }
   } else {
     for (uint32_t o : drawn) {
       const Object& obj = scene.objects[o];

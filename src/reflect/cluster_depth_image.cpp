@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "proxima/core/camera_projection.h"
 #include "proxima/core/parallel.h"
 #include "proxima/raster/depth_peeling.h"
 
@@ -65,12 +66,12 @@ struct ClusterVolume {
 // rectangle around its projected corners holds no centre (x + 0.5, y + 0.5) along one axis,
 // so no triangle inside it covers one (coverage is decided at pixel centres). `slack`
 // (pixels) covers the 1/4096-pixel snapping and float rounding.
-bool between_pixel_centres(const Camera& cam, const Bounds3& b, float slack) {
+bool between_pixel_centres(const CameraProjection& projection, float near, const Bounds3& b, float slack) {
   vec2 lo(kInf), hi(-kInf);
   for (int i = 0; i < 8; ++i) {
     const vec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z);
-    const auto p = project(cam, corner);
-    if (!p || !(p->depth > cam.near)) return false;
+    const auto p = projection(corner);
+    if (!p || !(p->depth > near)) return false;
     lo = glm::min(lo, p->pixel);
     hi = glm::max(hi, p->pixel);
   }
@@ -80,11 +81,24 @@ bool between_pixel_centres(const Camera& cam, const Bounds3& b, float slack) {
 }
 
 // Keeps fragments in front of the clip plane (the fitting plane or below a curved cluster).
+// A triangle whose three vertices lie in front of it by more than `margin` keeps all its
+// fragments (each is a point of the triangle up to the rounding of its pixel and depth,
+// far below the margin), so those skip the per-fragment test with the same result.
 struct InFrontOfClipPlane {
+  const Scene& scene;
   const ClusterCamera& k;
+  float margin;
+  CameraProjection projection{k.camera};
+
   bool operator()(const Fragment& fr) const {
-    const vec3 x = unproject(k.camera, vec2(float(fr.x) + 0.5f, float(fr.y) + 0.5f), fr.depth);
+    const vec3 x = projection.unproject(vec2(float(fr.x) + 0.5f, float(fr.y) + 0.5f), fr.depth);
     return glm::dot(x - k.plane_point, k.plane_normal) > k.clip_offset;
+  }
+  bool keeps_all(uint32_t triangle) const {
+    const uvec3 idx = scene.triangles[triangle];
+    for (int i = 0; i < 3; ++i)
+      if (!(glm::dot(scene.positions[idx[i]] - k.plane_point, k.plane_normal) > k.clip_offset + margin)) return false;
+    return true;
   }
 };
 
@@ -102,7 +116,7 @@ RasterOptions cluster_raster_options(const Scene& scene, const ClusterDrawList& 
   ro.outputs = kRasterDepth | kRasterTriangle | kRasterBarycentric;
   ro.object_bounds = draw.object_bounds;
   if (draw.culled) {
-    ro.triangles = draw.triangles;
+    ro.triangle_runs = draw.triangles;
   } else if (draw.excluded_object != kNoObject) {
     for (uint32_t o = 0; o < scene.objects.size(); ++o)
       if (o != draw.excluded_object) others.push_back(o);
@@ -134,14 +148,23 @@ TriangleBlocks triangle_blocks(const Scene& scene, int block_triangles) {
   }
   out.object_first_block.back() = uint32_t(out.first.size());
   out.bounds.resize(out.first.size());
+  out.first_vertex.resize(out.first.size());
+  out.vertex_count.resize(out.first.size());
   parallel_for(out.first.size(), 64, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       Bounds3 box;
+      uint32_t lo = ~0u, hi = 0;
       for (uint32_t t = out.first[i]; t < out.first[i] + out.count[i]; ++t) {
         const uvec3 idx = scene.triangles[t];
-        for (int k = 0; k < 3; ++k) box.extend(scene.positions[idx[k]]);
+        for (int k = 0; k < 3; ++k) {
+          box.extend(scene.positions[idx[k]]);
+          lo = std::min(lo, idx[k]);
+          hi = std::max(hi, idx[k]);
+        }
       }
       out.bounds[i] = box;
+      out.first_vertex[i] = lo;
+      out.vertex_count[i] = hi - lo + 1;
     }
   });
   out.object_bounds.resize(scene.objects.size());
@@ -152,16 +175,17 @@ TriangleBlocks triangle_blocks(const Scene& scene, int block_triangles) {
 }
 
 bool cull_cluster_triangles(const Scene& scene, const TriangleBlocks& blocks, const ClusterCamera& camera,
-                            uint32_t excluded_object, float margin, std::vector<uint32_t>& out) {
+                            uint32_t excluded_object, float margin, std::vector<TriangleRun>& out) {
   out.clear();
   if (scene.objects.empty() || blocks.object_first_block.size() != scene.objects.size() + 1) return false;
   const ClusterVolume volume(camera);
+  const CameraProjection projection(camera.camera);
   for (uint32_t o = 0; o < scene.objects.size(); ++o) {
     if (o == excluded_object || volume.box_outside(blocks.object_bounds[o], margin)) continue;
     for (uint32_t i = blocks.object_first_block[o]; i < blocks.object_first_block[o + 1]; ++i) {
       if (volume.box_outside(blocks.bounds[i], margin)) continue;
-      if (between_pixel_centres(camera.camera, blocks.bounds[i], kCentreSlackPx)) continue;
-      for (uint32_t t = blocks.first[i]; t < blocks.first[i] + blocks.count[i]; ++t) out.push_back(t);
+      if (between_pixel_centres(projection, camera.camera.near, blocks.bounds[i], kCentreSlackPx)) continue;
+      out.push_back({blocks.first[i], blocks.count[i], blocks.first_vertex[i], blocks.vertex_count[i]});
     }
   }
   return true;
@@ -172,7 +196,7 @@ RasterStats rasterize_cluster_image(const Scene& scene, const ClusterCamera& cam
   if (draws_nothing(scene, draw)) return empty_images(camera.camera, out);
   std::vector<uint32_t> others;
   const RasterOptions ro = cluster_raster_options(scene, draw, others);
-  return rasterize(scene, camera.camera, ro, out, InFrontOfClipPlane{camera});
+  return rasterize(scene, camera.camera, ro, out, InFrontOfClipPlane{scene, camera, draw.clip_margin});
 }
 
 RasterStats rasterize_cluster_second_layer(const Scene& scene, const ClusterCamera& camera,
@@ -185,7 +209,7 @@ RasterStats rasterize_cluster_second_layer(const Scene& scene, const ClusterCame
   // it hides.
   ro.cull = CullMode::Back;
   const BehindLayerTest behind{first.depth, first.triangle, separation};
-  const InFrontOfClipPlane in_front{camera};
+  const InFrontOfClipPlane in_front{scene, camera, draw.clip_margin};
   return rasterize(scene, camera.camera, ro, out,
                    [&](const Fragment& fr) { return behind(fr) && in_front(fr); });
 }

@@ -14,7 +14,78 @@
 #include <algorithm>
 #include <cmath>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace proxima {
+
+namespace {
+
+#if defined(__SSE2__)
+// The constants of one march that the steps use.
+struct MarchLine {
+  float a0, span, steps;  // α of step i = a0 + span·i / steps
+  vec2 pb, d;             // screen point at α = pb + α·d
+  float inv_zb, inv_ze;   // 1/depthR = (1 − α)·inv_zb + α·inv_ze
+  const float* depth;
+  int w, h;
+  float continuity;
+};
+
+// Steps i … i+3 computed four at a time with the scalar loop's operations in the same
+// order (IEEE adds, multiplies and divides, no fused multiply-add: the same bits). True when
+// none of them would do anything but move on — no hit, no fill, no crossing of the
+// previous texel's surface — given the previous step's ray and surface depths; then
+// `prev_*` become step i+3's values. False leaves everything to the scalar loop.
+bool quiet_steps4(const MarchLine& m, int i, bool may_fill, float& prev_alpha, float& prev_ray,
+                  float& prev_surface) {
+  const __m128 fi = _mm_cvtepi32_ps(_mm_add_epi32(_mm_set1_epi32(i), _mm_set_epi32(3, 2, 1, 0)));
+  const __m128 alpha = _mm_add_ps(_mm_set1_ps(m.a0), _mm_div_ps(_mm_mul_ps(_mm_set1_ps(m.span), fi), _mm_set1_ps(m.steps)));
+  const __m128 one = _mm_set1_ps(1.0f);
+  const __m128 ray = _mm_div_ps(one, _mm_add_ps(_mm_mul_ps(_mm_sub_ps(one, alpha), _mm_set1_ps(m.inv_zb)),
+                                                _mm_mul_ps(alpha, _mm_set1_ps(m.inv_ze))));
+  // Texel = clamp(int(floor(pb + α·d)), 0, side − 1) per axis.
+  auto texel = [&](float pb, float d, int side) {
+    const __m128 s = _mm_add_ps(_mm_set1_ps(pb), _mm_mul_ps(alpha, _mm_set1_ps(d)));
+    __m128i t = _mm_cvttps_epi32(s);
+    t = _mm_add_epi32(t, _mm_castps_si128(_mm_cmpgt_ps(_mm_cvtepi32_ps(t), s)));  // truncation → floor
+    t = _mm_and_si128(t, _mm_cmpgt_epi32(t, _mm_setzero_si128()));
+    const __m128i top = _mm_set1_epi32(side - 1), over = _mm_cmpgt_epi32(t, top);
+    return _mm_or_si128(_mm_and_si128(over, top), _mm_andnot_si128(over, t));
+  };
+  alignas(16) int tx[4], ty[4];
+  _mm_store_si128(reinterpret_cast<__m128i*>(tx), texel(m.pb.x, m.d.x, m.w));
+  _mm_store_si128(reinterpret_cast<__m128i*>(ty), texel(m.pb.y, m.d.y, m.h));
+  auto at = [&](int k) { return m.depth[size_t(ty[k]) * size_t(m.w) + size_t(tx[k])]; };
+  const __m128 surface = _mm_set_ps(at(3), at(2), at(1), at(0));
+  // The previous step's depths in lane k: step i−1's (the caller's) in lane 0, then the
+  // lanes moved up by one (in registers: a store and overlapping reload would stall).
+  auto previous = [](__m128 v, float before) {
+    return _mm_move_ss(_mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 1, 0, 3)), _mm_set_ss(before));
+  };
+  const __m128 prev_s = previous(surface, prev_surface), prev_r = previous(ray, prev_ray);
+  const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+  const __m128 prev_finite = _mm_cmplt_ps(_mm_and_ps(prev_s, abs_mask), _mm_set1_ps(kInf));
+  const __m128 change = _mm_and_ps(_mm_sub_ps(surface, prev_s), abs_mask);
+  const __m128 continuous = _mm_and_ps(prev_finite, _mm_cmple_ps(change, _mm_mul_ps(_mm_set1_ps(m.continuity), surface)));
+  const __m128 slack = _mm_and_ps(continuous, change);
+  const __m128 hits = _mm_cmple_ps(prev_r, _mm_add_ps(surface, slack));
+  __m128 acts = hits;
+  if (may_fill)
+    acts = _mm_or_ps(acts, _mm_andnot_ps(continuous, _mm_and_ps(_mm_cmplt_ps(prev_r, prev_s), prev_finite)));
+  const __m128 behind = _mm_and_ps(_mm_cmpge_ps(ray, surface), acts);
+  const __m128 crosses = _mm_and_ps(_mm_cmple_ps(prev_r, prev_s), _mm_cmpge_ps(ray, prev_s));
+  if (_mm_movemask_ps(_mm_or_ps(behind, crosses)) != 0) return false;
+  auto last = [](__m128 v) { return _mm_cvtss_f32(_mm_shuffle_ps(v, v, _MM_SHUFFLE(3, 3, 3, 3))); };
+  prev_alpha = last(alpha);
+  prev_ray = last(ray);
+  prev_surface = last(surface);
+  return true;
+}
+#endif
+
+}  // namespace
 
 ImageF depth_block_min(const ImageF& depth, int block) {
   const int w = depth.width(), h = depth.height();
@@ -30,8 +101,13 @@ ImageF depth_block_min(const ImageF& depth, int block) {
 
 std::optional<DepthImageHit> march_depth_image(const Camera& camera, const ImageF& depth, vec3 begin, vec3 end,
                                                const MarchOptions& options) {
-  auto b = project(camera, begin);
-  auto e = project(camera, end);
+  return march_depth_image(CameraProjection(camera), depth, begin, end, options);
+}
+
+std::optional<DepthImageHit> march_depth_image(const CameraProjection& camera, const ImageF& depth, vec3 begin,
+                                               vec3 end, const MarchOptions& options) {
+  auto b = camera(begin);
+  auto e = camera(end);
   if (!b || !e) return std::nullopt;
   const vec2 pb = b->pixel, pe = e->pixel;
   const float inv_zb = 1.0f / b->depth, inv_ze = 1.0f / e->depth;
@@ -90,7 +166,19 @@ std::optional<DepthImageHit> march_depth_image(const Camera& camera, const Image
   float prev_ray = ray_depth(a0);
   float prev_surface = texel_depth(a0);
   std::optional<DepthImageHit> fill;
+#if defined(__SSE2__)
+  const MarchLine line{a0, a1 - a0, float(steps), pb, d, inv_zb, inv_ze, depth.data().data(), w, h, options.continuity};
+#endif
   for (int i = 1; i <= steps; ++i) {
+#if defined(__SSE2__)
+    // Runs of steps that only move on are checked four at a time (not with block skipping,
+    // which jumps on its own).
+    if (!skip && options.batch) {
+      while (i + 3 <= steps && quiet_steps4(line, i, options.fill_behind && !fill, prev_alpha, prev_ray, prev_surface))
+        i += 4;
+      if (i > steps) break;
+    }
+#endif
     const float alpha = alpha_of(i);
     const float ray = ray_depth(alpha);
     const float surface = texel_depth(alpha);

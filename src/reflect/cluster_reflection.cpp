@@ -236,7 +236,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
   clock.add_to(st.depth_images_ms, st.depth_images_cpu_ms);
   RasterImages images, back;
   ImageF color;
-  std::vector<uint32_t> drawn;
+  std::vector<TriangleRun> drawn;
   std::vector<uint8_t> needed;
   out.cameras = cameras;
   for (size_t c = 0; c < nc; ++c) {
@@ -254,6 +254,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     }
     const ClusterCamera& k = *cameras[c];
     const Camera& cam = k.camera;
+    const CameraProjection projection(cam);
 
     // Step 3b: the cluster image, everything in front of the near (clip) plane. A curved
     // cluster's own reflector bulges in front of its fitting plane and would only hide what
@@ -262,6 +263,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     ClusterDrawList draw;
     draw.excluded_object = k.planar ? kNoObject : clusters.reflector[c];
     draw.object_bounds = object_bounds;
+    draw.clip_margin = cull_margin;
     draw.culled = options.cull && cull_cluster_triangles(scene, blocks, k, draw.excluded_object, cull_margin, drawn);
     draw.triangles = drawn;
     RasterStats rs = rasterize_cluster_image(scene, k, draw, images);
@@ -290,7 +292,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     std::vector<uint8_t> answer(ray_count, kHit);
     // Glossy hits in the last fade_fraction of the far distance fade to the environment.
     auto fade = [&](const DepthImageHit& h, vec3 o, vec3 dir, vec3 c_hit) {
-      float t = glm::length(unproject(cam, h.pixel, h.depth) - o);
+      float t = glm::length(projection.unproject(h.pixel, h.depth) - o);
       float w = std::clamp((far - t) / (options.fade_fraction * far), 0.0f, 1.0f);
       return w < 1.0f ? w * c_hit + (1.0f - w) * environment_radiance(scene.environment, dir) : c_hit;
     };
@@ -306,7 +308,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
           float t0 = 0.0f, t1 = 0.0f;
           std::optional<DepthImageHit> hit;
           const bool inside = clip_ray(k, o, dir, far, t0, t1);
-          if (inside) hit = march_depth_image(cam, images.depth, o + t0 * dir, o + t1 * dir, march);
+          if (inside) hit = march_depth_image(projection, images.depth, o + t0 * dir, o + t1 * dir, march);
           if (layered && inside && (!hit || hit->filled)) needs_second[r - ray_base] = 1;
           if (hit) {
             ray_hit[r - ray_base] = *hit;
@@ -362,7 +364,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
             const vec3 o = frame.origin[i], dir = frame.direction[r];
             float t0 = 0.0f, t1 = 0.0f;
             clip_ray(k, o, dir, far, t0, t1);
-            auto second = march_depth_image(cam, back.depth, o + t0 * dir, o + t1 * dir, plain);
+            auto second = march_depth_image(projection, back.depth, o + t0 * dir, o + t1 * dir, plain);
             if (!second) continue;
             const int x = std::clamp(int(second->pixel.x), 0, cam.width - 1);
             const int y = std::clamp(int(second->pixel.y), 0, cam.height - 1);
@@ -402,7 +404,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
             const vec3 o = frame.origin[i], dir = frame.direction[r];
             const vec3 x = o + reference->hit_t[r] * dir;
             const uint32_t tri = reference->hit_triangle[r];
-            auto pr = project(cam, x);
+            auto pr = projection(x);
             OcclusionCause cause = OcclusionCause::None;
             if (reference->hit_t[r] > far)
               cause = OcclusionCause::None;  // beyond the (glossy) far distance: faded out by design

@@ -118,4 +118,49 @@ TEST(ClusterDepthImageMarch, BlockSkippingGivesTheSameHits) {
   }
 }
 
+TEST(ClusterDepthImageMarch, FourStepsAtATimeGiveTheSameHits) {
+  // A tilted wall, random plates in front of it (some empty), and a noisy strip whose
+  // neighbouring texels are sometimes continuous and sometimes not: the batched march must
+  // return exactly what the step-by-step march returns, with and without fill, for long
+  // and short segments (short ones end inside a batch), and for segments that start
+  // behind a surface.
+  ImageF depth = plane_depth(glm::normalize(vec3(-0.3f, 0.2f, 1.0f)), -12.0f);
+  Pcg32 rng(11);
+  for (int p = 0; p < 16; ++p) {
+    const int x0 = int(rng.next_float() * 120.0f), y0 = int(rng.next_float() * 120.0f);
+    const int size = 2 + int(rng.next_float() * 24.0f);
+    const float z = 1.5f + 7.0f * rng.next_float();
+    for (int y = y0; y < std::min(128, y0 + size); ++y)
+      for (int x = x0; x < std::min(128, x0 + size); ++x) depth.at(x, y) = p % 5 == 4 ? kInf : z;
+  }
+  for (int y = 60; y < 68; ++y)
+    for (int x = 0; x < 128; ++x) depth.at(x, y) = 5.0f + 0.6f * rng.next_float();
+  int hits = 0, fills = 0, misses = 0;
+  for (int r = 0; r < 3000; ++r) {
+    const vec2 a(rng.next_float() * 140.0f - 6.0f, rng.next_float() * 140.0f - 6.0f);
+    const vec2 b = r % 3 == 0 ? a + vec2(rng.next_float() * 8.0f - 4.0f, rng.next_float() * 8.0f - 4.0f)
+                              : vec2(rng.next_float() * 140.0f - 6.0f, rng.next_float() * 140.0f - 6.0f);
+    const vec3 begin = unproject(kCamera, a, 0.3f + 6.0f * rng.next_float());
+    const vec3 end = unproject(kCamera, b, 2.0f + 14.0f * rng.next_float());
+    MarchOptions batched, single;
+    batched.fill_behind = single.fill_behind = (r % 2) == 0;
+    single.batch = false;
+    const auto x = march_depth_image(kCamera, depth, begin, end, batched);
+    const auto y = march_depth_image(CameraProjection(kCamera), depth, begin, end, single);
+    ASSERT_EQ(x.has_value(), y.has_value()) << "ray " << r;
+    if (!x) {
+      ++misses;
+      continue;
+    }
+    x->filled ? ++fills : ++hits;
+    EXPECT_EQ(x->pixel, y->pixel) << "ray " << r;
+    EXPECT_EQ(x->depth, y->depth) << "ray " << r;
+    EXPECT_EQ(x->filled, y->filled) << "ray " << r;
+  }
+  // The rays exercise all three outcomes.
+  EXPECT_GT(hits, 500);
+  EXPECT_GT(fills, 50);
+  EXPECT_GT(misses, 50);
+}
+
 }  // namespace proxima

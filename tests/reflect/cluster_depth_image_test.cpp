@@ -49,13 +49,15 @@ class ClusterDepthImage : public ::testing::TestWithParam<const char*> {};
 }  // namespace
 
 // Every cluster camera of several frames: the first and second layers drawn from the
-// culled triangle list equal the layers drawn from the whole scene, bit for bit.
+// culled triangle list, with triangles far in front of the clip plane spared the
+// per-fragment clip test (clip_margin), equal the layers drawn from the whole scene with
+// every fragment tested, bit for bit.
 TEST_P(ClusterDepthImage, CullingIsExact) {
   const Scene scene = make_builtin_scene(GetParam());
   const TriangleBlocks blocks = triangle_blocks(scene);
   const std::vector<Bounds3> bounds = raster_object_bounds(scene);
   uint64_t cameras = 0, drawn_all = 0, drawn_culled = 0, covered = 0;
-  std::vector<uint32_t> list;
+  std::vector<TriangleRun> list;
   for (int f = 0; f < 3; ++f) {
     const ReflectionFrame frame = path_frame(scene, f);
     const ClusterReflections cr = render_cluster_reflections(scene, frame, {}, bounds);
@@ -67,6 +69,7 @@ TEST_P(ClusterDepthImage, CullingIsExact) {
       ASSERT_TRUE(cull_cluster_triangles(scene, blocks, k, whole.excluded_object, 1e-3f * frame.scene_diagonal, list));
       culled.culled = true;
       culled.triangles = list;
+      culled.clip_margin = 1e-3f * frame.scene_diagonal;
       RasterImages a, b, a2, b2;
       const RasterStats sa = rasterize_cluster_image(scene, k, whole, a);
       const RasterStats sb = rasterize_cluster_image(scene, k, culled, b);
@@ -93,7 +96,7 @@ TEST_P(ClusterDepthImage, CullingLeavesTheExcludedObjectOut) {
   const TriangleBlocks blocks = triangle_blocks(scene);
   const ReflectionFrame frame = path_frame(scene, 1);
   const ClusterReflections cr = render_cluster_reflections(scene, frame, {});
-  std::vector<uint32_t> list;
+  std::vector<TriangleRun> list;
   uint64_t checked = 0;
   for (size_t c = 0; c < cr.cameras.size(); ++c) {
     if (!cr.cameras[c] || cr.cameras[c]->planar) continue;
@@ -101,7 +104,8 @@ TEST_P(ClusterDepthImage, CullingLeavesTheExcludedObjectOut) {
     ClusterDrawList whole, culled;
     whole.excluded_object = reflector;
     ASSERT_TRUE(cull_cluster_triangles(scene, blocks, *cr.cameras[c], reflector, 1e-3f * frame.scene_diagonal, list));
-    for (uint32_t t : list) ASSERT_NE(scene.triangle_object[t], reflector);
+    for (const TriangleRun& run : list)
+      for (uint32_t t = run.first; t < run.first + run.count; ++t) ASSERT_NE(scene.triangle_object[t], reflector);
     culled.culled = true;
     culled.triangles = list;
     RasterImages a, b;
@@ -132,6 +136,7 @@ TEST_P(ClusterDepthImage, ReflectionsAreIdenticalWithAndWithoutCulling) {
 INSTANTIATE_TEST_SUITE_P(BuiltinScenes, ClusterDepthImage, ::testing::Values("living-room", "bathroom"));
 
 TEST(TriangleBlocks, CoverEveryTriangleOnceWithinItsObject) {
+  // ... and each block's vertex range holds its triangles' vertices.
   Scene scene;
   const uint32_t m = test::add_diffuse(scene, vec3(0.5f));
   add_object(scene, test::sphere_mesh(vec3(0.0f), 1.0f, 24, 12), "a", m);
@@ -150,6 +155,8 @@ TEST(TriangleBlocks, CoverEveryTriangleOnceWithinItsObject) {
           const vec3 p = scene.positions[idx[k]];
           EXPECT_TRUE(glm::all(glm::greaterThanEqual(p, blocks.bounds[i].min)) &&
                       glm::all(glm::lessThanEqual(p, blocks.bounds[i].max)));
+          EXPECT_GE(idx[k], blocks.first_vertex[i]);
+          EXPECT_LT(idx[k] - blocks.first_vertex[i], blocks.vertex_count[i]);
         }
       }
     }

@@ -53,6 +53,14 @@ enum class CullMode {
          // (scene triangles are counter-clockwise from the front)
 };
 
+// A run of consecutive triangle ids of one object, first .. first + count − 1, and a range
+// of vertex indices first_vertex .. first_vertex + vertex_count − 1 that holds every vertex
+// of those triangles (only those are transformed).
+struct TriangleRun {
+  uint32_t first = 0, count = 0;
+  uint32_t first_vertex = 0, vertex_count = 0;
+};
+
 struct RasterOptions {
   uint32_t outputs = kRasterDepthId;  // RasterOutput bits
   CullMode cull = CullMode::None;
@@ -65,9 +73,12 @@ struct RasterOptions {
   // bare albedo.
   bool direct_light = false;
   bool fragment_barycentrics = false;  // fill Fragment::u, v for the fragment test
-  // What to draw (at most one non-empty; both empty = the whole scene):
+  // What to draw (at most one non-empty; all empty = the whole scene):
   std::span<const uint32_t> objects;    // object ids, drawn in this order
   std::span<const uint32_t> triangles;  // triangle ids, drawn in this order
+  // Runs of triangles (e.g. a culled list of mesh blocks), drawn in this order: the same
+  // as `triangles` listing their ids, without the per-triangle list. Needs objects.
+  std::span<const TriangleRun> triangle_runs;
   // Per-object world bounds for view-frustum culling (size == scene.objects.size(), e.g.
   // from raster_object_bounds()); empty = computed in the call (one pass over vertices).
   std::span<const Bounds3> object_bounds;

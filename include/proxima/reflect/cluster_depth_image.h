@@ -31,6 +31,8 @@ struct TriangleBlocks {
   std::vector<uint32_t> first;               // per block: first triangle id
   std::vector<uint32_t> count;               // per block: triangles
   std::vector<Bounds3> bounds;               // per block: world bounds of its vertices
+  std::vector<uint32_t> first_vertex;        // per block: lowest vertex index of its triangles
+  std::vector<uint32_t> vertex_count;        // per block: highest − lowest + 1
   std::vector<uint32_t> object_first_block;  // per object, plus one end entry
   std::vector<Bounds3> object_bounds;        // per object: union of its blocks' bounds
 };
@@ -39,23 +41,26 @@ struct TriangleBlocks {
 // give no blocks (cull_cluster_triangles then keeps everything).
 TriangleBlocks triangle_blocks(const Scene& scene, int block_triangles = 64);
 
-// Triangle ids (ascending) of the blocks that may write a fragment into the image of
+// The blocks (as triangle runs, ascending) that may write a fragment into the image of
 // `camera`: bounds inside the frustum, not wholly on the discarded side of the clip plane,
 // and not projecting between pixel centres. Objects are tested first by their bounds, then their blocks. `excluded_object` (kNoObject for none) is left out entirely. `margin`
 // (meters, ≥ 0) widens every plane test so that float rounding can never cull a triangle
 // that would show. Returns false when the scene has no objects (nothing can be culled;
 // `out` is then empty and means "the whole scene").
 bool cull_cluster_triangles(const Scene& scene, const TriangleBlocks& blocks, const ClusterCamera& camera, uint32_t excluded_object, float margin,
-                            std::vector<uint32_t>& out);
+                            std::vector<TriangleRun>& out);
 
 // Which triangles a cluster image draws: all of the scene but `excluded_object`
-// (`culled` = false), or exactly `triangles` (`culled` = true, e.g. from
+// (`culled` = false), or exactly the runs `triangles` (`culled` = true, e.g. from
 // cull_cluster_triangles, which already left the excluded object out).
 struct ClusterDrawList {
   bool culled = false;
-  std::span<const uint32_t> triangles;
+  std::span<const TriangleRun> triangles;
   uint32_t excluded_object = kNoObject;  // used when not culled
   std::span<const Bounds3> object_bounds;  // as RasterOptions::object_bounds
+  // Meters (> 0, far above float rounding): triangles wholly this far in front of the clip
+  // plane keep every fragment without the per-fragment clip test (the same image).
+  float clip_margin = kInf;
 };
 
 // First layer: depth (−z_cam), triangle id and barycentrics of the nearest surface in

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "proxima/core/camera.h"
+#include "proxima/core/camera_projection.h"
 #include "proxima/core/image.h"
 
 namespace proxima {
@@ -31,6 +32,9 @@ struct MarchOptions {
   // block that stay in front of its nearest texel are skipped. The result is identical.
   const ImageF* block_min = nullptr;
   int block = 8;
+  // Four steps at a time where SSE2 is available (runs that only move on are passed in one
+  // check); false marches one step at a time. The result is identical.
+  bool batch = true;
 };
 
 // Per block × block tile of `depth` (1 channel) the minimum depth; ceil(w / block) × ceil(h / block).
@@ -44,5 +48,8 @@ ImageF depth_block_min(const ImageF& depth, int block);
 // (depth > 0), else nullopt; nullopt when nothing is hit (see fill_behind).
 std::optional<DepthImageHit> march_depth_image(const Camera& camera, const ImageF& depth, vec3 begin, vec3 end,
                                                const MarchOptions& options = {});
+// The same with the camera's projection constants computed once (many rays of one camera).
+std::optional<DepthImageHit> march_depth_image(const CameraProjection& camera, const ImageF& depth, vec3 begin,
+                                               vec3 end, const MarchOptions& options = {});
 
 }  // namespace proxima
