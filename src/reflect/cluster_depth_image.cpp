@@ -69,8 +69,7 @@ struct ClusterVolume {
 bool between_pixel_centres(const CameraProjection& projection, float near, const Bounds3& b, float slack) {
   vec2 lo(kInf), hi(-kInf);
   for (int i = 0; i < 8; ++i) {
-    const vec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z);
-    const auto p = projection(corner);
+    const auto p = projection(b.corner(i));
     if (!p || !(p->depth > near)) return false;
     lo = glm::min(lo, p->pixel);
     hi = glm::max(hi, p->pixel);

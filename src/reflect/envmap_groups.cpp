@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <string>
 #include <utility>
 
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
+#include "proxima/core/range_check.h"
 #include "proxima/reflect/envmap_reflection.h"
 
 namespace proxima {
@@ -73,12 +73,7 @@ Candidate candidate(const EnvmapGroup& a, const EnvmapGroup& b, std::span<const 
   Bounds3 all;
   for (uint32_t o : c.reflectors) all.extend(bounds[o]);
   c.center = all.center();
-  for (uint32_t o : c.reflectors)
-    for (int k = 0; k < 8; ++k) {
-      const vec3 corner((k & 1) ? bounds[o].max.x : bounds[o].min.x, (k & 2) ? bounds[o].max.y : bounds[o].min.y,
-                        (k & 4) ? bounds[o].max.z : bounds[o].min.z);
-      c.radius = std::max(c.radius, glm::length(corner - c.center));
-    }
+  for (uint32_t o : c.reflectors) c.radius = std::max(c.radius, bounds[o].farthest_corner_distance(c.center));
   return c;
 }
 
@@ -105,6 +100,12 @@ void merge_into(const Scene& scene, const RayScene& rays, std::vector<EnvmapGrou
 
 }  // namespace
 
+void validate(const EnvmapGroupOptions& o) {
+  require_in_range(o.max_groups, 1, kMaxEnvmapGroups, "--max-maps");
+  if (!(o.max_parallax >= 0.0f) || !std::isfinite(o.max_parallax))
+    fail_input("--group-parallax: must be a number ≥ 0");
+}
+
 EnvmapGroup make_envmap_group(const Scene& scene, const RayScene& rays, std::vector<uint32_t> reflectors) {
   std::sort(reflectors.begin(), reflectors.end());
   EnvmapGroup g;
@@ -117,10 +118,7 @@ EnvmapGroup make_envmap_group(const Scene& scene, const RayScene& rays, std::vec
 
 std::vector<EnvmapGroup> group_reflectors(const Scene& scene, const RayScene& rays,
                                           std::span<const uint32_t> reflectors, const EnvmapGroupOptions& o) {
-  if (o.max_groups < 1 || o.max_groups > kMaxEnvmapGroups)
-    fail_input("--max-maps: must be in 1.." + std::to_string(kMaxEnvmapGroups));
-  if (!(o.max_parallax >= 0.0f) || !std::isfinite(o.max_parallax))
-    fail_input("--group-parallax: must be a number ≥ 0");
+  validate(o);
   std::vector<EnvmapGroup> groups(reflectors.size());
   parallel_for(groups.size(), 1, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) groups[i] = make_envmap_group(scene, rays, {reflectors[i]});

@@ -414,20 +414,22 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
 
   // Reflective samples in row-major order, and their ray counts: counted per row, then
   // each row written at its offset (the same lists as one pass over the rows).
-  const auto glossy = [&](const Material& m) { return glossy_lobe_half_angle(m.gloss) > 0.0f; };
-  const auto rays_of = [&](const Material& m) { return uint32_t(glossy(m) ? options.glossy_rays : 1); };
+  // The material of a reflective sample's triangle, else nullptr.
+  const auto reflective = [&](uint32_t t) -> const Material* {
+    if (t == kNoTriangle) return nullptr;
+    const Material& m = scene.materials[scene.triangle_material[t]];
+    return m.reflective() ? &m : nullptr;
+  };
+  const auto rays_of = [&](const Material& m) {
+    return uint32_t(glossy_lobe_half_angle(m.gloss) > 0.0f ? options.glossy_rays : 1);
+  };
   std::vector<uint32_t> row_samples(size_t(sh) + 1, 0), row_rays(size_t(sh) + 1, 0);
   parallel_for(size_t(sh), 8, [&](size_t y0, size_t y1) {
     for (size_t y = y0; y < y1; ++y) {
       const uint32_t* tri = &g.triangle.at(0, int(y));
       uint32_t samples = 0, rays = 0;
-      for (int x = 0; x < sw; ++x) {
-        if (tri[x] == kNoTriangle) continue;
-        const Material& m = scene.materials[scene.triangle_material[tri[x]]];
-        if (!m.reflective()) continue;
-        ++samples;
-        rays += rays_of(m);
-      }
+      for (int x = 0; x < sw; ++x)
+        if (const Material* m = reflective(tri[x])) ++samples, rays += rays_of(*m);
       row_samples[y + 1] = samples, row_rays[y + 1] = rays;
     }
   });
@@ -445,16 +447,14 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
       size_t i = row_samples[y];
       uint32_t ray = row_rays[y];
       for (int x = 0; x < sw; ++x) {
-        const uint32_t t = tri[x];
-        if (t == kNoTriangle) continue;
-        const Material& m = scene.materials[scene.triangle_material[t]];
-        if (!m.reflective()) continue;
+        const Material* m = reflective(tri[x]);
+        if (!m) continue;
         frame.pixel[i] = uint32_t(y) * uint32_t(sw) + uint32_t(x);
-        frame.reflector[i] = scene.triangle_object[t];
-        frame.specular[i] = m.specular;
-        frame.gloss[i] = m.gloss;
+        frame.reflector[i] = scene.triangle_object[tri[x]];
+        frame.specular[i] = m->specular;
+        frame.gloss[i] = m->gloss;
         frame.first_ray[i] = ray;
-        ray += rays_of(m);
+        ray += rays_of(*m);
         ++i;
       }
     }

@@ -66,8 +66,7 @@ class LevelBuilder {
     const vec3 c = 0.5f * (lo + hi), h = 0.5f * (hi - lo);
     for (int k = 0; k < 8; ++k) {
       const vec3 sgn((k & 1) ? 1.0f : -1.0f, (k & 2) ? 1.0f : -1.0f, (k & 4) ? 1.0f : -1.0f);
-      vec3 p = from_center ? c + sgn * h
-                           : vec3((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
+      vec3 p = from_center ? c + sgn * h : Bounds3{lo, hi}.corner(k);
       b.v.push_back(yaw_about(p, c, yaw));
     }
     b.faces = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};

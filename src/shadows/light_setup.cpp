@@ -84,8 +84,7 @@ LightCameras fit_light_cameras(const Scene& scene, const AreaLight& light, const
   for (const vec3& eye : eyes) {
     const Camera probe = light_camera(cams, eye, 16);  // orientation only
     for (int k = 0; k < 8; ++k) {
-      const vec3 corner((k & 1) ? region.max.x : region.min.x, (k & 2) ? region.max.y : region.min.y,
-                        (k & 4) ? region.max.z : region.min.z);
+      const vec3 corner = region.corner(k);
       const vec3 c = world_to_camera(probe, corner);
       const float depth = -c.z;
       farthest = std::max(farthest, glm::length(corner - eye));

@@ -313,9 +313,7 @@ void validate(const EnvmapReflectOptions& o) {
   require_in_range(o.layers, 1, kMaxDistanceCubeLayers, "--layers");
   require_in_range(o.march_steps, 1, 4096, "--march-steps");
   check_map_budget(o, 1);
-  require_in_range(o.max_maps, 1, kMaxEnvmapGroups, "--max-maps");
-  if (!(o.group_parallax >= 0.0f) || !std::isfinite(o.group_parallax))
-    fail_input("--group-parallax: must be a number ≥ 0");
+  validate(EnvmapGroupOptions{o.group_parallax, o.max_maps});
 }
 
 void validate(const EnvmapReflectOptions& o, const Scene& scene) {

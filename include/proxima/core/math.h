@@ -41,6 +41,12 @@ struct Bounds3 {
   vec3 center() const { return 0.5f * (min + max); }
   vec3 extent() const { return max - min; }
   float diagonal() const { return empty() ? 0.0f : glm::length(max - min); }
+  // Corner k in 0..7: bit 0 picks max.x, bit 1 max.y, bit 2 max.z.
+  vec3 corner(int k) const {
+    return vec3((k & 1) ? max.x : min.x, (k & 2) ? max.y : min.y, (k & 4) ? max.z : min.z);
+  }
+  // Distance from p to the farthest corner.
+  float farthest_corner_distance(vec3 p) const { return glm::length(glm::max(glm::abs(min - p), glm::abs(max - p))); }
 };
 
 // Ray with parametric extent [tmin, tmax]; dir need not be normalized, t is in units of dir.

@@ -30,6 +30,9 @@ struct EnvmapGroupOptions {
   int max_groups = 4;
 };
 inline constexpr int kMaxEnvmapGroups = 64;
+// Throws InputError naming --max-maps (max_groups outside 1..kMaxEnvmapGroups) or
+// --group-parallax (max_parallax negative or not finite).
+void validate(const EnvmapGroupOptions& options);
 
 struct EnvmapGroup {
   std::vector<uint32_t> reflectors;  // object ids, ascending
@@ -50,8 +53,7 @@ inline constexpr int kGroupProbeDirections = 128;
 // reflectors close together from ones far apart. Candidate merges are judged with a radius
 // from the objects' bounding boxes (≥ the vertices'; conservative). Groups come ordered by
 // their smallest object id. Deterministic for any thread count. `rays` must hold `scene`.
-// Throws InputError for max_groups outside 1..kMaxEnvmapGroups or a negative or
-// non-finite max_parallax.
+// Throws InputError for invalid options (validate).
 std::vector<EnvmapGroup> group_reflectors(const Scene& scene, const RayScene& rays,
                                           std::span<const uint32_t> reflectors, const EnvmapGroupOptions& options);
 
