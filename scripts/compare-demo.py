@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Compares two `proxima demo` output directories: every image byte for byte and every
 deterministic metric and table cell exactly; timings (names with ms, fps, time, seconds,
-speed-up, ÷, _over_) and prose are skipped. Exit 0 when equal, 1 with the differences listed.
+speed-up, ÷, _over_; the bench section's time ratios bench_*_ratio) and prose are skipped. Exit 0 when equal, 1 with the differences listed.
 
   scripts/compare-demo.py OLD_DIR NEW_DIR
 """
@@ -11,8 +11,8 @@ import pathlib
 import re
 import sys
 
-TIMING = re.compile(r"(^|[_ ])(ms|fps|seconds|minutes)($|[_ ])|_ms|time|speed|÷|_over_|frame rate|stages|build_ms",
-                    re.IGNORECASE)
+TIMING = re.compile(r"(^|[_ ])(ms|fps|seconds|minutes)($|[_ ])|_ms|time|speed|÷|_over_|frame rate|stages|build_ms"
+                    r"|^bench_.*_ratio$", re.IGNORECASE)
 
 
 def same_number(a, b):
@@ -47,7 +47,12 @@ def compare_results(old, new, where, diffs):
         if a["columns"] != b["columns"] or len(a["rows"]) != len(b["rows"]):
             diffs.append(f"{where}: table '{title}' has other columns or rows")
             continue
-        for r, (ra, rb) in enumerate(zip(a["rows"], b["rows"])):
+        rows_a, rows_b = a["rows"], b["rows"]
+        if title.startswith("Error vs ms"):  # the bench's curves list their points in time order
+            def key(row):
+                return [str(c) for column, c in zip(a["columns"], row) if not TIMING.search(column)]
+            rows_a, rows_b = sorted(rows_a, key=key), sorted(rows_b, key=key)
+        for r, (ra, rb) in enumerate(zip(rows_a, rows_b)):
             for column, ca, cb in zip(a["columns"], ra, rb):
                 if not TIMING.search(column) and not same_number(ca, cb):
                     diffs.append(f"{where}: table '{title}' row {r} {column}: {ca} != {cb}")

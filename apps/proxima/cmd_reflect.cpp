@@ -82,6 +82,7 @@ int run_cluster(const ReflectFlags& f, const CLI::App& app) {
   c.reflection.glossy_rays = app.count("--glossy-rays") > 0 ? f.envmap.glossy_rays : 8;
   c.reflection.area_light_samples = f.envmap.light_samples;
   c.cube_size = f.envmap.cube_size;
+  c.envmap_groups = {f.envmap.group_parallax, f.envmap.max_maps};
   c.d_e = f.envmap.d_e;
   c.distance = f.envmap.distance;
   c.edge_fallback = f.envmap.edge == "fallback";

@@ -17,6 +17,7 @@
 #include "proxima/reflect/distance_cube_map.h"
 #include "proxima/reflect/envmap_lookup.h"
 #include "proxima/reflect/envmap_reflection.h"
+#include "proxima/reflect/envmap_set.h"
 #include "proxima/study/cluster_reflect.h"
 #include "proxima/study/envmap_reflect.h"
 #include "proxima/study/temporal_reflect.h"
@@ -26,8 +27,9 @@ namespace proxima::python {
 
 namespace {
 
-// The maps of every env-map method around the reflectors' center, built from the scene's
-// rest pose and materials at construction, and the lookup settings of the study's flags.
+// The maps of every env-map method, one set per group of reflectors (reflect/envmap_set.h),
+// built from the scene's rest pose and materials at construction, and the lookup settings
+// of the study's flags.
 class EnvmapReflections {
  public:
   EnvmapReflections(std::shared_ptr<SceneHandle> handle, const study::EnvmapReflectOptions& o)
@@ -38,30 +40,22 @@ class EnvmapReflections {
     const Scene& scene = handle_->scene();
     reflectors_ = reflective_objects(scene);
     if (reflectors_.empty()) fail_input("scene: '" + scene.name + "' has no reflective object");
+    EnvmapSetOptions so;
+    so.grouping = {o.group_parallax, o.max_maps};
+    so.map.resolution = o.cube_size;
+    so.map.area_light_samples = o.light_samples;
+    so.map.seed = o.seed;
+    so.average_step_rad = glm::radians(o.angle_step_deg);
+    so.layers = o.layers;
     py::gil_scoped_release release;
     const auto lock = handle_->read_lock();
-    const RayScene& rays = handle_->rays();
-    center_ = projection_center(scene, reflectors_);
-    DistanceCubeMapOptions mo;
-    mo.resolution = o.cube_size;
-    mo.area_light_samples = o.light_samples;
-    mo.seed = o.seed;
-    mo.exclude = reflectors_;
-    map_ = render_distance_cube_map(scene, rays, center_, mo);
-    average_distance_ = average_distance(map_, glm::radians(o.angle_step_deg));
-    DistanceCubeLayerOptions lo;
-    lo.layers = o.layers;
-    lo.viewer_radius = viewer_radius(scene, reflectors_, center_);
-    layers_ = render_distance_cube_layers(scene, rays, center_, mo, lo);
-    inputs_ = study::envmap_inputs(scene, o);
+    set_ = build_envmap_set(scene, handle_->rays(), reflectors_, so);
+    inputs_ = with_envmap_set(study::envmap_inputs(scene, o), set_);
   }
 
   py::dict render(const Camera& camera, const std::string& method) const {
     EnvmapInputs in = inputs_;
     in.method = parse_envmap_method(method, "method");
-    in.map = &map_;
-    in.average_distance = average_distance_;
-    in.layers = layers_;
     validate_camera(camera, "camera");
     check_image_budget("camera", uint64_t(camera.width), uint64_t(camera.height), 8);
     ReflectorPixels pixels;
@@ -81,25 +75,31 @@ class EnvmapReflections {
   }
 
   const std::vector<uint32_t>& reflectors() const { return reflectors_; }
-  vec3 center() const { return center_; }
-  float average_distance_m() const { return average_distance_; }
+  py::list groups() const {
+    py::list out;
+    for (size_t g = 0; g < set_.groups.size(); ++g) {
+      const EnvmapGroup& group = set_.groups[g];
+      out.append(named({{"reflectors", py::cast(group.reflectors)},
+                        {"center", py::make_tuple(group.center.x, group.center.y, group.center.z)},
+                        {"radius_m", group.radius}, {"parallax", group.parallax},
+                        {"average_distance_m", set_.maps[g].average_distance}}));
+    }
+    return out;
+  }
   float search_length_m() const { return inputs_.rectify.D; }
-  size_t layer_count() const { return layers_.size(); }
+  size_t layer_count() const { return set_.maps.empty() ? 0 : set_.maps[0].layers.size(); }
 
  private:
   std::shared_ptr<SceneHandle> handle_;
   std::vector<uint32_t> reflectors_;
-  vec3 center_{0.0f};
-  DistanceCubeMap map_;
-  float average_distance_ = kDistanceInf;
-  std::vector<DistanceCubeMap> layers_;
+  EnvmapSet set_;
   EnvmapInputs inputs_;
 };
 
 std::unique_ptr<EnvmapReflections> make_envmap(std::shared_ptr<SceneHandle> scene, int cube_size, int light_samples,
                                                int glossy_rays, uint64_t seed, float d_e, float distance,
                                                float angle_step_deg, const std::string& edge, int layers,
-                                               int march_steps) {
+                                               int march_steps, int max_maps, float group_parallax) {
   study::EnvmapReflectOptions o;
   o.cube_size = cube_size;
   o.light_samples = light_samples;
@@ -111,6 +111,8 @@ std::unique_ptr<EnvmapReflections> make_envmap(std::shared_ptr<SceneHandle> scen
   o.edge = edge;
   o.layers = layers;
   o.march_steps = march_steps;
+  o.max_maps = max_maps;
+  o.group_parallax = group_parallax;
   return std::make_unique<EnvmapReflections>(std::move(scene), o);
 }
 
@@ -119,17 +121,19 @@ void bind_envmap(py::module_& m) {
   py::class_<EnvmapReflections>(
       m, "EnvmapReflections",
       "Reflections through environment maps with distance (Wang et al. 2012, docs/envmap.md): the distance "
-      "cube map (and its average distance) and the layered maps around the center of the scene's reflective "
-      "objects, built once from the scene's rest pose and its materials at construction; render() shades the "
+      "cube map (and its average distance) and the layered maps per group of the scene's reflective objects "
+      "(around the group's center, its own reflectors left out), built once from the scene's rest pose and its materials at construction; render() shades the "
       "reflector pixels of any camera with one method. The options are `proxima reflect`'s flags: cube_size "
       "(face side, texels), light_samples (n×n per area light), glossy_rays (lookups per glossy lobe), seed, "
       "d_e (rectification tolerance, m), distance (search length D, m; 0 = the scene's diagonal), "
-      "angle_step_deg (step of the average distance), edge ('black' or 'fallback'), layers, march_steps.")
+      "angle_step_deg (step of the average distance), edge ('black' or 'fallback'), layers, march_steps, max_maps (groups at "
+      "most), group_parallax (reflectors share a map while its mean parallax is at most this).")
       .def(py::init(&make_envmap), py::arg("scene"), py::kw_only(), py::arg("cube_size") = d.cube_size,
            py::arg("light_samples") = d.light_samples, py::arg("glossy_rays") = d.glossy_rays,
            py::arg("seed") = d.seed, py::arg("d_e") = d.d_e, py::arg("distance") = d.distance,
            py::arg("angle_step_deg") = d.angle_step_deg, py::arg("edge") = d.edge, py::arg("layers") = d.layers,
-           py::arg("march_steps") = d.march_steps)
+           py::arg("march_steps") = d.march_steps, py::arg("max_maps") = d.max_maps,
+           py::arg("group_parallax") = d.group_parallax)
       .def("render", &EnvmapReflections::render, py::arg("camera"), py::arg("method") = "rectified",
            "Shades the reflector pixels seen by `camera` with `method` ('envmap', 'rectified', 'average' or "
            "'layered'); GIL released. Returns a dict: color (H×W×3 float32 linear RGB, the reflector pixels' "
@@ -140,11 +144,10 @@ void bind_envmap(py::module_& m) {
            "reflector pixels and this color on them.")
       .def_property_readonly("reflectors", &EnvmapReflections::reflectors,
                              "Object ids of the reflective objects (specular > 0), which the maps exclude.")
-      .def_property_readonly(
-          "center", [](const EnvmapReflections& e) { return py::make_tuple(e.center().x, e.center().y, e.center().z); },
-          "Projection center of the maps (world, m): the center of the reflectors' bounds.")
-      .def_property_readonly("average_distance_m", &EnvmapReflections::average_distance_m,
-                             "The average distance d̄ of the map (m), the 'average' method's.")
+      .def_property_readonly("groups", &EnvmapReflections::groups,
+                             "The reflectors' groups, one set of maps each: a list of dicts with reflectors "
+                             "(object ids), center (the maps' projection center, m), radius_m, parallax and "
+                             "average_distance_m (the 'average' method's d̄ of the group's map).")
       .def_property_readonly("search_length_m", &EnvmapReflections::search_length_m, "The search length D (m).")
       .def_property_readonly("layer_count", &EnvmapReflections::layer_count, "Layers of the layered maps.");
 }

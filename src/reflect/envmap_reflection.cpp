@@ -43,15 +43,22 @@ PixelMaps maps_of(const EnvmapInputs& in, uint32_t object) {
   return {&g.map, g.average_distance, g.layers};
 }
 
+bool has_group(const EnvmapInputs& in, uint32_t object) {
+  return object < in.group_of.size() && in.group_of[object] < in.groups.size();
+}
+
+[[noreturn]] void fail_group(const char* caller, uint32_t object) {
+  throw std::invalid_argument(std::string(caller) + ": reflector object " + std::to_string(object) +
+                              " is in no env-map group");
+}
+
 // With per-group maps, every reflector pixel's object must have a group.
 void check_groups(const Scene& scene, const ReflectorPixels& pixels, const EnvmapInputs& in) {
   if (in.groups.empty()) return;
   for (uint32_t t : pixels.triangle.data()) {
     if (t == kNoTriangle) continue;
     const uint32_t o = scene.triangle_object[t];
-    if (o >= in.group_of.size() || in.group_of[o] >= in.groups.size())
-      throw std::invalid_argument("shade_reflector_pixels: reflector object " + std::to_string(o) +
-                                  " is in no env-map group");
+    if (!has_group(in, o)) fail_group("shade_reflector_pixels", o);
   }
 }
 
@@ -72,6 +79,16 @@ EnvLookup lookup(const EnvmapInputs& in, const PixelMaps& m, const Environment& 
 }
 
 }  // namespace
+
+EnvLookup envmap_lookup(const EnvmapInputs& inputs, uint32_t object, const Environment& env, vec3 x, vec3 dir) {
+  return lookup(inputs, maps_of(inputs, object), env, x, dir);
+}
+
+void check_envmap_groups(const EnvmapInputs& inputs, std::span<const uint32_t> objects) {
+  if (inputs.groups.empty()) return;
+  for (uint32_t o : objects)
+    if (!has_group(inputs, o)) fail_group("env-map lookup", o);
+}
 
 const char* envmap_method_name(EnvmapMethod method) {
   switch (method) {

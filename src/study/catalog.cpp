@@ -385,6 +385,9 @@ Entry envmap_entry() {
   f.push_back(field<O>("reps", "timed frames per method, round-robin over the methods", &O::reps));
   f.push_back(field<O>("layers", "layered: depth layers peeled from the map's center", &O::layers));
   f.push_back(field<O>("march_steps", "layered: ray-march samples per lookup at most", &O::march_steps));
+  f.push_back(field<O>("max_maps", "env maps at most: reflectors grouped, one map per group", &O::max_maps));
+  f.push_back(field<O>("group_parallax", "reflectors share a map while its mean parallax is at most this",
+                       &O::group_parallax));
   return entry<O>("envmap_reflect", "reflections through environment maps with distance (proxima reflect)",
                   std::move(f), run_envmap_reflect);
 }
@@ -409,6 +412,10 @@ Entry cluster_entry() {
                        &O::distance));
   f.push_back(field<O>("edge_fallback", "env-map comparison: plain lookup where the search ends beside the map",
                        &O::edge_fallback));
+  f.push_back(field<O>("max_maps", "env-map comparison: maps at most, one per group of reflectors",
+                       &O::envmap_groups, &EnvmapGroupOptions::max_groups));
+  f.push_back(field<O>("group_parallax", "env-map comparison: reflectors share a map while its parallax is at most this",
+                       &O::envmap_groups, &EnvmapGroupOptions::max_parallax));
   f.push_back(field<O>("frames", "frames the path is divided into; 0 = the path's own count", &O::frames));
   f.push_back(field<O>("frame_step", "run every frame_step-th frame", &O::frame_step));
   f.push_back(field<O>("image_frame", "frame whose images are written; -1 = the first one rendered", &O::image_frame));

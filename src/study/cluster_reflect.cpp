@@ -21,6 +21,7 @@
 #include "proxima/reflect/envmap_frame_reflections.h"
 #include "proxima/reflect/envmap_lookup.h"
 #include "proxima/reflect/envmap_reflection.h"
+#include "proxima/reflect/envmap_set.h"
 #include "proxima/reflect/ssr_reflection.h"
 #include "proxima/scene/camera_path.h"
 #include "proxima/scene/shading.h"
@@ -116,6 +117,7 @@ struct ClusterSeries {
   // SSR and the box probe alone (ssr).
   Series ssr_ms, box_ms, ssr_r, ssr_g, ssr_b, box_r, box_g, box_b, ssr_fallback_pct, ssr_fallback_rays_pct,
       ssr_steps, ssr_confidence, ssr_outcome_pct[5], ssr_depth_ms, ssr_trace_ms;
+  Series envmap_groups, probe_build_ms;  // the comparison's maps; ssr: the box probe's map build
 };
 
 // One frame of both methods (and the comparison's), with the median times of its reps.
@@ -129,7 +131,8 @@ struct FrameRun {
   std::vector<vec3> box_radiance;   // ssr: the box probe alone on every ray
   double ssr_ms = 0.0, box_ms = 0.0;
   double cluster_ms = 0.0, step1_ms = 0.0, cameras_ms = 0.0, images_ms = 0.0, intersection_ms = 0.0;
-  double reference_ms = 0.0, build_ms = 0.0, envmap_ms = 0.0, envmap_build_ms = 0.0;
+  double reference_ms = 0.0, build_ms = 0.0, envmap_ms = 0.0, envmap_build_ms = 0.0, envmap_groups = 0.0;
+  double probe_build_ms = 0.0;  // ssr: the box probe's map
   // Process CPU time (all threads) of the same steps: steadier than wall-clock under load.
   double cluster_cpu_ms = 0.0, step1_cpu_ms = 0.0, cameras_cpu_ms = 0.0, images_cpu_ms = 0.0,
          intersection_cpu_ms = 0.0, texel_shading_ms = 0.0, reference_cpu_ms = 0.0, build_cpu_ms = 0.0;
@@ -137,17 +140,35 @@ struct FrameRun {
 
 // The env map of the reflectors' environment from their common centre, texels shaded as the
 // cluster images' (unshadowed); built once per frame (the scene moves).
-DistanceCubeMap environment_map(const Scene& scene, const RayScene& rays, const ClusterReflectOptions& o,
-                                const ReflectionOptions& ro) {
-  const std::vector<uint32_t> reflectors = reflective_objects(scene);
+DistanceCubeMapOptions environment_map_options(const Scene& scene, const ClusterReflectOptions& o,
+                                               const ReflectionOptions& ro) {
   DistanceCubeMapOptions mo;
   mo.resolution = o.cube_size;
   mo.area_light_samples = ro.area_light_samples;
   mo.seed = ro.seed;
-  mo.exclude = reflectors;
-  mo.shade = [&](uint32_t tri, float u, float v, vec3 toward) {
-    return shade_reflected_point(scene, tri, u, v, toward, ro.area_light_samples);
+  mo.shade = [&scene, n = ro.area_light_samples](uint32_t tri, float u, float v, vec3 toward) {
+    return shade_reflected_point(scene, tri, u, v, toward, n);
   };
+  return mo;
+}
+
+// The comparison's env maps, one per group of reflectors (envmap_set.h), texels shaded as the
+// cluster images' (shade_reflected_point) so both methods show the same surfaces' colors.
+EnvmapSet environment_maps(const Scene& scene, const RayScene& rays, const ClusterReflectOptions& o,
+                           const ReflectionOptions& ro) {
+  EnvmapSetOptions so;
+  so.grouping = o.envmap_groups;
+  so.map = environment_map_options(scene, o, ro);
+  return build_envmap_set(scene, rays, reflective_objects(scene), so);
+}
+
+// The box probe's map: one for the room, around the center of every reflector with all of
+// them left out, shaded as above.
+DistanceCubeMap probe_map(const Scene& scene, const RayScene& rays, const ClusterReflectOptions& o,
+                          const ReflectionOptions& ro) {
+  const std::vector<uint32_t> reflectors = reflective_objects(scene);
+  DistanceCubeMapOptions mo = environment_map_options(scene, o, ro);
+  mo.exclude = reflectors;
   return render_distance_cube_map(scene, rays, projection_center(scene, reflectors), mo);
 }
 
@@ -155,12 +176,15 @@ DistanceCubeMap environment_map(const Scene& scene, const RayScene& rays, const 
 void run_ssr(const Scene& scene, const ClusterReflectOptions& o, const DistanceCubeMap& map,
              std::span<const Bounds3> bounds, double step1, FrameRun& f, std::vector<double>& ssr_ms,
              std::vector<double>& box_ms) {
-  const Bounds3 box = probe_proxy_box(scene);
+  EnvmapInputs probe;
+  probe.method = EnvmapMethod::BoxProbe;
+  probe.map = &map;
+  probe.box = probe_proxy_box(scene);
   Stopwatch w;
-  f.ssr = render_ssr_reflections(scene, f.frame, o.ssr_options, {&map, box}, bounds);
+  f.ssr = render_ssr_reflections(scene, f.frame, o.ssr_options, {&map, probe.box}, bounds);
   ssr_ms.push_back(step1 + w.elapsed_ms());
   w.restart();
-  f.box_radiance = envmap_frame_reflections(scene, f.frame, map, EnvmapMethod::BoxProbe, {}, box);
+  f.box_radiance = envmap_frame_reflections(scene, f.frame, probe);
   box_ms.push_back(step1 + w.elapsed_ms());
 }
 
@@ -170,11 +194,14 @@ FrameRun run_frame(const Scene& scene, const Camera& camera, const ClusterReflec
   FrameRun f;
   std::vector<double> c_ms, r_ms, b_ms, e_ms, s1, s2, s3, s4, c_cpu, r_cpu, b_cpu, s1_cpu, s2_cpu, s3_cpu, s4_cpu,
       shading, ssr_ms, box_ms;
-  DistanceCubeMap map;
-  RectifyOptions rectify;
-  rectify.D = o.distance > 0.0f ? o.distance : scene_bounds(scene).diagonal();
-  rectify.d_e = o.d_e;
-  rectify.edge = o.edge_fallback ? EdgeRule::PlainFallback : EdgeRule::Black;
+  EnvmapSet maps;
+  DistanceCubeMap probe;
+  const DistanceCubeMap* probe_used = &probe;
+  EnvmapInputs rectified;
+  rectified.method = EnvmapMethod::Rectified;
+  rectified.rectify.D = o.distance > 0.0f ? o.distance : scene_bounds(scene).diagonal();
+  rectified.rectify.d_e = o.d_e;
+  rectified.rectify.edge = o.edge_fallback ? EdgeRule::PlainFallback : EdgeRule::Black;
   for (int rep = 0; rep < o.reps; ++rep) {
     Stopwatch watch;
     double cpu = process_cpu_ms();
@@ -192,22 +219,28 @@ FrameRun run_frame(const Scene& scene, const Camera& camera, const ClusterReflec
       r_ms.push_back(step1 + f.traced.ms);
       if (rep == 0) {
         Stopwatch w;
-        map = environment_map(scene, *f.rays, o, ro);
+        maps = environment_maps(scene, *f.rays, o, ro);
         f.envmap_build_ms = w.elapsed_ms();
+        f.envmap_groups = double(maps.groups.size());
       }
       Stopwatch w;
-      f.env_radiance = envmap_frame_reflections(scene, f.frame, map, EnvmapMethod::Rectified, rectify);
+      f.env_radiance = envmap_frame_reflections(scene, f.frame, with_envmap_set(rectified, maps));
       e_ms.push_back(step1 + w.elapsed_ms());
     }
-    if (o.ssr) {
-      if (rep == 0 && !o.compare) {  // the fallback's map; without compare nothing else needs the rays
-        f.rays = std::make_unique<RayScene>(scene);
+    if (o.ssr && rep == 0) {
+      // The fallback's map: the comparison's when it is one map for every reflector (the same
+      // map), else its own; without compare nothing else needs the rays.
+      if (!o.compare) f.rays = std::make_unique<RayScene>(scene);
+      if (o.compare && maps.groups.size() == 1) {
+        probe_used = &maps.maps[0].map;
+        f.probe_build_ms = f.envmap_build_ms;
+      } else {
         Stopwatch w;
-        map = environment_map(scene, *f.rays, o, ro);
-        f.envmap_build_ms = w.elapsed_ms();
+        probe = probe_map(scene, *f.rays, o, ro);
+        f.probe_build_ms = w.elapsed_ms();
       }
-      run_ssr(scene, o, map, bounds, step1, f, ssr_ms, box_ms);
     }
+    if (o.ssr) run_ssr(scene, o, *probe_used, bounds, step1, f, ssr_ms, box_ms);
     f.cluster =
         render_cluster_reflections(scene, f.frame, o.cluster, bounds, o.compare ? &f.traced : nullptr);
     const ClusterFrameStats& st = f.cluster.stats;
@@ -299,6 +332,7 @@ void add_ssr_frame(const FrameRun& f, ClusterSeries& s) {
   const SsrStats& st = f.ssr.stats;
   s.ssr_ms.add(f.ssr_ms);
   s.box_ms.add(f.box_ms);
+  s.probe_build_ms.add(f.probe_build_ms);
   s.ssr_depth_ms.add(st.gbuffer_ms + st.backface_ms + st.pyramid_ms);
   s.ssr_trace_ms.add(st.trace_ms);
   if (st.samples == 0) return;
@@ -344,6 +378,7 @@ void add_frame(const FrameRun& f, size_t reflective, size_t pixels, bool compare
     s.reference_dynamic_ms.add(f.reference_ms + f.build_ms);
     s.envmap_ms.add(f.envmap_ms);
     s.envmap_build_ms.add(f.envmap_build_ms);
+    s.envmap_groups.add(f.envmap_groups);
     s.reference_cpu_ms.add(f.reference_cpu_ms);
     s.reference_dynamic_cpu_ms.add(f.reference_cpu_ms + f.build_cpu_ms);
   }
@@ -359,6 +394,7 @@ void add_ssr_metrics(const ClusterReflectOptions& o, const ClusterSeries& s, Res
   auto& m = results.metrics;
   m["ssr_ms_avg"] = s.ssr_ms.avg();
   m["boxprobe_ms_avg"] = s.box_ms.avg();
+  m["probe_build_ms_avg"] = s.probe_build_ms.avg();
   m["ssr_depth_passes_ms_avg"] = s.ssr_depth_ms.avg();
   m["ssr_trace_ms_avg"] = s.ssr_trace_ms.avg();
   m["ssr_fallback_pct_avg"] = s.ssr_fallback_pct.avg();
@@ -429,6 +465,7 @@ void add_metrics(const ClusterReflectOptions& o, const ClusterSeries& s, Results
   m["reference_dynamic_ms_avg"] = s.reference_dynamic_ms.avg();
   m["envmap_ms_avg"] = s.envmap_ms.avg();
   m["envmap_build_ms_avg"] = s.envmap_build_ms.avg();
+  m["envmap_maps_avg"] = s.envmap_groups.avg();
   m["speedup_static"] = s.reference_ms.avg() / s.cluster_ms.avg();
   m["speedup_dynamic"] = s.reference_dynamic_ms.avg() / s.cluster_ms.avg();
   m["reference_cpu_ms_avg"] = s.reference_cpu_ms.avg();
@@ -563,6 +600,7 @@ void validate(const ClusterReflectOptions& o) {
   require_in_range(c.min_bin_scale, 0.0f, 1.0f, "--min-bin-scale");
   require_above_at_most(o.cluster.resolution_scale, 0.0f, 8.0f, "--resolution-scale");
   require_in_range(o.cube_size, 1, kMaxImageSide, "--cube-size");
+  validate(o.envmap_groups);
   require_in_range(o.cluster.march_block, 0, 256, "--march-block");
   validate(o.ssr_options);
 }
@@ -656,11 +694,11 @@ void for_each_series(S& s, F&& f) {
                   &s.ssr_fallback_pct, &s.ssr_fallback_rays_pct, &s.ssr_steps, &s.ssr_confidence})
     f(*x);
   for (auto& x : s.ssr_outcome_pct) f(x);
-  for (auto* x : {&s.ssr_depth_ms, &s.ssr_trace_ms}) f(*x);
+  for (auto* x : {&s.ssr_depth_ms, &s.ssr_trace_ms, &s.envmap_groups, &s.probe_build_ms}) f(*x);
 }
 
 // A series added to ClusterSeries but not listed above would be lost by a split run.
-constexpr size_t kClusterSeries = 42 + 2 * kOcclusionCauses + 12 + 5 + 2;
+constexpr size_t kClusterSeries = 42 + 2 * kOcclusionCauses + 12 + 5 + 4;
 static_assert(sizeof(ClusterSeries) == kClusterSeries * sizeof(Series), "list every series in for_each_series");
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include "proxima/reflect/distance_cube_map.h"
 #include "proxima/reflect/envmap_groups.h"
 #include "proxima/reflect/envmap_reflection.h"
+#include "proxima/reflect/envmap_set.h"
 #include "proxima/reflect/reflection_comparison.h"
 #include "proxima/scene/camera_path.h"
 #include "proxima/trace/ray_scene.h"
@@ -58,65 +59,6 @@ void check_map_budget(const EnvmapReflectOptions& o, uint64_t groups) {
 
 double pct(size_t part, size_t whole) { return whole ? 100.0 * double(part) / double(whole) : 0.0; }
 
-// The maps the methods read, per group of reflectors (envmap_groups.h): one distance cube
-// map for plain / rectified / average / boxprobe (with d̄), K depth layers for layered, each
-// around the group's center with the group's reflectors left out. Built once (a static
-// environment), timed apart from the per-frame work (build times summed over the groups).
-struct Maps {
-  std::vector<EnvmapGroup> groups;
-  std::vector<uint32_t> group_of;  // per object id
-  std::vector<EnvmapMaps> maps;    // per group
-};
-
-void build_single(const Scene& scene, const RayScene& rays, const EnvmapReflectOptions& o, DistanceCubeMapOptions mo,
-                  Maps& maps, Results& results) {
-  double build_ms = 0.0, average_ms = 0.0;
-  for (size_t g = 0; g < maps.groups.size(); ++g) {
-    mo.exclude = maps.groups[g].reflectors;
-    Stopwatch w;
-    maps.maps[g].map = render_distance_cube_map(scene, rays, maps.groups[g].center, mo);
-    build_ms += w.elapsed_ms();
-    w.restart();
-    maps.maps[g].average_distance = average_distance(maps.maps[g].map, glm::radians(o.angle_step_deg));
-    average_ms += w.elapsed_ms();
-  }
-  results.metrics["envmap_build_ms"] = build_ms;
-  results.metrics["average_distance_ms"] = average_ms;
-  results.metrics["average_distance_m"] = maps.maps[0].average_distance;
-}
-
-void build_layered(const Scene& scene, const RayScene& rays, const EnvmapReflectOptions& o, DistanceCubeMapOptions mo,
-                   Maps& maps, Results& results) {
-  double build_ms = 0.0, layers = 0.0;
-  float radius = 0.0f;
-  std::vector<double> shaded, hidden;
-  for (size_t g = 0; g < maps.groups.size(); ++g) {
-    mo.exclude = maps.groups[g].reflectors;
-    DistanceCubeLayerOptions lo;
-    lo.layers = o.layers;
-    lo.viewer_radius = maps.groups[g].radius;
-    radius = std::max(radius, lo.viewer_radius);
-    Stopwatch w;
-    maps.maps[g].layers = render_distance_cube_layers(scene, rays, maps.groups[g].center, mo, lo);
-    build_ms += w.elapsed_ms();
-    const std::vector<DistanceCubeMap>& l = maps.maps[g].layers;
-    layers = std::max(layers, double(l.size()));
-    shaded.resize(std::max(shaded.size(), l.size()), 0.0);
-    hidden.resize(shaded.size(), 0.0);
-    for (size_t k = 0; k < l.size(); ++k) {
-      shaded[k] += double(l[k].shaded_texels);
-      hidden[k] += double(l[k].hidden_texels);
-    }
-  }
-  results.metrics["layered_build_ms"] = build_ms;
-  results.metrics["layers"] = layers;
-  results.metrics["viewer_radius_m"] = radius;
-  for (size_t k = 0; k < shaded.size(); ++k) {
-    results.metrics["layer" + std::to_string(k) + "_shaded_texels"] = shaded[k];
-    results.metrics["layer" + std::to_string(k) + "_hidden_texels"] = hidden[k];
-  }
-}
-
 // With more than one reflector: how they were grouped (one map per group).
 void report_groups(const std::vector<EnvmapGroup>& groups, Results& results) {
   results.metrics["maps"] = double(groups.size());
@@ -128,32 +70,53 @@ void report_groups(const std::vector<EnvmapGroup>& groups, Results& results) {
   }
 }
 
-Maps build_maps(const Scene& scene, const RayScene& rays, const std::vector<uint32_t>& reflectors,
-                const EnvmapReflectOptions& o, const std::vector<std::string>& methods, Results& results) {
+// The maps the methods read (envmap_set.h), built once (a static environment) and timed
+// apart from the per-frame work (build times summed over the groups).
+EnvmapSet build_maps(const Scene& scene, const RayScene& rays, const std::vector<uint32_t>& reflectors,
+                     const EnvmapReflectOptions& o, const std::vector<std::string>& methods, Results& results) {
   auto wants = [&](const char* m) { return std::find(methods.begin(), methods.end(), m) != methods.end(); };
-  Maps maps;
-  Stopwatch w;
-  maps.groups = group_reflectors(scene, rays, reflectors, {o.group_parallax, o.max_maps});
-  results.metrics["envmap_group_ms"] = w.elapsed_ms();
-  maps.group_of = envmap_group_of_objects(scene, maps.groups);
-  maps.maps.resize(maps.groups.size());
-  if (reflectors.size() > 1) report_groups(maps.groups, results);
-  DistanceCubeMapOptions mo;
-  mo.resolution = o.cube_size;
-  mo.area_light_samples = o.light_samples;
-  mo.seed = o.seed;
-  if (wants("envmap") || wants("rectified") || wants("average") || wants("boxprobe"))
-    build_single(scene, rays, o, mo, maps, results);
-  if (wants("layered")) build_layered(scene, rays, o, mo, maps, results);
-  return maps;
+  EnvmapSetOptions so;
+  so.grouping = {o.group_parallax, o.max_maps};
+  so.map.resolution = o.cube_size;
+  so.map.area_light_samples = o.light_samples;
+  so.map.seed = o.seed;
+  so.single = wants("envmap") || wants("rectified") || wants("average") || wants("boxprobe");
+  so.average_step_rad = glm::radians(o.angle_step_deg);
+  so.layers = wants("layered") ? o.layers : 0;
+  const EnvmapSet set = build_envmap_set(scene, rays, reflectors, so);
+  results.metrics["envmap_group_ms"] = set.group_ms;
+  if (reflectors.size() > 1) report_groups(set.groups, results);
+  if (so.single) {
+    results.metrics["envmap_build_ms"] = set.map_ms;
+    results.metrics["average_distance_ms"] = set.average_ms;
+    results.metrics["average_distance_m"] = set.maps[0].average_distance;
+  }
+  if (so.layers > 0) {
+    double layers = 0.0;
+    float radius = 0.0f;
+    std::vector<double> shaded, hidden;
+    for (size_t g = 0; g < set.groups.size(); ++g) {
+      radius = std::max(radius, set.groups[g].radius);
+      const std::vector<DistanceCubeMap>& l = set.maps[g].layers;
+      layers = std::max(layers, double(l.size()));
+      shaded.resize(std::max(shaded.size(), l.size()), 0.0);
+      hidden.resize(shaded.size(), 0.0);
+      for (size_t k = 0; k < l.size(); ++k) {
+        shaded[k] += double(l[k].shaded_texels);
+        hidden[k] += double(l[k].hidden_texels);
+      }
+    }
+    results.metrics["layered_build_ms"] = set.layers_ms;
+    results.metrics["layers"] = layers;
+    results.metrics["viewer_radius_m"] = radius;
+    for (size_t k = 0; k < shaded.size(); ++k) {
+      results.metrics["layer" + std::to_string(k) + "_shaded_texels"] = shaded[k];
+      results.metrics["layer" + std::to_string(k) + "_hidden_texels"] = hidden[k];
+    }
+  }
+  return set;
 }
 
-EnvmapInputs inputs_of(const Scene& scene, const Maps& maps, const EnvmapReflectOptions& o) {
-  EnvmapInputs in = envmap_inputs(scene, o);
-  in.groups = maps.maps;
-  in.group_of = maps.group_of;
-  return in;
-}
 
 // The pixels a method is judged on: where both its rasterized reflector and the reference
 // see a reflector (`mask`), and of those the ones whose mirror ray meets the environment,
@@ -167,7 +130,7 @@ struct Judged {
 // `compared` without the pixels whose reference mirror ray meets a reflector of the pixel's
 // own group: its map leaves those out (the other groups' reflectors are in it).
 PixelMask group_environment_mask(const Scene& scene, const PixelMask& compared, const ReflectorPixels& pixels,
-                                 const ImageU32& reference_objects, const Maps& maps) {
+                                 const ImageU32& reference_objects, const EnvmapSet& maps) {
   PixelMask out{compared.mask, 0};
   for (size_t i = 0; i < out.mask.data().size(); ++i) {
     uint8_t& m = out.mask.data()[i];
@@ -181,7 +144,7 @@ PixelMask group_environment_mask(const Scene& scene, const PixelMask& compared, 
 }
 
 Judged judged_pixels(const Scene& scene, const RayScene& rays, const Camera& camera, const ItemBuffer& item,
-                     const std::vector<uint32_t>& reflectors, const Maps& maps, Results& results) {
+                     const std::vector<uint32_t>& reflectors, const EnvmapSet& maps, Results& results) {
   Judged j;
   j.pixels = rasterize_reflector_pixels(scene, camera, reflectors);
   j.mask = comparison_mask(j.pixels.triangle, item, scene, reflectors);
@@ -348,8 +311,8 @@ Results run_envmap_reflect(const Scene& input, const EnvmapReflectOptions& o, co
   const ItemBuffer item = trace_item_buffer(scene, rays, camera);
 
   if (progress) progress->step("maps");
-  const Maps maps = build_maps(scene, rays, reflectors, o, methods, results);
-  const EnvmapInputs in = inputs_of(scene, maps, o);
+  const EnvmapSet maps = build_maps(scene, rays, reflectors, o, methods, results);
+  const EnvmapInputs in = with_envmap_set(envmap_inputs(scene, o), maps);
   results.metrics["D_m"] = in.rectify.D;
   results.metrics["d_e_m"] = o.d_e;
   results.metrics["N"] = rectify_step_limit(in.rectify.D, o.d_e);

@@ -232,7 +232,7 @@ std::vector<TechniquePoint> technique_points(const std::string& technique, const
       t->knob = "max steps";
       t->knob_value = SsrOptions{}.max_steps;
       t->reference_build_ms = embree_build;
-      t->approximation_build_ms = m("envmap_build_ms_avg");
+      t->approximation_build_ms = m("probe_build_ms_avg");
     }
   } else if (technique == "temporal") {
     point(where + ", reflections", m("temporal_ms_avg"), m("reference_ms_avg"), m("temporal_mae_avg"), "MAE 0–255");

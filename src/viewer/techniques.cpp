@@ -10,6 +10,7 @@
 #include "proxima/reflect/distance_cube_map.h"
 #include "proxima/reflect/envmap_frame_reflections.h"
 #include "proxima/reflect/envmap_reflection.h"
+#include "proxima/reflect/envmap_set.h"
 #include "proxima/reflect/ssr_reflection.h"
 #include "proxima/reflect/temporal_reuse.h"
 #include "proxima/trace/reference_renderer.h"
@@ -20,8 +21,9 @@ namespace proxima {
 
 namespace {
 
-// What the reflection techniques share: the reflectors, object bounds for culling, and
-// the distance cube map (built on first use, as `proxima reflect` builds it once).
+// What the reflection techniques share: the reflectors, object bounds for culling, the
+// env maps per group of reflectors and the box probe's map (each built on first use, as
+// `proxima reflect` builds them once).
 // A technique's options with the viewer's seed.
 template <typename Options>
 Options seeded(Options o, uint64_t seed) {
@@ -33,7 +35,8 @@ struct ReflectionShared {
   TechniqueSettings settings;  // the live knobs; the parameter keys change them
   std::vector<uint32_t> reflectors;
   std::vector<Bounds3> bounds;
-  std::optional<DistanceCubeMap> map;
+  std::optional<EnvmapSet> maps;
+  std::optional<DistanceCubeMap> probe;
   RectifyOptions rectify;
 };
 
@@ -62,19 +65,37 @@ ImageF compose(const ReflectionFrame& frame, const std::vector<vec3>& reflected,
   return color;
 }
 
-const DistanceCubeMap& cube_map(const ViewerScene& vs, ReflectionShared& shared, const TechniqueSettings& s,
-                                std::vector<StepTime>& steps) {
-  if (!shared.map) {
-    DistanceCubeMapOptions mo;
-    mo.resolution = s.cube_size;
-    mo.area_light_samples = s.reflection.area_light_samples;
-    mo.seed = s.seed;
+DistanceCubeMapOptions cube_map_options(const TechniqueSettings& s) {
+  DistanceCubeMapOptions mo;
+  mo.resolution = s.cube_size;
+  mo.area_light_samples = s.reflection.area_light_samples;
+  mo.seed = s.seed;
+  return mo;
+}
+
+const EnvmapSet& envmap_set(const ViewerScene& vs, ReflectionShared& shared, const TechniqueSettings& s,
+                            std::vector<StepTime>& steps) {
+  if (!shared.maps) {
+    EnvmapSetOptions so;
+    so.map = cube_map_options(s);
+    Stopwatch w;
+    shared.maps = build_envmap_set(vs.scene, vs.rays, shared.reflectors, so);
+    steps.push_back({"cube maps build (once)", w.elapsed_ms()});
+  }
+  return *shared.maps;
+}
+
+// The box probe: one map for the room, around every reflector's center with all left out.
+const DistanceCubeMap& probe_map(const ViewerScene& vs, ReflectionShared& shared, const TechniqueSettings& s,
+                                 std::vector<StepTime>& steps) {
+  if (!shared.probe) {
+    DistanceCubeMapOptions mo = cube_map_options(s);
     mo.exclude = shared.reflectors;
     Stopwatch w;
-    shared.map = render_distance_cube_map(vs.scene, vs.rays, projection_center(vs.scene, shared.reflectors), mo);
-    steps.push_back({"cube map build (once)", w.elapsed_ms()});
+    shared.probe = render_distance_cube_map(vs.scene, vs.rays, projection_center(vs.scene, shared.reflectors), mo);
+    steps.push_back({"probe cube map build (once)", w.elapsed_ms()});
   }
-  return *shared.map;
+  return *shared.probe;
 }
 
 Technique envmap_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<ReflectionShared> shared,
@@ -85,10 +106,13 @@ Technique envmap_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<Refl
   t.render = [vs, shared, method](const Camera& camera) {
     const TechniqueSettings& s = shared->settings;
     TechniqueFrame out;
-    const DistanceCubeMap& map = cube_map(*vs, *shared, s, out.steps);
+    EnvmapInputs in;
+    in.method = method;
+    in.rectify = shared->rectify;
+    in = with_envmap_set(in, envmap_set(*vs, *shared, s, out.steps));
     const ReflectionFrame frame = gbuffer(*vs, *shared, s, camera, out.steps);
     Stopwatch w;
-    const std::vector<vec3> reflected = envmap_frame_reflections(vs->scene, frame, map, method, shared->rectify);
+    const std::vector<vec3> reflected = envmap_frame_reflections(vs->scene, frame, in);
     out.steps.push_back({"env map lookups", w.elapsed_ms()});
     out.color = compose(frame, reflected, out.steps);
     return out;
@@ -104,7 +128,7 @@ Technique baseline_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<Re
   t.render = [vs, shared, ssr](const Camera& camera) {
     const TechniqueSettings& s = shared->settings;
     TechniqueFrame out;
-    const DistanceCubeMap& map = cube_map(*vs, *shared, s, out.steps);
+    const DistanceCubeMap& map = probe_map(*vs, *shared, s, out.steps);
     const ReflectionFrame frame = gbuffer(*vs, *shared, s, camera, out.steps);
     const Bounds3 box = probe_proxy_box(vs->scene);
     std::vector<vec3> reflected;
@@ -116,7 +140,11 @@ Technique baseline_technique(std::shared_ptr<ViewerScene> vs, std::shared_ptr<Re
       reflected = std::move(r.radiance);
     } else {
       Stopwatch w;
-      reflected = envmap_frame_reflections(vs->scene, frame, map, EnvmapMethod::BoxProbe, {}, box);
+      EnvmapInputs in;
+      in.method = EnvmapMethod::BoxProbe;
+      in.map = &map;
+      in.box = box;
+      reflected = envmap_frame_reflections(vs->scene, frame, in);
       out.steps.push_back({"box probe lookups", w.elapsed_ms()});
     }
     out.color = compose(frame, reflected, out.steps);
@@ -188,7 +216,10 @@ std::vector<Technique> make_techniques(std::shared_ptr<ViewerScene> vs, const Te
     return [shared, what, field, lo, hi, drop_map](int step) {
       int& v = *field;
       v = std::clamp(step > 0 ? v * 2 : v / 2, lo, hi);
-      if (drop_map) shared->map.reset();
+      if (drop_map) {
+        shared->maps.reset();
+        shared->probe.reset();
+      }
       return std::string(what) + " " + std::to_string(v);
     };
   };

@@ -23,7 +23,9 @@ def envmap(room):
 
 def test_envmap_shapes_and_dtypes(room, envmap):
     camera = room.camera(width=W, height=H)
-    assert envmap.reflectors and envmap.layer_count == 3 and envmap.average_distance_m > 0
+    assert envmap.reflectors and envmap.layer_count == 3
+    assert len(envmap.groups) == 1 and envmap.groups[0]["reflectors"] == envmap.reflectors
+    assert envmap.groups[0]["average_distance_m"] > 0
     for method in METHODS:
         r = envmap.render(camera, method)
         assert r["color"].shape == (H, W, 3) and r["color"].dtype == np.float32

@@ -10,7 +10,10 @@
 
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
+#include "proxima/reflect/envmap_frame_reflections.h"
 #include "proxima/reflect/envmap_reflection.h"
+#include "proxima/reflect/envmap_set.h"
+#include "proxima/reflect/reflection_frame.h"
 #include "proxima/scene/procedural.h"
 #include "proxima/trace/reference_renderer.h"
 #include "envmap_test_util.h"
@@ -57,25 +60,19 @@ Grouped grouped(const Scene& scene, const RayScene& rays, const Camera& cam, con
   ro.max_bounces = 1;
   const ImageF reference = render_reference(scene, rays, cam, ro);
   const std::vector<uint32_t> reflectors = reflective_objects(scene);
-  const std::vector<EnvmapGroup> groups = group_reflectors(scene, rays, reflectors, options);
-  std::vector<EnvmapMaps> group_maps(groups.size());
-  for (size_t g = 0; g < groups.size(); ++g) {
-    DistanceCubeMapOptions mo;
-    mo.resolution = 128;
-    mo.area_light_samples = 1;
-    mo.exclude = groups[g].reflectors;
-    group_maps[g].map = render_distance_cube_map(scene, rays, groups[g].center, mo);
-  }
-  const std::vector<uint32_t> group_of = envmap_group_of_objects(scene, groups);
+  EnvmapSetOptions so;
+  so.grouping = options;
+  so.map.resolution = 128;
+  so.map.area_light_samples = 1;
+  const EnvmapSet set = build_envmap_set(scene, rays, reflectors, so);
   EnvmapInputs in;
   in.method = EnvmapMethod::Rectified;
   in.area_light_samples = 1;
   in.rectify.D = scene_bounds(scene).diagonal();
-  in.groups = group_maps;
-  in.group_of = group_of;
+  in = with_envmap_set(in, set);
   const ReflectorPixels pixels = rasterize_reflector_pixels(scene, cam, reflectors);
   EXPECT_GT(pixels.count, 1000u);
-  return {groups.size(), reflector_mae(shade_reflector_pixels(scene, rays, cam, pixels, in).color, reference, pixels)};
+  return {set.groups.size(), reflector_mae(shade_reflector_pixels(scene, rays, cam, pixels, in).color, reference, pixels)};
 }
 
 TEST(EnvmapGroups, ReflectorsFarApartGetTheirOwnMapsAndASmallerRectifiedError) {
@@ -87,6 +84,45 @@ TEST(EnvmapGroups, ReflectorsFarApartGetTheirOwnMapsAndASmallerRectifiedError) {
   EXPECT_EQ(own.maps, 2u);
   EXPECT_EQ(shared.maps, 1u);
   EXPECT_LT(own.error, shared.error / 3.0) << "per-reflector " << own.error << " vs shared " << shared.error;
+}
+
+// The reflection frame's lookups (the cluster study's comparison, the viewer) read each
+// sample's own group too: against Embree on the same rays, a map per sphere errs far less
+// than one shared map.
+TEST(EnvmapGroups, FrameReflectionsReadEachSamplesGroup) {
+  const vec3 centers[] = {{-4.0f, 1.0f, -1.0f}, {4.0f, 1.0f, -1.0f}};
+  const Scene scene = room_with_spheres(centers, 0.6f);
+  const RayScene rays(scene);
+  const Camera cam = look_at({0.0f, 2.0f, 3.8f}, {0.0f, 1.0f, -1.0f}, {0, 1, 0}, 90.0f, 320, 240);
+  ReflectionOptions ro;
+  ro.supersample = 1;
+  ro.area_light_samples = 1;
+  const ReflectionFrame frame = prepare_reflection_frame(scene, cam, ro);
+  ASSERT_GT(frame.sample_count(), 1000u);
+  const TracedReflections traced = trace_reflections(scene, rays, frame);
+  auto error = [&](const EnvmapGroupOptions& grouping, size_t maps) {
+    EnvmapSetOptions so;
+    so.grouping = grouping;
+    so.map.resolution = 128;
+    so.map.area_light_samples = 1;
+    so.map.shade = [&](uint32_t t, float u, float v, vec3 toward) {
+      return shade_reflected_point(scene, t, u, v, toward, 1);
+    };
+    const EnvmapSet set = build_envmap_set(scene, rays, reflective_objects(scene), so);
+    EXPECT_EQ(set.groups.size(), maps);
+    EnvmapInputs in;
+    in.method = EnvmapMethod::Rectified;
+    in.rectify.D = scene_bounds(scene).diagonal();
+    const std::vector<vec3> r = envmap_frame_reflections(scene, frame, with_envmap_set(in, set));
+    double sum = 0.0;
+    for (size_t i = 0; i < r.size(); ++i) {
+      const vec3 d = glm::abs(r[i] - traced.radiance[i]);
+      sum += double(d.x + d.y + d.z) / 3.0;
+    }
+    return sum / double(r.size());
+  };
+  const double own = error({}, 2), shared = error({.max_groups = 1}, 1);
+  EXPECT_LT(own, shared / 3.0) << "per-reflector " << own << " vs shared " << shared;
 }
 
 TEST(EnvmapGroups, ReflectorsCloseTogetherShareAMap) {

@@ -106,7 +106,11 @@ TEST(SsrReflection, OffScreenReflectionsFallBackToTheBoxProbeAndAreCounted) {
   EXPECT_GT(st.outcome_rays[size_t(SsrOutcome::OffScreen)], st.rays / 2);
   EXPECT_GT(double(st.fallback_samples), 0.5 * double(st.samples));
   // The count is the samples whose rays took the fallback; those with confidence 0 are the probe's.
-  const std::vector<vec3> box = envmap_frame_reflections(scene, with_probe.frame, map, EnvmapMethod::BoxProbe, {}, probe.box);
+  EnvmapInputs box_inputs;
+  box_inputs.method = EnvmapMethod::BoxProbe;
+  box_inputs.map = &map;
+  box_inputs.box = probe.box;
+  const std::vector<vec3> box = envmap_frame_reflections(scene, with_probe.frame, box_inputs);
   size_t counted = 0, zero = 0;
   for (size_t i = 0; i < st.samples; ++i) {
     counted += with_probe.ssr.confidence[i] < 1.0f;

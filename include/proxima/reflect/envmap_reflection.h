@@ -94,6 +94,14 @@ struct EnvmapFrame {
   EnvmapStats stats;
 };
 
+// One lookup with `inputs.method` from x along dir in the maps `object` reads: its group's
+// when `inputs.groups` is set (the object must have one), else the inputs' own.
+EnvLookup envmap_lookup(const EnvmapInputs& inputs, uint32_t object, const Environment& env, vec3 x, vec3 dir);
+
+// Throws std::invalid_argument (a caller's error) when `inputs.groups` is set and one of
+// `objects` is in no group.
+void check_envmap_groups(const EnvmapInputs& inputs, std::span<const uint32_t> objects);
+
 // Shades every reflector pixel of `pixels` (from this camera): L = emission + (1 − s)·ρ·
 // (ambient + E/π) with Embree shadows + s·mean over the lobe of the method's lookup.
 // Random numbers per pixel as the reference's (k = 1), so the lobe directions and area

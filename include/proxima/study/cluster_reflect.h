@@ -27,6 +27,7 @@
 #include "proxima/reflect/ssr_reflection.h"
 #include "proxima/scene/camera_select.h"
 #include "proxima/scene/scene.h"
+#include "proxima/reflect/envmap_groups.h"
 #include "proxima/study/frame_split.h"
 #include "proxima/study/study.h"
 
@@ -41,7 +42,9 @@ struct ClusterReflectOptions {
   bool frame_given = false;  // --frame was given
   bool compare = false;  // --compare: Embree on the same rays + env mapping: errors, occlusion errors, timing
   int reps = 1;          // --reps: timing repetitions per frame (medians), 1..100
-  // The env-map comparison: rectified lookups on one distance cube map per frame.
+  // The env-map comparison: rectified lookups on distance cube maps built per frame, one per
+  // group of reflectors (--max-maps, --group-parallax; envmap_groups.h).
+  EnvmapGroupOptions envmap_groups;
   int cube_size = 512;         // --cube-size: cube face side, texels
   float d_e = 0.01f;           // --d-e: rectification tolerance, meters
   float distance = 0.0f;       // --distance: search length D, meters; 0 = the scene's bounding-box diagonal
