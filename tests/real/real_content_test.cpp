@@ -165,22 +165,27 @@ TEST(RealContent, ClusterReflectionsInTheGallery) {
 // Temporal reuse of reflections: mean error ≤ 1.0 on 0–255, ≤ 25 % of the
 // reflective pixels recomputed. Path `pan`: 1.6 m in 100 frames, the camera speed per frame
 // of the built-in runs (living-room / walk, 500 frames).
-void expect_temporal_bounds(const fs::path& dir, const std::string& scene, bool known) {
-  const Results r = run(dir, "temporal-" + scene, "reflect --method temporal", scene + ".json",
-                        "--path pan --frames 100 --width 96 --height 96 --compare");
+void expect_temporal_bounds(const fs::path& dir, const std::string& scene, bool known, int side = 96) {
+  const std::string px = std::to_string(side);
+  const Results r = run(dir, "temporal-" + scene + "-" + px, "reflect --method temporal", scene + ".json",
+                        "--path pan --frames 100 --width " + px + " --height " + px + " --compare");
+  const std::string what = scene + " " + px + "² temporal_";
   const double mae = metric(r, "temporal_mae_avg"), recompute = metric(r, "recompute_pct_avg");
-  expect_le(scene + " temporal_mae_avg vs direct_mae_avg", mae, metric(r, "direct_mae_avg"));
+  expect_le(what + "mae_avg vs direct_mae_avg", mae, metric(r, "direct_mae_avg"));
   if (known) {
-    known_failure(scene + " temporal_mae_avg", mae, "≤", 1.0, mae <= 1.0);
-    known_failure(scene + " recompute_pct_avg", recompute, "≤", 25.0, recompute <= 25.0);
+    known_failure(what + "mae_avg", mae, "≤", 1.0, mae <= 1.0);
+    known_failure(what + "recompute_pct_avg", recompute, "≤", 25.0, recompute <= 25.0);
   } else {
-    expect_le(scene + " temporal_mae_avg", mae, 1.0);
-    expect_le(scene + " recompute_pct_avg", recompute, 25.0);
+    expect_le(what + "mae_avg", mae, 1.0);
+    expect_le(what + "recompute_pct_avg", recompute, 25.0);
   }
 }
+// At 96² the house's mirrors shrink the room below a pixel: detail between one-ray samples
+// that no reuse predicts (docs/real-content.md). At 192² both bounds hold.
 TEST(RealContent, TemporalReuseInTheHouse) {
   REQUIRE_CORPUS();
   expect_temporal_bounds(dir, "house", true);
+  expect_temporal_bounds(dir, "house", false, 192);
 }
 TEST(RealContent, TemporalReuseInTheGallery) {
   REQUIRE_CORPUS();
