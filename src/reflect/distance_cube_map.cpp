@@ -323,11 +323,10 @@ std::vector<DistanceCubeMap> render_distance_cube_layers(const Scene& scene, con
 
 namespace {
 
-// Bilinear filter of `dir` over the non-empty texels; with kColor false only the distance.
-// Returns the covered weight (the sum of the non-empty taps' weights).
-template <bool kColor>
-float filter(const DistanceCubeMap& map, vec3 dir, vec3* color, float* distance, uint32_t* object,
-             float* tap_min = nullptr, float* tap_max = nullptr, bool* one_object = nullptr) {
+// The face `dir` falls in and its four bilinear taps (texel centers at +0.5): *x0, *y0 the
+// upper-left tap, weights in tap order (x0, y0), (x0 + 1, y0), (x0, y0 + 1), (x0 + 1, y0 + 1).
+// Returns the face, or −1 for a zero or NaN dir.
+int bilinear_taps(const DistanceCubeMap& map, vec3 dir, int* x0, int* y0, float weights[4]) {
   // The face and continuous pixel of cube_lookup(), with the cached face frames.
   const vec3 a = glm::abs(dir);
   int face;
@@ -338,17 +337,32 @@ float filter(const DistanceCubeMap& map, vec3 dir, vec3* color, float* distance,
   else
     face = dir.z >= 0.0f ? 4 : 5;
   const auto& basis = map.face_basis[size_t(face)];
-  const int res = map.camera.resolution;
-  const float half = 0.5f * float(res);
+  const float half = 0.5f * float(map.camera.resolution);
   const float depth = glm::dot(dir, basis[2]);  // ≥ |dir|/√3 on the chosen face
-  if (!(depth > 0.0f)) return 0.0f;             // dir = 0 or NaN: nothing to look up
+  if (!(depth > 0.0f)) return -1;               // dir = 0 or NaN: nothing to look up
   const float scale = half / depth;
-  // Bilinear taps around the continuous position (texel centers at +0.5).
   const float fx = half + glm::dot(dir, basis[0]) * scale - 0.5f;
   const float fy = half - glm::dot(dir, basis[1]) * scale - 0.5f;
-  const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
-  const float ax = fx - float(x0), ay = fy - float(y0);
-  const float weights[4] = {(1 - ax) * (1 - ay), ax * (1 - ay), (1 - ax) * ay, ax * ay};
+  *x0 = int(std::floor(fx));
+  *y0 = int(std::floor(fy));
+  const float ax = fx - float(*x0), ay = fy - float(*y0);
+  weights[0] = (1 - ax) * (1 - ay);
+  weights[1] = ax * (1 - ay);
+  weights[2] = (1 - ax) * ay;
+  weights[3] = ax * ay;
+  return face;
+}
+
+// Bilinear filter of `dir` over the non-empty texels; with kColor false only the distance.
+// Returns the covered weight (the sum of the non-empty taps' weights).
+template <bool kColor>
+float filter(const DistanceCubeMap& map, vec3 dir, vec3* color, float* distance, uint32_t* object,
+             float* tap_min = nullptr, float* tap_max = nullptr, bool* one_object = nullptr) {
+  int x0 = 0, y0 = 0;
+  float weights[4];
+  const int face = bilinear_taps(map, dir, &x0, &y0, weights);
+  if (face < 0) return 0.0f;
+  const int res = map.camera.resolution;
   const bool inside = x0 >= 0 && y0 >= 0 && x0 + 1 < res && y0 + 1 < res;
   if constexpr (!kColor) {
     // Fast path of the bisection's steps: all four taps on one face and non-empty.
@@ -398,6 +412,68 @@ float filter(const DistanceCubeMap& map, vec3 dir, vec3* color, float* distance,
   return covered;
 }
 
+// The non-empty bilinear taps of one object: summed weight, weighted distance and color,
+// and the range of their distances.
+struct ObjectTaps {
+  uint32_t object = kNoObject;
+  float weight = 0.0f, distance = 0.0f, tap_min = kDistanceInf, tap_max = 0.0f;
+  vec3 color{0.0f};
+
+  // The taps alone, weights renormalized over them.
+  CubeSample sample() const {
+    return {.color = color / weight, .distance = distance / weight, .object = object, .empty = false,
+            .tap_min = tap_min, .tap_max = tap_max, .one_object = true};
+  }
+};
+
+// The non-empty taps of `dir` grouped by object (at most four groups); returns how many.
+int object_taps(const DistanceCubeMap& map, vec3 dir, ObjectTaps groups[4]) {
+  int x0 = 0, y0 = 0;
+  float weights[4];
+  const int face = bilinear_taps(map, dir, &x0, &y0, weights);
+  if (face < 0) return 0;
+  int n = 0;
+  for (int k = 0; k < 4; ++k) {
+    if (weights[k] <= 0.0f) continue;
+    const TapRef tap = resolve_tap(map, face, x0 + (k & 1), y0 + (k >> 1));
+    const ImageF& img = map.faces[size_t(tap.face)];
+    if (img.empty()) continue;
+    const float* texel = &img.at(tap.x, tap.y, 0);
+    if (texel[3] == kDistanceInf) continue;
+    const uint32_t o = map.objects[size_t(tap.face)].at(tap.x, tap.y);
+    int g = 0;
+    while (g < n && groups[g].object != o) ++g;
+    if (g == n) groups[n++] = ObjectTaps{o};
+    ObjectTaps& t = groups[g];
+    t.weight += weights[k];
+    t.distance += weights[k] * texel[3];
+    t.color += weights[k] * vec3(texel[0], texel[1], texel[2]);
+    t.tap_min = std::min(t.tap_min, texel[3]);
+    t.tap_max = std::max(t.tap_max, texel[3]);
+  }
+  return n;
+}
+
+// Distance of texel (x, y) of `face`, up to two beyond an edge (the neighbouring face's texel).
+float texel_distance(const DistanceCubeMap& map, int face, int x, int y) {
+  const TapRef t = resolve_tap(map, face, x, y);
+  const ImageF& img = map.distances[size_t(t.face)];
+  return img.empty() ? kDistanceInf : img.at(t.x, t.y);
+}
+
+// Neighbouring texels a, b with a' before a and b' after b on their row or column: the
+// lines through (a', a) and (b, b') meet the midpoint of a and b within `tolerance` plus
+// half their slopes' difference (a plane, or a crease anywhere between a and b), where a
+// silhouette's step leaves them apart by the step.
+bool pair_continuous(float a_out, float a, float b, float b_out, float tolerance) {
+  if (a == kDistanceInf || b == kDistanceInf) return false;
+  float sa = a_out == kDistanceInf ? kDistanceInf : a - a_out;
+  float sb = b_out == kDistanceInf ? kDistanceInf : b_out - b;
+  if (sa == kDistanceInf) sa = sb == kDistanceInf ? 0.0f : sb;
+  if (sb == kDistanceInf) sb = sa;
+  return std::abs((a + 0.5f * sa) - (b - 0.5f * sb)) <= 0.5f * std::abs(sa - sb) + tolerance;
+}
+
 }  // namespace
 
 CubeSample sample_cube(const DistanceCubeMap& map, vec3 dir) {
@@ -415,6 +491,45 @@ CubeSample sample_cube(const DistanceCubeMap& map, vec3 dir) {
   s.distance = distance;
   s.object = object;
   return s;
+}
+
+CubeSample sample_cube_surface(const DistanceCubeMap& map, vec3 dir, float rho) {
+  ObjectTaps groups[4];
+  const int n = object_taps(map, dir, groups);
+  int best = -1;
+  for (int g = 0; g < n; ++g)
+    if (best < 0 || std::abs(groups[g].distance / groups[g].weight - rho) <
+                        std::abs(groups[best].distance / groups[best].weight - rho))
+      best = g;
+  return best < 0 ? CubeSample{} : groups[best].sample();
+}
+
+CubeSample sample_cube_object(const DistanceCubeMap& map, vec3 dir, uint32_t object) {
+  ObjectTaps groups[4];
+  const int n = object_taps(map, dir, groups);
+  for (int g = 0; g < n; ++g)
+    if (groups[g].object == object && groups[g].weight >= 0.5f) return groups[g].sample();
+  return {};
+}
+
+bool cube_taps_continuous(const DistanceCubeMap& map, vec3 dir, float tolerance) {
+  int x0 = 0, y0 = 0;
+  float weights[4];
+  const int face = bilinear_taps(map, dir, &x0, &y0, weights);
+  if (face < 0) return false;
+  float d[4][4];  // d[j][i]: texel (x0 − 1 + i, y0 − 1 + j)
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) d[j][i] = texel_distance(map, face, x0 - 1 + i, y0 - 1 + j);
+  for (int k = 0; k < 2; ++k) {
+    // Row y0 + k between x0 and x0 + 1, column x0 + k between y0 and y0 + 1 (pairs of positive weight).
+    if (weights[2 * k] + weights[2 * k + 1] > 0.0f && weights[2 * k] > 0.0f && weights[2 * k + 1] > 0.0f &&
+        !pair_continuous(d[k + 1][0], d[k + 1][1], d[k + 1][2], d[k + 1][3], tolerance))
+      return false;
+    if (weights[k] > 0.0f && weights[k + 2] > 0.0f &&
+        !pair_continuous(d[0][k + 1], d[1][k + 1], d[2][k + 1], d[3][k + 1], tolerance))
+      return false;
+  }
+  return true;
 }
 
 float sample_distance(const DistanceCubeMap& map, vec3 dir) {

@@ -200,23 +200,73 @@ EnvLookup layered_lookup(std::span<const DistanceCubeMap> layers, const Environm
     return t_lo + (t_hi - t_lo) * (s / len1) / ((1.0f - s) / len0 + s / len1);
   };
   const float min_width = 0.05f * options.d_e;
-  // Bisection on Δd_m over [*a, b] (in front of layer m at *a, behind it at b). A root with
-  // |Δd| < d_e whose filter taps lie on one surface — one object, or distances within
-  // edge_jump — is a hit (written to r); otherwise (no root, or a filtered ramp between two
-  // objects across a silhouette) the ray passed behind a silhouette of layer m and *a moves
-  // to the last point in front.
+  // Whether the ray meets layer m's surface at t, a root of the filtered Δd_m (|Δd_m| < d_e)
+  // bracketed from a (in front of layer m): the sample to show and the hit's t.
+  auto surface_hit = [&](int m, float a, float t, CubeSample* out, float* t_hit) {
+    const DistanceCubeMap& layer = layers[size_t(m)];
+    const vec3 q = ray.at(t);
+    const float rho = glm::length(q);
+    const CubeSample s = sample_cube(layer, q);
+    ++ray.samples;
+    if (s.empty) return false;
+    *t_hit = t;
+    const float tol = options.edge_jump * s.tap_min + options.d_e;
+    if (s.one_object || s.tap_max - s.tap_min <= tol) {  // the taps on one surface
+      *out = s;
+      return true;
+    }
+    // The taps show two objects. Of them, the one whose own surface passes nearest the point.
+    const CubeSample own = sample_cube_surface(layer, q, rho);
+    ray.samples += 2;
+    if (own.empty) return false;
+    // One continuous surface across them (a seam or a crease seen at a grazing angle, where
+    // neighbouring texels differ by more than edge_jump): a hit, with that object's color
+    // rather than a blend of two materials.
+    if (cube_taps_continuous(layer, q, tol)) {
+      *out = own;
+      return true;
+    }
+    // A step between them (a silhouette): the point may still lie on that object, within
+    // its taps' distances ...
+    if (rho > own.tap_min - options.d_e && rho < own.tap_max + options.d_e) {
+      *out = own;
+      return true;
+    }
+    // ... or the ray went through that object's surface before the blended ramp's root:
+    // bisection on its distance alone (where it covers half the filter) over [a, t].
+    if (!(own.distance < rho)) return false;
+    float lo = a, hi = t;
+    while (hi - lo > min_width) {
+      const float mid = 0.5f * (lo + hi);
+      const vec3 p = ray.at(mid);
+      const CubeSample so = sample_cube_object(layer, p, own.object);
+      ++ray.samples;
+      const float delta = so.empty ? kDistanceInf : so.distance - glm::length(p);
+      if (std::abs(delta) < options.d_e) {
+        *out = so;
+        *t_hit = mid;
+        return true;
+      }
+      (delta > 0.0f ? lo : hi) = mid;
+    }
+    return false;
+  };
+  // Bisection on Δd_m over [*a, b] (in front of layer m at *a, behind it at b). A root that
+  // surface_hit accepts is a hit (written to r); otherwise (no root, or a filtered ramp
+  // across a silhouette) the ray passed behind a silhouette of layer m and *a moves to the
+  // last point in front.
   auto refine = [&](int m, float* a, float b) {
     float lo = *a, hi = b;
     while (hi - lo > min_width) {
       const float mid = 0.5f * (lo + hi);
       const float delta = ray.delta(m, mid);
       if (std::abs(delta) < options.d_e) {
-        const CubeSample s = sample_cube(layers[size_t(m)], ray.at(mid));
-        ++ray.samples;
-        if (!s.empty && (s.one_object || s.tap_max - s.tap_min <= options.edge_jump * s.tap_min + options.d_e)) {
+        CubeSample s;
+        float t_hit = mid;
+        if (surface_hit(m, *a, mid, &s, &t_hit)) {
           r.color = s.color;
           r.object = s.object;
-          r.query = c + ray.at(mid);
+          r.query = c + ray.at(t_hit);
           r.converged = true;
           r.layer = m;
           return true;

@@ -270,6 +270,48 @@ TEST(EnvmapLookup, LayeredAgreesWithEmbreeOnRandomRaysWhereRectifiedFails) {
   EXPECT_GT(layered_ok, rectified_ok) << rectified_ok << " of " << total;
 }
 
+TEST(EnvmapLookup, LayeredHitsASeamBetweenTwoObjectsSeenAtAGrazingAngle) {
+  // A floor of two quads (two objects) meeting at z = −3, 1 m below c, seen from c at 18°
+  // below the horizon: at 128² neighbouring texels across the seam differ by ~4% in
+  // distance, more than a silhouette's threshold, yet the floor is one plane. A basement
+  // below it fills layer 1. Every ray Embree sends to the floor near the seam must show
+  // the floor, not the basement behind it (nor the surroundings of a silhouette).
+  Scene s;
+  const vec3 floor_color(0.6f, 0.5f, 0.4f);
+  const uint32_t fm = add_diffuse(s, floor_color);
+  const uint32_t far = add_quad(s, {-3, -1, -6}, {0, 0, 3}, {6, 0, 0}, fm, "floor_far");
+  const uint32_t near = add_quad(s, {-3, -1, -3}, {0, 0, 3}, {6, 0, 0}, fm, "floor_near");
+  add_quad(s, {-3, -1.6f, -6}, {0, 0, 6}, {6, 0, 0}, add_diffuse(s, vec3(0.1f, 0.9f, 0.1f)), "basement");
+  s.ambient = vec3(1.0f);  // no lights: texel radiance = albedo
+  s.environment.color = {0.1f, 0.2f, 0.9f};
+  RayScene rays(s);
+  DistanceCubeLayerOptions lo;
+  lo.viewer_radius = 0.3f;
+  const std::vector<DistanceCubeMap> layers = render_distance_cube_layers(s, rays, vec3(0.0f), small(128), lo);
+  ASSERT_GE(layers.size(), 2u);
+  RectifyOptions o;
+  o.D = 10.0f;
+  int floor_rays = 0, layered_right = 0;
+  for (float xx : {-0.2f, 0.0f, 0.2f})
+    for (float px = -1.0f; px <= 1.0f; px += 0.25f)
+      for (float jz = -0.06f; jz <= 0.061f; jz += 0.01f) {
+        const vec3 x(xx, 0.1f, 0.1f);
+        const vec3 dir = glm::normalize(vec3(px, -1.0f, -3.0f + jz) - x);
+        const Hit hit = rays.intersect(Ray{x, dir, 0.0f, kInf});
+        ASSERT_TRUE(hit.valid());
+        const uint32_t want = s.triangle_object[hit.triangle];
+        ASSERT_TRUE(want == far || want == near);
+        ++floor_rays;
+        const EnvLookup l = layered_lookup(layers, s.environment, x, dir, o);
+        const bool right = (l.object == far || l.object == near) && glm::length(l.color - floor_color) < 1e-3f;
+        layered_right += right;
+        EXPECT_TRUE(right) << "x " << xx << " to (" << px << ", −1, " << -3.0f + jz << "): object " << l.object
+                           << " layer " << l.layer << " fallback " << l.fallback;
+      }
+  EXPECT_EQ(floor_rays, 3 * 9 * 13);
+  EXPECT_EQ(layered_right, floor_rays);
+}
+
 TEST(EnvmapLookup, LayeredWithOneLayerNeverLooksBehindIt) {
   HiddenBoxScene h;
   RayScene rays(h.scene);

@@ -118,6 +118,26 @@ struct CubeSample {
 // the weight non-empty), so silhouettes stay as sharp as the texel grid.
 CubeSample sample_cube(const DistanceCubeMap& map, vec3 dir);
 
+// The bilinear taps of `dir` grouped by the object they show; of those objects, the one
+// whose own filtered distance (weights renormalized over its taps) is closest to `rho`,
+// as a sample of that object alone (one_object = true, tap_min/tap_max its taps' range).
+// Where the taps straddle two objects it tells whether a point at distance rho along
+// `dir` lies on one of their surfaces. Empty when every tap is empty (0 or NaN dir too).
+CubeSample sample_cube_surface(const DistanceCubeMap& map, vec3 dir, float rho);
+
+// The bilinear taps of `dir` that show `object`, weights renormalized over them: that
+// object's surface alone (one_object = true, tap_min/tap_max its taps' range). Empty
+// when its taps carry less than half the weight (the coverage rule of sample_cube).
+CubeSample sample_cube_object(const DistanceCubeMap& map, vec3 dir, uint32_t object);
+
+// Whether the bilinear taps of `dir` (those of positive weight) lie on one continuous
+// surface: across each pair of neighbouring taps, the distances extrapolated from the
+// texels beyond either tap meet within `tolerance` plus half the two slopes' difference —
+// true on a plane or a crease even where it is seen at a grazing angle (neighbouring
+// texels far apart in distance, other objects), false across a silhouette's step. Reads
+// the 4×4 texels around the taps (across face edges as sample_cube). False if a tap is empty.
+bool cube_taps_continuous(const DistanceCubeMap& map, vec3 dir, float tolerance);
+
 // sample_cube(map, dir).distance (up to rounding) without the color, from the compact
 // distance planes (the bisection's inner steps). A zero or NaN dir is empty.
 float sample_distance(const DistanceCubeMap& map, vec3 dir);

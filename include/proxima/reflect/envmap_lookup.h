@@ -70,10 +70,15 @@ EnvLookup average_lookup(const DistanceCubeMap& map, const Environment& env, vec
 // steps about two texels apart as seen from c, at most max_march_steps; at each sample it
 // is behind layers 0 … n − 1 (d_k < |l1|) and in front of layer n. Where n grows between
 // samples the ray crossed layer n's surface or passed behind one of its silhouettes:
-// bisection on Δd_n = d_n − |l1| in that interval; |Δd_n| < d_e whose filter taps lie on
-// one surface (one object, or spread ≤ edge_jump) is a hit — the nearest along the ray,
-// its layer's color — else a silhouette, and the next layer is searched in the same
-// interval. Where layer n's distance jumps from near to far between samples, the near
+// bisection on Δd_n = d_n − |l1| in that interval. A root |Δd_n| < d_e is a hit — the
+// nearest along the ray, its layer's color — when its filter taps lie on one surface: one
+// object, or spread ≤ edge_jump, or two objects whose distances continue each other
+// (cube_taps_continuous: a seam or crease seen at a grazing angle; then the color of the
+// object whose own surface passes nearest, not a blend). Across a step between two
+// objects the point is still a hit on one of them when it lies within that object's own
+// tap distances, or where a bisection on that object's distance alone finds the ray went
+// through it before the blended root. Otherwise it is a silhouette, and the next layer is
+// searched in the same interval. Where layer n's distance jumps from near to far between samples, the near
 // side of the silhouette is checked for a crossing too. A ray that ends in front of every
 // layer escapes (environment radiance, miss); one that ends behind a layer without a hit
 // (its surface is deeper than the layers, unreachable, or between two samples) takes the
