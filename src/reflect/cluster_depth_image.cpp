@@ -131,6 +131,17 @@ bool draws_nothing(const Scene& scene, const ClusterDrawList& draw) {
   return draw.excluded_object != kNoObject && scene.objects.size() == 1 && draw.excluded_object == 0;
 }
 
+// Appends the blocks of object `o` that may write a fragment into the image.
+void cull_object(const ClusterVolume& volume, const CameraProjection& projection, float near,
+                 const TriangleBlocks& blocks, uint32_t o, float margin, std::vector<TriangleRun>& out) {
+  if (volume.box_outside(blocks.object_bounds[o], margin)) return;
+  for (uint32_t i = blocks.object_first_block[o]; i < blocks.object_first_block[o + 1]; ++i) {
+    if (volume.box_outside(blocks.bounds[i], margin)) continue;
+    if (between_pixel_centres(projection, near, blocks.bounds[i], kCentreSlackPx)) continue;
+    out.push_back({blocks.first[i], blocks.count[i], blocks.first_vertex[i], blocks.vertex_count[i]});
+  }
+}
+
 }  // namespace
 
 TriangleBlocks triangle_blocks(const Scene& scene, int block_triangles) {
@@ -179,14 +190,17 @@ bool cull_cluster_triangles(const Scene& scene, const TriangleBlocks& blocks, co
   if (scene.objects.empty() || blocks.object_first_block.size() != scene.objects.size() + 1) return false;
   const ClusterVolume volume(camera);
   const CameraProjection projection(camera.camera);
-  for (uint32_t o = 0; o < scene.objects.size(); ++o) {
-    if (o == excluded_object || volume.box_outside(blocks.object_bounds[o], margin)) continue;
-    for (uint32_t i = blocks.object_first_block[o]; i < blocks.object_first_block[o + 1]; ++i) {
-      if (volume.box_outside(blocks.bounds[i], margin)) continue;
-      if (between_pixel_centres(projection, camera.camera.near, blocks.bounds[i], kCentreSlackPx)) continue;
-      out.push_back({blocks.first[i], blocks.count[i], blocks.first_vertex[i], blocks.vertex_count[i]});
-    }
-  }
+  for (uint32_t o = 0; o < scene.objects.size(); ++o)
+    if (o != excluded_object) cull_object(volume, projection, camera.camera.near, blocks, o, margin, out);
+  return true;
+}
+
+bool cull_cluster_object(const Scene& scene, const TriangleBlocks& blocks, const ClusterCamera& camera, uint32_t object,
+                         float margin, std::vector<TriangleRun>& out) {
+  out.clear();
+  if (scene.objects.empty() || blocks.object_first_block.size() != scene.objects.size() + 1) return false;
+  if (object < scene.objects.size())
+    cull_object(ClusterVolume(camera), CameraProjection(camera.camera), camera.camera.near, blocks, object, margin, out);
   return true;
 }
 
@@ -211,6 +225,19 @@ RasterStats rasterize_cluster_second_layer(const Scene& scene, const ClusterCame
   const InFrontOfClipPlane in_front{scene, camera, draw.clip_margin};
   return rasterize(scene, camera.camera, ro, out,
                    [&](const Fragment& fr) { return behind(fr) && in_front(fr); });
+}
+
+RasterStats rasterize_cluster_own_layer(const Scene& scene, const ClusterCamera& camera, const ClusterDrawList& draw,
+                                        const ImageF& start_depth, float separation, RasterImages& out) {
+  if (draws_nothing(scene, draw)) return empty_images(camera.camera, out);
+  std::vector<uint32_t> others;
+  const RasterOptions ro = cluster_raster_options(scene, draw, others);
+  const InFrontOfClipPlane in_front{scene, camera, draw.clip_margin};
+  const int w = start_depth.width();
+  const std::span<const float> start = start_depth.data();
+  return rasterize(scene, camera.camera, ro, out, [&](const Fragment& fr) {
+    return fr.depth > start[size_t(fr.y) * size_t(w) + size_t(fr.x)] + separation && in_front(fr);
+  });
 }
 
 }  // namespace proxima

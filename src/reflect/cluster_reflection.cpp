@@ -113,15 +113,62 @@ uint64_t shade_texels(const Scene& scene, int area_light_samples, const Camera& 
   return total;
 }
 
-// Whether the surface point at continuous pixel `s`, depth `z`, on `triangle`, shows in the
-// image: some texel of the 3×3 around `s` holds that triangle or a depth ≥ 0.99·z.
-bool visible_near(const RasterImages& image, vec2 s, float z, uint32_t triangle) {
+// Whether some texel of the 3×3 around continuous pixel `s` holds `triangle` or a depth
+// for which depth_ok(depth) holds.
+template <class DepthOk>
+bool any_texel_near(const RasterImages& image, vec2 s, uint32_t triangle, DepthOk depth_ok) {
   const int w = image.depth.width(), h = image.depth.height();
   const int cx = int(s.x), cy = int(s.y);
   for (int y = std::max(0, cy - 1); y <= std::min(h - 1, cy + 1); ++y)
     for (int x = std::max(0, cx - 1); x <= std::min(w - 1, cx + 1); ++x)
-      if (image.triangle.at(x, y) == triangle || image.depth.at(x, y) >= 0.99f * z) return true;
+      if (image.triangle.at(x, y) == triangle || depth_ok(image.depth.at(x, y))) return true;
   return false;
+}
+
+// Whether the surface point at continuous pixel `s`, depth `z`, on `triangle`, shows in the
+// image: some texel of the 3×3 around `s` holds that triangle or a depth ≥ 0.99·z.
+bool visible_near(const RasterImages& image, vec2 s, float z, uint32_t triangle) {
+  return any_texel_near(image, s, triangle, [z](float d) { return d >= 0.99f * z; });
+}
+
+// Whether the image holds that point: the triangle or a depth within 1% of z (an empty
+// texel holds nothing).
+bool held_near(const RasterImages& image, vec2 s, float z, uint32_t triangle) {
+  return any_texel_near(image, s, triangle, [z](float d) { return std::abs(d - z) <= 0.01f * z; });
+}
+
+// Per texel of the cluster image the smallest depth of the cluster's surface points that
+// project within `radius(depth)` texels of it (0 where none): the nearest surface its rays
+// start on there.
+template <class Radius>
+ImageF start_depths(const CameraProjection& projection, int width, int height, std::span<const uint32_t> members,
+                    std::span<const vec3> position, Radius radius) {
+  ImageF start(width, height, 1, 0.0f);
+  for (uint32_t i : members) {
+    const auto p = projection(position[i]);
+    if (!p) continue;
+    const int r = radius(p->depth);
+    const int cx = int(std::floor(p->pixel.x)), cy = int(std::floor(p->pixel.y));
+    for (int y = std::max(0, cy - r); y <= std::min(height - 1, cy + r); ++y)
+      for (int x = std::max(0, cx - r); x <= std::min(width - 1, cx + r); ++x)
+        start.at(x, y) = start.at(x, y) > 0.0f ? std::min(start.at(x, y), p->depth) : p->depth;
+  }
+  return start;
+}
+
+// Narrows [t0, t1] to the part of the ray inside box `b`; false when that is empty.
+bool clip_to_box(const Bounds3& b, vec3 origin, vec3 dir, float& t0, float& t1) {
+  for (int a = 0; a < 3; ++a) {
+    if (std::abs(dir[a]) < 1e-12f) {
+      if (origin[a] < b.min[a] || origin[a] > b.max[a]) return false;
+      continue;
+    }
+    float ta = (b.min[a] - origin[a]) / dir[a], tb = (b.max[a] - origin[a]) / dir[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  return t0 < t1;
 }
 
 // Ray parameters [t0, t1] inside the cluster image's volume: in front of the near (clip)
@@ -173,6 +220,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
   for (size_t i = 0; i < n; ++i) sample_at[frame.pixel[i]] = int32_t(i);
   std::vector<double> footprint_sum(nc, 0.0);
   std::vector<uint32_t> footprint_count(nc, 0);
+  std::vector<float> footprint(nc, 0.0f);
   for (size_t i = 0; i < n; ++i) {
     const uint32_t px = frame.pixel[i];
     const int x = int(px % uint32_t(sw));
@@ -217,6 +265,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
       in.resolution_scale = options.resolution_scale;
       in.max_image_side = options.max_image_side;
       in.plane_tolerance = epsilon;
+      footprint[c] = in.pixel_footprint;
       cameras[c] = build_cluster_camera(in);
       if (cameras[c] && cameras[c]->planar) {
         ++st.planar_clusters;
@@ -234,7 +283,9 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
   const TriangleBlocks blocks = options.cull ? triangle_blocks(scene) : TriangleBlocks{};
   const float cull_margin = kCullMargin * frame.scene_diagonal;
   clock.add_to(st.depth_images_ms, st.depth_images_cpu_ms);
-  RasterImages images, back;
+  RasterImages images, back, own;
+  std::vector<TriangleRun> own_runs;
+  std::vector<Bounds3> own_box(scene.objects.size());  // the reflectors' bounds, as needed
   ImageF color;
   std::vector<TriangleRun> drawn;
   std::vector<uint8_t> needed;
@@ -258,7 +309,8 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
 
     // Step 3b: the cluster image, everything in front of the near (clip) plane. A curved
     // cluster's own reflector bulges in front of its fitting plane and would only hide what
-    // its rays hit; it is left out (convex reflectors do not see themselves).
+    // its rays hit; it is left out here (convex reflectors do not see themselves) and drawn
+    // into the own layer below.
     clock.restart();
     ClusterDrawList draw;
     draw.excluded_object = k.planar ? kNoObject : clusters.reflector[c];
@@ -288,18 +340,21 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     std::vector<uint8_t> ray_occluded(ray_count, 0);
     std::vector<vec3> ray_color(ray_count, vec3(0.0f));
     std::vector<DepthImageHit> ray_hit(ray_count);
-    enum Answer : uint8_t { kHit, kFill, kEnv, kSecond };
+    enum Answer : uint8_t { kHit, kFill, kEnv, kSecond, kOwn };
     std::vector<uint8_t> answer(ray_count, kHit);
     // Glossy hits in the last fade_fraction of the far distance fade to the environment.
-    auto fade = [&](const DepthImageHit& h, vec3 o, vec3 dir, vec3 c_hit) {
-      float t = glm::length(projection.unproject(h.pixel, h.depth) - o);
+    auto fade_at = [&](float t, vec3 dir, vec3 c_hit) {
       float w = std::clamp((far - t) / (options.fade_fraction * far), 0.0f, 1.0f);
       return w < 1.0f ? w * c_hit + (1.0f - w) * environment_radiance(scene.environment, dir) : c_hit;
+    };
+    auto fade = [&](const DepthImageHit& h, vec3 o, vec3 dir, vec3 c_hit) {
+      return fade_at(glm::length(projection.unproject(h.pixel, h.depth) - o), dir, c_hit);
     };
     // The second layer (rays off the centre only) is needed by rays that went behind a
     // first-layer surface for good or found nothing.
     const bool layered = options.second_layer && (!k.planar || glossy);
     std::vector<uint8_t> needs_second(layered ? ray_count : 0, 0);
+    std::vector<float> second_t(layered ? ray_count : 0, kInf);
     parallel_for(members.size(), 64, [&](size_t b, size_t e) {
       for (size_t m = b; m < e; ++m) {
         const uint32_t i = members[m];
@@ -375,6 +430,91 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
                                                frame.area_light_samples);
             ray_color[r - ray_base] = glossy ? fade(*second, o, dir, c_hit) : c_hit;
             answer[r - ray_base] = kSecond;
+            second_t[r - ray_base] = glm::length(projection.unproject(second->pixel, second->depth) - o);
+          }
+        }
+      });
+      clock.add_to(st.intersection_ms, st.intersection_cpu_ms);
+    }
+    // Own layer: a curved cluster's own reflector alone, without the surface its rays start
+    // on; every ray is marched again in it within the reflector's bounds, up to its hit so
+    // far, and a hit there answers it (shaded on demand).
+    const uint32_t own_object = clusters.reflector[c];
+    const bool own_drawn = options.own_layer && !k.planar && own_object < scene.objects.size();
+    bool own_holds = false;
+    // The own layer at a finer resolution than the cluster image (the reflector's concave
+    // parts span a few of its texels).
+    ClusterCamera own_k = k;
+    const int own_scale =
+        std::max(1, std::min(options.own_layer_scale, options.own_layer_max_side / std::max(cam.width, cam.height)));
+    own_k.camera.width = cam.width * own_scale;
+    own_k.camera.height = cam.height * own_scale;
+    const Camera& own_cam = own_k.camera;
+    const CameraProjection own_projection(own_cam);
+    const float own_separation = options.own_layer_separation * footprint[c] + epsilon;
+    if (own_drawn) {
+      clock.restart();
+      const Object& obj = scene.objects[own_object];
+      if (!options.cull || !cull_cluster_object(scene, blocks, own_k, own_object, cull_margin, own_runs))
+        own_runs.assign(1, TriangleRun{obj.first_triangle, obj.triangle_count, obj.first_vertex, obj.vertex_count});
+      const float focal_k = focal_length_px(own_cam), p = footprint[c];
+      // The points' footprint in texels at their depth, one more for the texels between them.
+      auto radius = [&](float depth) { return std::clamp(int(std::ceil(p * focal_k / depth)) + 1, 1, 8); };
+      const ImageF start = start_depths(own_projection, own_cam.width, own_cam.height, members, frame.position, radius);
+      ClusterDrawList own_draw;
+      own_draw.culled = true;
+      own_draw.triangles = own_runs;
+      own_draw.object_bounds = object_bounds;
+      own_draw.clip_margin = cull_margin;
+      rs = rasterize_cluster_own_layer(scene, own_k, own_draw, start, own_separation, own);
+      st.triangles_drawn += rs.triangles_submitted;
+      st.own_layer_texels += uint64_t(own_cam.width) * uint64_t(own_cam.height);
+      own_holds = std::find_if(own.triangle.data().begin(), own.triangle.data().end(),
+                               [](uint32_t t) { return t != kNoTriangle; }) != own.triangle.data().end();
+      if (own_holds && own_box[own_object].empty())
+        for (uint32_t v = obj.first_vertex; v < obj.first_vertex + obj.vertex_count; ++v)
+          own_box[own_object].extend(scene.positions[v]);
+      clock.add_to(st.depth_images_ms, st.depth_images_cpu_ms);
+    }
+    if (own_holds) {
+      clock.restart();
+      const ImageF own_block_min = block > 0 ? depth_block_min(own.depth, block) : ImageF();
+      MarchOptions plain;
+      plain.block = block;
+      if (block > 0) plain.block_min = &own_block_min;
+      const Bounds3& box = own_box[own_object];
+      parallel_for(members.size(), 64, [&](size_t b, size_t e) {
+        for (size_t m = b; m < e; ++m) {
+          const uint32_t i = members[m];
+          for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
+            const vec3 o = frame.origin[i], dir = frame.direction[r];
+            float t0 = 0.0f, t1 = 0.0f;
+            if (!clip_ray(k, o, dir, far, t0, t1)) continue;
+            const uint8_t a = answer[r - ray_base];
+            if (a == kHit) {
+              const DepthImageHit& h = ray_hit[r - ray_base];
+              t1 = std::min(t1, glm::length(projection.unproject(h.pixel, h.depth) - o));
+            } else if (a == kSecond) {
+              t1 = std::min(t1, second_t[r - ray_base]);
+            }
+            // Past its own start surface: where the ray has risen `separation` above the
+            // sample's tangent plane (a hit before that is the surface it starts on).
+            t0 = std::max(t0, own_separation / std::max(glm::dot(dir, frame.normal[i]), 0.05f));
+            if (!clip_to_box(box, o, dir, t0, t1)) continue;
+            auto hit = march_depth_image(own_projection, own.depth, o + t0 * dir, o + t1 * dir, plain);
+            if (!hit) continue;
+            const int x = std::clamp(int(hit->pixel.x), 0, own_cam.width - 1);
+            const int y = std::clamp(int(hit->pixel.y), 0, own_cam.height - 1);
+            const uint32_t t = own.triangle.at(x, y);
+            // A ray meets a surface from its front; a "hit" on a back face is the ray passing
+            // behind a silhouette of the reflector.
+            if (t == kNoTriangle || !(glm::dot(dir, triangle_normal(scene, t)) < 0.0f)) continue;
+            const float u = own.barycentric.at(x, y, 0), v = own.barycentric.at(x, y, 1);
+            const vec3 c_hit = shade_reflected_point(scene, t, u, v, cam.position - triangle_point(scene, t, u, v),
+                                                     frame.area_light_samples);
+            const float t_hit = glm::length(own_projection.unproject(hit->pixel, hit->depth) - o);
+            ray_color[r - ray_base] = glossy ? fade_at(t_hit, dir, c_hit) : c_hit;
+            answer[r - ray_base] = kOwn;
           }
         }
       });
@@ -387,14 +527,19 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
       for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
         sum += ray_color[r - ray_base];
         const uint8_t a = answer[r - ray_base];
-        out.flags[i] |= a == kFill ? kBehindFill : a == kEnv ? kEnvFallback : a == kSecond ? kSecondLayer : 0;
+        out.flags[i] |= a == kFill ? kBehindFill : a == kEnv ? kEnvFallback : a == kSecond ? kSecondLayer : a == kOwn ? kOwnLayer : 0;
         st.second_layer_rays += a == kSecond;
+        st.own_layer_rays += a == kOwn;
       }
       out.radiance[i] = sum / float(frame.first_ray[i + 1] - frame.first_ray[i]);
     }
     clock.add_to(st.intersection_ms, st.intersection_cpu_ms);
     // Occlusion errors, a diagnostic outside the timed steps: the surface Embree hits is
     // not what the image holds there.
+    auto held_in_own = [&](vec3 x, uint32_t tri) {
+      const auto p = own_projection(x);
+      return p && held_near(own, p->pixel, p->depth, tri);
+    };
     if (reference) {
       parallel_for(members.size(), 64, [&](size_t b, size_t e) {
         for (size_t m = b; m < e; ++m) {
@@ -413,7 +558,8 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
             else if (!pr || pr->pixel.x < 0.0f || pr->pixel.y < 0.0f || pr->pixel.x >= float(cam.width) ||
                      pr->pixel.y >= float(cam.height))
               cause = OcclusionCause::OutsideImage;
-            else if (!k.planar && scene.triangle_object[tri] == clusters.reflector[c])
+            else if (!k.planar && scene.triangle_object[tri] == own_object &&
+                     !(own_drawn && held_in_own(x, tri)))
               cause = OcclusionCause::OwnReflector;
             else if (!visible_near(images, pr->pixel, pr->depth, tri) &&
                      !(two_layers && visible_near(back, pr->pixel, pr->depth, tri)))

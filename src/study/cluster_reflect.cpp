@@ -112,7 +112,8 @@ struct ClusterSeries {
       planar_pct, mae_r, mae_g, mae_b, env_r, env_g, env_b, texels, fill_pct, occlusion_ray_pct,
       occlusion_mirror_pct, occlusion_glossy_pct, full_r, full_g, full_b, traced_full, second_texels,
       second_ray_pct, cluster_cpu_ms, reference_cpu_ms, reference_dynamic_cpu_ms, step1_cpu_ms, cameras_cpu_ms,
-      images_cpu_ms, intersection_cpu_ms, texel_shading_ms, triangles_drawn, shaded_texels;
+      images_cpu_ms, intersection_cpu_ms, texel_shading_ms, triangles_drawn, shaded_texels, own_texels,
+      own_ray_pct;
   Series cause_pct[kOcclusionCauses], cause_mirror_pct[kOcclusionCauses];
   // SSR and the box probe alone (ssr).
   Series ssr_ms, box_ms, ssr_r, ssr_g, ssr_b, box_r, box_g, box_b, ssr_fallback_pct, ssr_fallback_rays_pct,
@@ -368,6 +369,8 @@ void add_frame(const FrameRun& f, size_t reflective, size_t pixels, bool compare
     s.texels.add(double(st.texels));
     s.second_texels.add(double(st.second_layer_texels));
     s.second_ray_pct.add(100.0 * double(st.second_layer_rays) / std::max<double>(1.0, double(st.rays)));
+    s.own_texels.add(double(st.own_layer_texels));
+    s.own_ray_pct.add(100.0 * double(st.own_layer_rays) / std::max<double>(1.0, double(st.rays)));
     s.samples_per_cluster.add(double(st.reflective_samples) / double(st.clusters));
     s.planar_pct.add(100.0 * double(st.planar_samples) / samples);
   }
@@ -440,6 +443,8 @@ void add_metrics(const ClusterReflectOptions& o, const ClusterSeries& s, Results
   m["texels_avg"] = s.texels.avg();
   m["second_layer_texels_avg"] = s.second_texels.avg();
   m["second_layer_rays_pct_avg"] = s.second_ray_pct.avg();
+  m["own_layer_texels_avg"] = s.own_texels.avg();
+  m["own_layer_rays_pct_avg"] = s.own_ray_pct.avg();
   m["behind_fill_pct_avg"] = s.fill_pct.avg();
   m["planar_samples_pct_avg"] = s.planar_pct.avg();
   m["planar_samples_pct_max"] = s.planar_pct.max();
@@ -686,7 +691,8 @@ void for_each_series(S& s, F&& f) {
                   &s.occlusion_mirror_pct, &s.occlusion_glossy_pct, &s.full_r, &s.full_g, &s.full_b,
                   &s.traced_full, &s.second_texels, &s.second_ray_pct, &s.cluster_cpu_ms, &s.reference_cpu_ms,
                   &s.reference_dynamic_cpu_ms, &s.step1_cpu_ms, &s.cameras_cpu_ms, &s.images_cpu_ms,
-                  &s.intersection_cpu_ms, &s.texel_shading_ms, &s.triangles_drawn, &s.shaded_texels})
+                  &s.intersection_cpu_ms, &s.texel_shading_ms, &s.triangles_drawn, &s.shaded_texels, &s.own_texels,
+                  &s.own_ray_pct})
     f(*x);
   for (auto& x : s.cause_pct) f(x);
   for (auto& x : s.cause_mirror_pct) f(x);
@@ -698,7 +704,7 @@ void for_each_series(S& s, F&& f) {
 }
 
 // A series added to ClusterSeries but not listed above would be lost by a split run.
-constexpr size_t kClusterSeries = 42 + 2 * kOcclusionCauses + 12 + 5 + 4;
+constexpr size_t kClusterSeries = 44 + 2 * kOcclusionCauses + 12 + 5 + 4;
 static_assert(sizeof(ClusterSeries) == kClusterSeries * sizeof(Series), "list every series in for_each_series");
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 
 #include "proxima/core/parallel.h"
 #include "proxima/eval/image_error.h"
@@ -44,6 +45,7 @@ TEST(ClusterReflection, PlanarMirrorReproducesTheTracedReflection) {
   EXPECT_EQ(cluster.stats.env_fallback_samples, 0u);
   EXPECT_EQ(cluster.stats.occlusion_error_samples, 0u);
   EXPECT_EQ(cluster.stats.second_layer_texels, 0u);  // every ray passes through e0: one layer
+  EXPECT_EQ(cluster.stats.own_layer_texels, 0u);     // a planar cluster's image holds its reflector
   const ImageU8 mask = reflective_pixel_mask(frame);
   const ImageError err =
       compare_images(compose_reflections(frame, cluster.radiance), compose_reflections(frame, traced.radiance), &mask);
@@ -105,6 +107,67 @@ TEST(ClusterReflection, SecondLayerAnswersGlossyRaysHiddenBehindAnOccluder) {
   const double err_single = compare_images(compose_reflections(frame, single.radiance), truth, &mask).mae_avg;
   const double err_layered = compare_images(compose_reflections(frame, layered.radiance), truth, &mask).mae_avg;
   EXPECT_LT(err_layered, err_single);
+}
+
+// A glossy L-shaped reflector, one object: a gently curved seat (a curved cluster) and a
+// back standing at its edge. The seat's lobe rays hit the back and the back's hit the
+// seat, i.e. their own reflector elsewhere, which a curved cluster's image leaves out.
+TEST(ClusterReflection, OwnLayerAnswersRaysThatHitTheirOwnConcaveReflector) {
+  Scene scene;
+  scene.name = "glossy-l";
+  const uint32_t mat = test::add_diffuse(scene, vec3(0.8f, 0.3f, 0.2f), 0.8f, 0.3f);
+  Mesh seat;
+  const int strips = 16;
+  for (int i = 0; i <= strips; ++i) {
+    const float x = -1.0f + 2.0f * float(i) / float(strips);
+    const vec3 n = glm::normalize(vec3(-0.16f * x, 0.0f, 1.0f));  // of z = 0.08·x²
+    for (float y : {-1.0f, 1.0f}) {
+      seat.positions.push_back(vec3(x, y, 0.08f * x * x));
+      seat.normals.push_back(n);
+    }
+  }
+  for (uint32_t i = 0; i < uint32_t(strips); ++i) {
+    const uint32_t a = 2 * i, b = 2 * i + 1, c = 2 * i + 2, d = 2 * i + 3;
+    seat.triangles.push_back(uvec3(a, c, d));
+    seat.triangles.push_back(uvec3(a, d, b));
+  }
+  append_mesh(seat, test::quad_mesh(vec3(-1.0f, -1.0f, 0.0f), vec3(0.0f, 0.0f, 1.5f), vec3(2.0f, 0.0f, 0.0f)));
+  add_object(scene, seat, "glossy-l", mat);
+  scene.point_lights.push_back({vec3(0.3f, 1.0f, 2.5f), vec3(8.0f)});
+  scene.ambient = vec3(0.1f);
+  const Camera eye = look_at(vec3(0.2f, 1.6f, 1.6f), vec3(0.0f, -0.2f, 0.2f), vec3(0, 0, 1), 60.0f, 48, 48, 0.01f, 100.0f);
+  ReflectionOptions opts;
+  opts.supersample = 2;
+  opts.glossy_rays = 8;
+  const ReflectionFrame frame = prepare_reflection_frame(scene, eye, opts);
+  ASSERT_GT(frame.sample_count(), 2000u);
+  RayScene rays(scene);
+  const TracedReflections traced = trace_reflections(scene, rays, frame);
+  ClusterReflectionOptions without, with;
+  without.own_layer = false;
+  const ClusterReflections left_out = render_cluster_reflections(scene, frame, without, {}, &traced);
+  const ClusterReflections own = render_cluster_reflections(scene, frame, with, {}, &traced);
+  const uint64_t n = frame.sample_count();
+  const uint64_t before = left_out.stats.occlusion_cause_samples[int(OcclusionCause::OwnReflector)];
+  const uint64_t after = own.stats.occlusion_cause_samples[int(OcclusionCause::OwnReflector)];
+  EXPECT_LT(left_out.stats.planar_clusters, left_out.stats.clusters);
+  EXPECT_EQ(left_out.stats.own_layer_texels, 0u);
+  EXPECT_GT(own.stats.own_layer_rays, 0u);
+  EXPECT_GT(before * 5, n) << before << " of " << n;  // > 20% of the samples before
+  EXPECT_LT(after * 4, before) << after << " vs " << before;
+  const ImageU8 mask = reflective_pixel_mask(frame);
+  const ImageF truth = compose_reflections(frame, traced.radiance);
+  const double err_before = compare_images(compose_reflections(frame, left_out.radiance), truth, &mask).mae_avg;
+  const double err_after = compare_images(compose_reflections(frame, own.radiance), truth, &mask).mae_avg;
+  EXPECT_LT(err_after, err_before);
+  std::cout << "own_curved_reflector samples " << before << " -> " << after << " of " << n << ", mae " << err_before
+            << " -> " << err_after << "\n";
+  std::vector<vec3> one;
+  {
+    ThreadLimit limit(1);
+    one = render_cluster_reflections(scene, frame, with, {}, &traced).radiance;
+  }
+  EXPECT_TRUE(one == own.radiance);
 }
 
 }  // namespace proxima

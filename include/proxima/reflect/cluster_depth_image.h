@@ -50,6 +50,11 @@ TriangleBlocks triangle_blocks(const Scene& scene, int block_triangles = 64);
 bool cull_cluster_triangles(const Scene& scene, const TriangleBlocks& blocks, const ClusterCamera& camera, uint32_t excluded_object, float margin,
                             std::vector<TriangleRun>& out);
 
+// The blocks of `object` alone that may write a fragment into the image of `camera` (the
+// tests of cull_cluster_triangles). False when the scene has no objects.
+bool cull_cluster_object(const Scene& scene, const TriangleBlocks& blocks, const ClusterCamera& camera, uint32_t object,
+                         float margin, std::vector<TriangleRun>& out);
+
 // Which triangles a cluster image draws: all of the scene but `excluded_object`
 // (`culled` = false), or exactly the runs `triangles` (`culled` = true, e.g. from
 // cull_cluster_triangles, which already left the excluded object out).
@@ -74,5 +79,12 @@ RasterStats rasterize_cluster_image(const Scene& scene, const ClusterCamera& cam
 RasterStats rasterize_cluster_second_layer(const Scene& scene, const ClusterCamera& camera,
                                            const ClusterDrawList& draw, const RasterImages& first,
                                            float separation, RasterImages& out);
+
+// Own layer of a curved cluster: what the draw list holds (its own reflector) in front of
+// the clip plane and more than `separation` (meters) behind `start_depth` (1 channel, per
+// texel the smallest depth of the cluster's own surface points there; 0 where none), i.e.
+// without the nearest surface its rays start on and what lies between it and the camera.
+RasterStats rasterize_cluster_own_layer(const Scene& scene, const ClusterCamera& camera, const ClusterDrawList& draw,
+                                        const ImageF& start_depth, float separation, RasterImages& out);
 
 }  // namespace proxima

@@ -41,6 +41,16 @@ struct ClusterReflectionOptions {
   // Each cluster image draws only the triangle blocks its frustum and clip plane can hold
   // (cluster_depth_image.h; identical images); false = every cluster draws the whole scene.
   bool cull = true;
+  // Not in the thesis: a curved cluster's image leaves its own reflector out (its bulge in
+  // front of the clip plane would hide what the rays hit), so a concave reflector's rays
+  // that hit it elsewhere (a chair's back from its seat) are marched again, up to their
+  // hit, in an own layer: that reflector alone, without the surface the rays start on
+  // (fragments up to own_layer_separation footprints behind the cluster's points at their
+  // texel). false = left out.
+  bool own_layer = true;
+  float own_layer_separation = 2.0f;
+  int own_layer_scale = 4;       // own-layer texels per cluster-image texel, per axis
+  int own_layer_max_side = 512;  // ... while its longer side stays at most this
 };
 
 // Why a ray's Embree hit is absent from its cluster image (the first cause that applies).
@@ -48,7 +58,7 @@ enum class OcclusionCause : uint8_t {
   None = 0,
   BehindNear = 1,    // behind the near (fitting) plane, clipped out of the image
   OutsideImage = 2,  // projects outside the cluster image (outside the frustum)
-  OwnReflector = 3,  // on the cluster's own curved reflector, which its image leaves out
+  OwnReflector = 3,  // on the cluster's own curved reflector, absent from its own layer
   Hidden = 4,        // inside the frustum, hidden behind nearer surfaces of the image (in every layer)
 };
 inline constexpr int kOcclusionCauses = 5;
@@ -74,6 +84,8 @@ struct ClusterFrameStats {
                                                            // cause of their first such ray
   uint64_t second_layer_texels = 0;     // Σ second-layer image pixels
   uint64_t second_layer_rays = 0;       // rays answered by a hit in the second layer
+  uint64_t own_layer_texels = 0;        // Σ own-layer image pixels
+  uint64_t own_layer_rays = 0;          // rays answered by a hit in the own layer
   uint64_t planar_clusters = 0;
   uint64_t planar_samples = 0;          // samples in planar clusters
   double clustering_ms = 0.0;           // step 2
@@ -91,6 +103,7 @@ enum ClusterSampleFlag : uint8_t {
   kOcclusionError = 1u << 1,  // a ray's Embree hit is absent from its cluster image
   kBehindFill = 1u << 2,      // a ray went behind a surface for good (MarchOptions::fill_behind)
   kSecondLayer = 1u << 3,     // a ray was answered by the second layer
+  kOwnLayer = 1u << 4,        // a ray was answered by the own layer (its own curved reflector)
 };
 
 struct ClusterReflections {
