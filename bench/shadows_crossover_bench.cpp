@@ -4,7 +4,9 @@
 // images 512² with the hybrid reconstruction, shadow-map density of 1024²) on city and on
 // grass from 50k to 10M triangles. Per repetition, interleaved: the depth-image method
 // (step 1 reference images, step 2 reconstruction with merged planar runs, step 3 with
-// fitted maps), step 3 as it was (whole-field 1024² maps of the unmerged reconstruction),
+// fitted maps drawn one per task by the depth-only rasterizer), step 3 as it was
+// (whole-field 1024² maps of the unmerged reconstruction, one after another through the
+// tiled rasterizer),
 // the Embree BVH build and the shadow rays. Counters are medians over the repetitions;
 // visibility errors (0–255) are against the rays. Arguments: grass blades (12 triangles
 // each; 0 = city), repetitions, threads.
@@ -59,6 +61,7 @@ void BM_SoftShadowsVsRays(benchmark::State& state) {
   const Occluders occ_today = build_occluders(scene, nullptr, light, cams, ShadowSampling::Nrr, unmerged);
   ShadowMapOptions fitted, today;
   today.fit_receivers = false;
+  today.per_map_tasks = false;
   Times t;
   LightVisibility v_fitted, v_today, v_rays;
   ShadowMapStats st_fitted, st_today;

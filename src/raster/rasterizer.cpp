@@ -13,6 +13,7 @@
 // count); each chunk's setups and bins depend only on its triangles, and each tile walks
 // the chunks in order, so every pixel sees its fragments in draw order.
 #include "proxima/raster/rasterizer.h"
+#include "proxima/raster/depth_raster.h"
 
 #include <algorithm>
 #include <cassert>
@@ -218,6 +219,75 @@ bool bounds_visible(const ClipSpace& cs, const Bounds3& b) {
   return (all & kRejectMask) == 0;
 }
 
+// One scene vertex to clip space with its outcode and (unclipped) snapped position.
+ClipVertex clip_vertex(const ClipSpace& cs, vec3 position) {
+  const vec4 p(position, 1.0f);
+  ClipVertex v;
+  v.X = glm::dot(cs.row_x, p);
+  v.Y = glm::dot(cs.row_y, p);
+  v.W = glm::dot(cs.row_w, p);
+  const bool finite = std::isfinite(v.X) && std::isfinite(v.Y) && std::isfinite(v.W);
+  v.code = finite ? cs.outcode(v.X, v.Y, v.W) : kNotFinite;
+  v.fx = v.fy = 0;
+  if (!(v.code & kClipMask)) {
+    v.fx = snap(v.X, v.W);
+    v.fy = snap(v.Y, v.W);
+  }
+  return v;
+}
+
+enum class TriangleFate { Culled, Emitted, Clipped, ClippedAway };
+
+// Rejection, clipping and setup of one scene triangle into `out` (one setup, or one per
+// fan triangle of its clipped polygon).
+TriangleFate setup_triangle(const ClipSpace& cs, const ClipVertex& v0, const ClipVertex& v1, const ClipVertex& v2,
+                            uint32_t triangle, bool cull_back, bool with_uv, int width, int height,
+                            std::vector<Setup>& out) {
+  const ClipVertex* v[3] = {&v0, &v1, &v2};
+  if (v[0]->code & v[1]->code & v[2]->code & kRejectMask) return TriangleFate::Culled;
+  if ((v[0]->code | v[1]->code | v[2]->code) & kNotFinite) return TriangleFate::Culled;
+  const uint32_t any = (v[0]->code | v[1]->code | v[2]->code) & kClipMask;
+  if (!any) {
+    const SetupVertex a{v[0]->fx, v[0]->fy, 1.0f / v[0]->W, 0.0f, 0.0f};
+    const SetupVertex b{v[1]->fx, v[1]->fy, 1.0f / v[1]->W, 1.0f, 0.0f};
+    const SetupVertex c{v[2]->fx, v[2]->fy, 1.0f / v[2]->W, 0.0f, 1.0f};
+    return emit_setup(a, b, c, triangle, cull_back, with_uv, width, height, out) ? TriangleFate::Emitted
+                                                                                 : TriangleFate::Culled;
+  }
+  PolyVertex poly[9] = {{v[0]->X, v[0]->Y, v[0]->W, 0.0f, 0.0f},
+                        {v[1]->X, v[1]->Y, v[1]->W, 1.0f, 0.0f},
+                        {v[2]->X, v[2]->Y, v[2]->W, 0.0f, 1.0f}};
+  const int n = clip_polygon(cs, any, poly, 3);
+  SetupVertex sv[9];
+  for (int i = 0; i < n; ++i)
+    sv[i] = {snap(poly[i].X, poly[i].W), snap(poly[i].Y, poly[i].W), float(1.0 / poly[i].W), float(poly[i].u),
+             float(poly[i].v)};
+  bool emitted = false;
+  for (int i = 1; i + 1 < n; ++i)
+    emitted |= emit_setup(sv[0], sv[i], sv[i + 1], triangle, cull_back, with_uv, width, height, out);
+  return emitted ? TriangleFate::Clipped : TriangleFate::ClippedAway;
+}
+
+// Coverage of one setup over the whole image, keeping each pixel's greatest 1/W: the
+// fragments of raster_setup (raster_frame.h) without the tile, the ids or the fragment
+// test. Its depth 1/(1/W) is monotonic in 1/W, so the least depth is 1 / (greatest 1/W),
+// taken once per pixel at the end instead of one division per fragment.
+void depth_setup(const Setup& s, float* inv_depth, int width) {
+  int64_t e[3], step_x[3], step_y[3];
+  edge_functions(s, s.x0, s.y0, e, step_x, step_y);
+  for (int y = s.y0; y <= s.y1; ++y) {
+    int begin, end;
+    row_run(e, step_x, s.x0, s.x1, begin, end);
+    const float fy = float(y - s.y0);
+    const float z_row = s.z[0] + s.z[2] * fy;
+    float* row = inv_depth + size_t(y) * size_t(width);
+    for (int x = begin; x < end; ++x) row[x] = std::max(row[x], z_row + s.z[1] * float(x - s.x0));
+    e[0] += step_y[0];
+    e[1] += step_y[1];
+    e[2] += step_y[2];
+  }
+}
+
 // Triangle setup and binning for draw-list positions [begin, end).
 void build_chunk(const Frame& frame, const ClipSpace& cs, bool cull_back, uint64_t begin, uint64_t end,
                  Chunk& chunk) {
@@ -237,38 +307,12 @@ void build_chunk(const Frame& frame, const ClipSpace& cs, bool cull_back, uint64
       continue;
     ++chunk.submitted;
     const uvec3 idx = scene.triangles[triangle];
-    const ClipVertex* v[3] = {&frame.vertices[idx.x], &frame.vertices[idx.y], &frame.vertices[idx.z]};
-    if (v[0]->code & v[1]->code & v[2]->code & kRejectMask) {
-      ++chunk.culled;
-      continue;
-    }
-    if ((v[0]->code | v[1]->code | v[2]->code) & kNotFinite) {
-      ++chunk.culled;
-      continue;
-    }
-    const uint32_t any = (v[0]->code | v[1]->code | v[2]->code) & kClipMask;
-    if (!any) {
-      const SetupVertex a{v[0]->fx, v[0]->fy, 1.0f / v[0]->W, 0.0f, 0.0f};
-      const SetupVertex b{v[1]->fx, v[1]->fy, 1.0f / v[1]->W, 1.0f, 0.0f};
-      const SetupVertex c{v[2]->fx, v[2]->fy, 1.0f / v[2]->W, 0.0f, 1.0f};
-      if (!emit_setup(a, b, c, triangle, cull_back, frame.needs_uv, frame.width, frame.height, chunk.setups))
-        ++chunk.culled;
-      continue;
-    }
-    ++chunk.clipped;
-    PolyVertex poly[9] = {{v[0]->X, v[0]->Y, v[0]->W, 0.0f, 0.0f},
-                          {v[1]->X, v[1]->Y, v[1]->W, 1.0f, 0.0f},
-                          {v[2]->X, v[2]->Y, v[2]->W, 0.0f, 1.0f}};
-    const int n = clip_polygon(cs, any, poly, 3);
-    SetupVertex sv[9];
-    for (int i = 0; i < n; ++i)
-      sv[i] = {snap(poly[i].X, poly[i].W), snap(poly[i].Y, poly[i].W), float(1.0 / poly[i].W),
-               float(poly[i].u), float(poly[i].v)};
-    bool emitted = false;
-    for (int i = 1; i + 1 < n; ++i)
-      emitted |= emit_setup(sv[0], sv[i], sv[i + 1], triangle, cull_back, frame.needs_uv, frame.width,
-                            frame.height, chunk.setups);
-    if (!emitted) ++chunk.culled;
+    const TriangleFate fate = setup_triangle(cs, frame.vertices[idx.x], frame.vertices[idx.y], frame.vertices[idx.z],
+                                             triangle, cull_back, frame.needs_uv, frame.width, frame.height,
+                                             chunk.setups);
+    chunk.culled += fate == TriangleFate::Culled;
+    chunk.clipped += fate != TriangleFate::Emitted && fate != TriangleFate::Culled;
+    chunk.culled += fate == TriangleFate::ClippedAway;
   }
 
   // Counting sort of (tile, setup) pairs by tile; setup order is kept within a tile.
@@ -424,18 +468,7 @@ FrameLease prepare_frame(const Scene& scene, const Camera& camera, const RasterO
       for (uint64_t pos = begin; pos < end; ++pos) {
         while (pos >= vertex_runs[r].start + vertex_runs[r].count) ++r;
         const uint32_t i = vertex_runs[r].first + uint32_t(pos - vertex_runs[r].start);
-        const vec4 p(scene.positions[i], 1.0f);
-        ClipVertex& v = f.vertices[i];
-        v.X = glm::dot(cs.row_x, p);
-        v.Y = glm::dot(cs.row_y, p);
-        v.W = glm::dot(cs.row_w, p);
-        const bool finite = std::isfinite(v.X) && std::isfinite(v.Y) && std::isfinite(v.W);
-        v.code = finite ? cs.outcode(v.X, v.Y, v.W) : kNotFinite;
-        v.fx = v.fy = 0;
-        if (!(v.code & kClipMask)) {
-          v.fx = snap(v.X, v.W);
-          v.fy = snap(v.Y, v.W);
-        }
+        f.vertices[i] = clip_vertex(cs, scene.positions[i]);
       }
     }
   });
@@ -616,6 +649,56 @@ RasterImages rasterize(const Scene& scene, const Camera& camera, const RasterOpt
   const RasterStats s = rasterize(scene, camera, options, images, AcceptAllFragments{});
   if (stats) *stats = s;
   return images;
+}
+
+}  // namespace proxima
+
+namespace proxima {
+
+RasterStats rasterize_depth_serial(const Scene& scene, const Camera& camera, std::span<const Bounds3> bounds,
+                                   CullMode cull, ImageF& depth, DepthRasterScratch& scratch) {
+  using namespace raster_detail;
+  validate_camera(camera, "rasterizer camera");
+  assert(bounds.empty() || bounds.size() == scene.objects.size());
+  const int w = camera.width, h = camera.height;
+  ensure_image(depth, w, h, 1);
+  std::fill(depth.data().begin(), depth.data().end(), 0.0f);  // 1/W; 1/0 = +inf: empty
+  const ClipSpace cs = make_clip_space(camera);
+  const bool cull_back = cull == CullMode::Back;
+  scratch.vertices.resize(scene.positions.size());
+  RasterStats stats;
+  float* image = depth.data().data();
+  // One object's triangles (a scene without objects is one unculled object).
+  auto draw = [&](uint32_t first_vertex, uint32_t vertex_count, uint32_t first_triangle, uint32_t triangle_count) {
+    for (uint32_t i = first_vertex; i < first_vertex + vertex_count; ++i)
+      scratch.vertices[i] = clip_vertex(cs, scene.positions[i]);
+    stats.triangles_submitted += triangle_count;
+    for (uint32_t t = first_triangle; t < first_triangle + triangle_count; ++t) {
+      const uvec3 idx = scene.triangles[t];
+      scratch.setups.clear();
+      const TriangleFate fate = setup_triangle(cs, scratch.vertices[idx.x], scratch.vertices[idx.y],
+                                               scratch.vertices[idx.z], t, cull_back, false, w, h, scratch.setups);
+      stats.triangles_culled += fate == TriangleFate::Culled || fate == TriangleFate::ClippedAway;
+      stats.triangles_clipped += fate == TriangleFate::Clipped || fate == TriangleFate::ClippedAway;
+      stats.triangles_rasterized += scratch.setups.size();
+      for (const Setup& s : scratch.setups) depth_setup(s, image, w);
+    }
+  };
+  if (scene.objects.empty()) {
+    draw(0, uint32_t(scene.positions.size()), 0, uint32_t(scene.triangles.size()));
+    stats.objects_drawn = 1;
+  }
+  for (uint32_t o = 0; o < uint32_t(scene.objects.size()); ++o) {
+    const Object& obj = scene.objects[o];
+    if (!bounds_visible(cs, bounds.empty() ? object_bounds(scene, o) : bounds[o])) {
+      ++stats.objects_culled;
+      continue;
+    }
+    ++stats.objects_drawn;
+    draw(obj.first_vertex, obj.vertex_count, obj.first_triangle, obj.triangle_count);
+  }
+  for (float& d : depth.data()) d = 1.0f / d;
+  return stats;
 }
 
 }  // namespace proxima

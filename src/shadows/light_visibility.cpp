@@ -15,6 +15,7 @@
 #include "proxima/core/parallel.h"
 #include "proxima/core/timer.h"
 #include "proxima/depthimage/depth_image.h"
+#include "proxima/raster/depth_raster.h"
 #include "proxima/raster/rasterizer.h"
 
 namespace proxima {
@@ -32,7 +33,6 @@ int LightVisibility::lit_count(int x, int y) const {
 
 namespace {
 
-constexpr size_t kRows = 8;  // receiver rows per parallel chunk
 
 
 void set_bit(LightVisibility& v, int x, int y, int s) {
@@ -127,13 +127,52 @@ float map_focal_px(const LightCameras& cams, const Receivers& receivers, const s
   return f;
 }
 
-std::vector<vec3> receiver_points(const Receivers& r) {
-  std::vector<vec3> p;
-  p.reserve(r.count);
+
+}  // namespace
+
+namespace {
+
+// A receiver pixel facing the light: its index in the image, position and normal.
+struct ReceiverPoint {
+  int pixel;
+  vec3 p, n;
+};
+
+std::vector<ReceiverPoint> receiver_list(const Receivers& r) {
+  std::vector<ReceiverPoint> list;
+  list.reserve(r.count);
   for (int y = 0; y < r.mask.height(); ++y)
     for (int x = 0; x < r.mask.width(); ++x)
-      if (r.mask.at(x, y)) p.push_back(rgb_at(r.position, x, y));
-  return p;
+      if (r.mask.at(x, y)) list.push_back({y * r.mask.width() + x, rgb_at(r.position, x, y), rgb_at(r.normal, x, y)});
+  return list;
+}
+
+// The receivers [i0, i1) against the shadow map `depth` of `cam` at light sample `s`:
+// lit[i] = 1 where the sample lights receiver i. Returns the receivers (facing s) that
+// fell outside the map, taken as lit.
+uint32_t test_receivers(const std::vector<ReceiverPoint>& list, size_t i0, size_t i1, vec3 s, const Camera& cam,
+                        const ImageF& depth, const ShadowMapOptions& o, uint8_t* lit) {
+  const CameraProjection proj(cam);
+  uint32_t outside = 0;
+  for (size_t i = i0; i < i1; ++i) {
+    const vec3 p = list[i].p, n = list[i].n;
+    const vec3 l = s - p;
+    const float cos_theta = glm::dot(n, l) / glm::length(l);
+    lit[i] = 0;
+    if (!(cos_theta > 0.0f)) continue;  // below the receiver's tangent plane
+    const auto q = proj(p);
+    int px, py;
+    if (!q || !pixel_in(cam, q->pixel, px, py)) {
+      lit[i] = 1;  // outside the map: nothing known to block it
+      ++outside;
+      continue;
+    }
+    const float tan_theta = std::min(kMaxBiasSlope, std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta)) / cos_theta);
+    const float texel = q->depth / proj.focal;
+    const float bias = texel * (o.constant_bias + o.slope_bias * tan_theta);
+    lit[i] = q->depth - bias <= depth.at(px, py);
+  }
+  return outside;
 }
 
 }  // namespace
@@ -145,52 +184,76 @@ LightVisibility shadow_map_visibility(const Scene& occluders, const Receivers& r
   ShadowMapStats st;
   const int w = receivers.mask.width(), h = receivers.mask.height();
   LightVisibility v(w, h, int(samples.size()));
-  RasterOptions raster;
-  raster.outputs = kRasterDepth;
-  raster.cull = CullMode::None;  // occluders block light from either side
   const std::vector<Bounds3> bounds = raster_object_bounds(occluders);
-  raster.object_bounds = bounds;
   st.focal_px = map_focal_px(cams, receivers, samples, options);
-  const std::vector<vec3> points = options.fit_receivers ? receiver_points(receivers) : std::vector<vec3>{};
-  std::vector<uint32_t> outside(size_t(h), 0);
-  RasterImages map;
-  for (size_t k = 0; k < samples.size(); ++k) {
-    const vec3 s = samples[k];
-    Stopwatch fit;
-    const Camera cam = options.fit_receivers ? fitted_shadow_map_camera(cams, s, points, st.focal_px)
-                                             : light_camera(cams, s, options.resolution);
-    st.fit_ms += fit.elapsed_ms();
-    Stopwatch draw;
-    const RasterStats rs = rasterize(occluders, cam, raster, map, AcceptAllFragments{});
-    st.raster_ms += draw.elapsed_ms();
-    st.texels += uint64_t(cam.width) * uint64_t(cam.height);
-    st.triangles_drawn += rs.triangles_rasterized;
-    Stopwatch test;
-    const CameraProjection proj(cam);
-    parallel_for(size_t(h), kRows, [&](size_t y0, size_t y1) {
-      for (int y = int(y0); y < int(y1); ++y)
-        for (int x = 0; x < w; ++x) {
-          if (!receivers.mask.at(x, y)) continue;
-          const vec3 p = rgb_at(receivers.position, x, y), n = rgb_at(receivers.normal, x, y);
-          const vec3 l = s - p;
-          const float cos_theta = glm::dot(n, l) / glm::length(l);
-          if (!(cos_theta > 0.0f)) continue;  // below the receiver's tangent plane
-          const auto q = proj(p);
-          int px, py;
-          if (!q || !pixel_in(cam, q->pixel, px, py)) {
-            set_bit(v, x, y, int(k));  // outside the map: nothing known to block it
-            outside[size_t(y)] += options.fit_receivers;
-            continue;
-          }
-          const float tan_theta = std::min(kMaxBiasSlope, std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta)) / cos_theta);
-          const float texel = q->depth / proj.focal;
-          const float bias = texel * (options.constant_bias + options.slope_bias * tan_theta);
-          if (q->depth - bias <= map.depth.at(px, py)) set_bit(v, x, y, int(k));
-        }
-    });
-    st.test_ms += test.elapsed_ms();
+  const std::vector<ReceiverPoint> list = receiver_list(receivers);
+  const size_t count = list.size(), n = samples.size();
+
+  Stopwatch fit;
+  std::vector<Camera> map_cams(n);
+  {
+    std::vector<vec3> points;
+    if (options.fit_receivers)
+      for (const ReceiverPoint& r : list) points.push_back(r.p);
+    for (size_t k = 0; k < n; ++k)
+      map_cams[k] = options.fit_receivers ? fitted_shadow_map_camera(cams, samples[k], points, st.focal_px)
+                                          : light_camera(cams, samples[k], options.resolution);
   }
-  for (uint32_t n : outside) st.receivers_outside += n;
+  st.fit_ms = fit.elapsed_ms();
+
+  // lit[k·count + i]: sample k lights receiver i. Per sample: triangles set up, receivers
+  // outside the map, and the task's raster and test times.
+  std::vector<uint8_t> lit(n * count);
+  std::vector<uint64_t> drawn(n, 0), outside(n, 0);
+  std::vector<double> raster_ms(n, 0.0), test_ms(n, 0.0);
+  if (options.per_map_tasks) {
+    parallel_for(n, 1, [&](size_t k0, size_t k1) {
+      DepthRasterScratch scratch;
+      ImageF depth;
+      for (size_t k = k0; k < k1; ++k) {
+        Stopwatch draw;
+        drawn[k] = rasterize_depth_serial(occluders, map_cams[k], bounds, CullMode::None, depth, scratch)
+                       .triangles_rasterized;
+        raster_ms[k] = draw.elapsed_ms();
+        Stopwatch test;
+        outside[k] = test_receivers(list, 0, count, samples[k], map_cams[k], depth, options, &lit[k * count]);
+        test_ms[k] = test.elapsed_ms();
+      }
+    });
+  } else {
+    RasterOptions raster;
+    raster.outputs = kRasterDepth;
+    raster.cull = CullMode::None;  // occluders block light from either side
+    raster.object_bounds = bounds;
+    RasterImages map;
+    constexpr size_t kGrain = 2048;  // receivers per parallel chunk
+    std::vector<uint32_t> chunk_outside((count + kGrain - 1) / kGrain);
+    for (size_t k = 0; k < n; ++k) {
+      Stopwatch draw;
+      drawn[k] = rasterize(occluders, map_cams[k], raster, map, AcceptAllFragments{}).triangles_rasterized;
+      raster_ms[k] = draw.elapsed_ms();
+      Stopwatch test;
+      parallel_for(chunk_outside.size(), 1, [&](size_t c0, size_t c1) {
+        for (size_t c = c0; c < c1; ++c)
+          chunk_outside[c] = test_receivers(list, c * kGrain, std::min(count, (c + 1) * kGrain), samples[k],
+                                            map_cams[k], map.depth, options, &lit[k * count]);
+      });
+      for (uint32_t o : chunk_outside) outside[k] += o;
+      test_ms[k] = test.elapsed_ms();
+    }
+  }
+  parallel_for(count, 4096, [&](size_t i0, size_t i1) {
+    for (size_t i = i0; i < i1; ++i)
+      for (size_t k = 0; k < n; ++k)
+        if (lit[k * count + i]) set_bit(v, list[i].pixel % w, list[i].pixel / w, int(k));
+  });
+  for (size_t k = 0; k < n; ++k) {
+    st.texels += uint64_t(map_cams[k].width) * uint64_t(map_cams[k].height);
+    st.triangles_drawn += drawn[k];
+    if (options.fit_receivers) st.receivers_outside += outside[k];
+    st.raster_ms += raster_ms[k];
+    st.test_ms += test_ms[k];
+  }
   if (st.receivers_outside > 0)
     std::fprintf(stderr, "shadows: WARNING: %llu receiver tests fell outside their fitted shadow map (taken as lit)\n",
                  static_cast<unsigned long long>(st.receivers_outside));

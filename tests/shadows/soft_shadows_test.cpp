@@ -204,6 +204,38 @@ TEST(SoftShadows, FootprintTexelsSetTheDensity) {
   EXPECT_LT(capped.focal_px, coarse.focal_px);
 }
 
+// Drawing each map in one task with the depth-only rasterizer gives the same maps as the
+// tiled rasterizer, so the same answers, for fitted and whole-field maps, on the geometry
+// and on a reconstruction (clipped and sliver triangles), for any thread count.
+TEST(SoftShadows, PerMapTasksAnswerAsTheTiledRasterizer) {
+  LightSetup s(0.5f, 4, 64);
+  OccluderOptions o;
+  o.resolution = 128;
+  const Occluders occ = build_occluders(s.scene, nullptr, s.light, s.cams, ShadowSampling::Nrr, o);
+  for (const Scene* scene : {static_cast<const Scene*>(&s.scene), &occ.scene})
+    for (bool fit : {true, false}) {
+      ShadowMapOptions tiled, tasks;
+      tiled.resolution = tasks.resolution = 256;
+      tiled.fit_receivers = tasks.fit_receivers = fit;
+      tiled.per_map_tasks = false;
+      ShadowMapStats st_tiled, st_tasks;
+      const LightVisibility a = shadow_map_visibility(*scene, s.receivers, s.samples, s.cams, tiled, nullptr, &st_tiled);
+      LightVisibility b, c;
+      {
+        ThreadLimit one(1);
+        b = shadow_map_visibility(*scene, s.receivers, s.samples, s.cams, tasks, nullptr, &st_tasks);
+      }
+      {
+        ThreadLimit two(2);
+        c = shadow_map_visibility(*scene, s.receivers, s.samples, s.cams, tasks);
+      }
+      EXPECT_EQ(a.bits, b.bits) << fit;
+      EXPECT_EQ(b.bits, c.bits) << fit;
+      EXPECT_EQ(st_tiled.triangles_drawn, st_tasks.triangles_drawn) << fit;
+      EXPECT_GT(st_tasks.triangles_drawn, 0u);
+    }
+}
+
 TEST(SoftShadows, ParsesSamplingNames) {
   EXPECT_EQ(parse_shadow_sampling("nrr", "--sampling"), ShadowSampling::Nrr);
   EXPECT_EQ(parse_shadow_sampling("peeling", "--sampling"), ShadowSampling::Peeling);

@@ -41,12 +41,17 @@ struct LightVisibility {
 // the farthest receiver (an occluder behind every receiver blocks none) — so a map has the
 // texels and the triangles that can change an answer and no others. Without it every map
 // covers the whole light-camera field (LightCameras) at `resolution`².
+// per_map_tasks: each map is one task, drawn whole by one thread with the depth-only
+// rasterizer (raster/depth_raster.h) and its receivers tested by the same thread, the maps
+// in parallel; without it the maps go one after another, each through the tiled
+// rasterizer (parallel over its tiles). The maps are bit-identical either way.
 struct ShadowMapOptions {
   int resolution = 1024;
   float constant_bias = 1.5f;
   float slope_bias = 1.0f;
   bool fit_receivers = true;
   float footprint_texels = 0.0f;
+  bool per_map_tasks = true;
 };
 inline constexpr float kMaxBiasSlope = 10.0f;
 // Largest side of a fitted map; a wider one gets coarser texels.
@@ -58,8 +63,8 @@ inline constexpr int kMaxFittedMapSide = 4096;
 struct ShadowMapStats {
   double ms = 0.0;
   double fit_ms = 0.0;     // fitting the maps' cameras
-  double raster_ms = 0.0;  // rasterizing the maps
-  double test_ms = 0.0;    // the receivers' depth tests
+  double raster_ms = 0.0;  // rasterizing the maps (per_map_tasks: summed over the tasks)
+  double test_ms = 0.0;    // the receivers' depth tests (likewise)
   uint64_t texels = 0;
   uint64_t triangles_drawn = 0;  // triangles the rasterizer set up (survived its culling)
   uint64_t receivers_outside = 0;

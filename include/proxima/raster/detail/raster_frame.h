@@ -130,6 +130,24 @@ RasterStats finish_frame(const Frame& frame);
   end = x;
 }
 
+// Edge i runs from vertex i to vertex i+1; inside is E ≥ 0 (area > 0). Top-left fill
+// rule (y down): a center exactly on an edge belongs to the triangle only if the edge
+// is a top edge (horizontal, pointing +x) or a left edge (pointing −y); the −1 bias
+// turns "E > 0" into "E ≥ 0" for the others. e: values at the center of pixel (x0, y0);
+// step_x, step_y: per pixel right and down.
+inline void edge_functions(const Setup& s, int x0, int y0, int64_t* e, int64_t* step_x, int64_t* step_y) {
+  const int64_t px = int64_t(x0) * kSubpixel + kSubpixel / 2;
+  const int64_t py = int64_t(y0) * kSubpixel + kSubpixel / 2;
+  for (int i = 0; i < 3; ++i) {
+    const int j = i == 2 ? 0 : i + 1;
+    const int64_t dx = int64_t(s.x[j]) - s.x[i], dy = int64_t(s.y[j]) - s.y[i];
+    const bool top_left = dy < 0 || (dy == 0 && dx > 0);
+    e[i] = dx * (py - s.y[i]) - dy * (px - s.x[i]) - (top_left ? 0 : 1);
+    step_x[i] = -dy * kSubpixel;
+    step_y[i] = dx * kSubpixel;
+  }
+}
+
 // A fragment test that can also take one row run of a setup at once:
 // keep_run(fragments, n) → bit k set keeps fragments[k]; n ≤ kTileSize, the fragments are
 // one triangle's, in one row, left to right, each past the depth test. Used instead of
@@ -161,21 +179,8 @@ inline void raster_setup(const Setup& s, const Tile& tile, TileBuffer& buf, Test
   const int y0 = std::max(s.y0, tile.y0), y1 = std::min(s.y1, tile.y1 - 1);
   if (x0 > x1 || y0 > y1) return;
 
-  // Edge i runs from vertex i to vertex i+1; inside is E ≥ 0 (area > 0). Top-left fill
-  // rule (y down): a center exactly on an edge belongs to the triangle only if the edge
-  // is a top edge (horizontal, pointing +x) or a left edge (pointing −y); the −1 bias
-  // turns "E > 0" into "E ≥ 0" for the others.
   int64_t e[3], step_x[3], step_y[3];
-  const int64_t px = int64_t(x0) * kSubpixel + kSubpixel / 2;
-  const int64_t py = int64_t(y0) * kSubpixel + kSubpixel / 2;
-  for (int i = 0; i < 3; ++i) {
-    const int j = i == 2 ? 0 : i + 1;
-    const int64_t dx = int64_t(s.x[j]) - s.x[i], dy = int64_t(s.y[j]) - s.y[i];
-    const bool top_left = dy < 0 || (dy == 0 && dx > 0);
-    e[i] = dx * (py - s.y[i]) - dy * (px - s.x[i]) - (top_left ? 0 : 1);
-    step_x[i] = -dy * kSubpixel;
-    step_y[i] = dx * kSubpixel;
-  }
+  edge_functions(s, x0, y0, e, step_x, step_y);
 
   for (int y = y0; y <= y1; ++y) {
     int begin, end;
