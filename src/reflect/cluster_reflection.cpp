@@ -311,12 +311,13 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     const ImageF& march_depth = march.coarse > 1 ? coarse_depth : images.depth;
     const uint32_t ray_base = frame.first_ray[members.front()];
     const size_t ray_count = frame.first_ray[members.back() + 1] - ray_base;
-    // Every entry a cluster reads is written first (answer, hit or color per ray), so the
-    // buffers are only resized; the flags start at zero.
+    // The span of rays can hold rays of samples of other clusters between the members':
+    // those stay `kEnv` (no texel marked for them). Every other entry read is written
+    // first, so hits and colors are only resized; the flags start at zero.
     ray_occluded.assign(ray_count, 0);
     ray_color.resize(ray_count);
     ray_hit.resize(ray_count);
-    answer.resize(ray_count);
+    answer.assign(ray_count, kEnv);
     // Glossy hits in the last fade_fraction of the far distance fade to the environment.
     auto fade = [&](const DepthImageHit& h, vec3 o, vec3 dir, vec3 c_hit) {
       float t = glm::length(projection.unproject(h.pixel, h.depth) - o);
