@@ -50,6 +50,7 @@ set(PROXIMA_LIB_SOURCES
   src/reflect/envmap_reflection.cpp
   src/reflect/reflection_comparison.cpp
   src/reflect/reflection_frame.cpp
+  src/reflect/scene_lod.cpp
   src/reflect/ssr_reflection.cpp
   src/reflect/temporal_best_match.cpp
   src/reflect/temporal_depth_image.cpp

@@ -6,7 +6,7 @@
 #
 #   scripts/cluster-bench.sh [PROXIMA] [OUT_DIR]
 # Environment: SIZE (512), REPS (5), THREADS (2), STEP (300: frames 0, 300, 600 of 900),
-# SCENES ("living-room bathroom").
+# SCENES ("living-room bathroom"), EXTRA (more `proxima reflect` flags, e.g. "--lod 2").
 set -eu
 PROXIMA=${1:-build/release/proxima}
 OUT=${2:-out/cluster-bench}
@@ -15,11 +15,12 @@ REPS=${REPS:-5}
 THREADS=${THREADS:-2}
 STEP=${STEP:-300}
 SCENES=${SCENES:-"living-room bathroom"}
+EXTRA=${EXTRA:-}
 mkdir -p "$OUT"
 for scene in $SCENES; do
   echo "load before $scene: $(cut -d' ' -f1-3 /proc/loadavg)"
   "$PROXIMA" reflect --method cluster --scene "$scene" --path walk --frames 900 --frame-step "$STEP" \
-    --width "$SIZE" --height "$SIZE" --ss 2 --gloss-rays 8 --compare --reps "$REPS" --threads "$THREADS" \
+    --width "$SIZE" --height "$SIZE" --ss 2 --gloss-rays 8 --compare --reps "$REPS" --threads "$THREADS" $EXTRA \
     --out "$OUT/$scene" >"$OUT/$scene.md" 2>/dev/null
   echo "load after $scene: $(cut -d' ' -f1-3 /proc/loadavg)"
   /usr/bin/python3 - "$OUT/$scene/results.json" "$scene" <<'PY'

@@ -66,6 +66,15 @@ void add_method_flags(CLI::App* app, ClusterReflectFlags& f) {
          "cluster: block size of the depth minima the march skips with (0 = texel by texel; same result)")
       ->capture_default_str()
       ->group(kGroup);
+  app->add_option("--glossy-march-coarse", f.cluster.glossy_march_coarse,
+                  "cluster: glossy clusters' lobe rays march an image of the nearest depth per B×B texels (1 = full image)")
+      ->capture_default_str()
+      ->group(kGroup);
+  app->add_option("--lod", f.cluster.lod_texels,
+                  "cluster: draw each object at the coarsest level of detail whose cell is at most this many texel "
+                  "footprints (0 = exact triangles)")
+      ->capture_default_str()
+      ->group(kGroup);
 }
 
 }  // namespace

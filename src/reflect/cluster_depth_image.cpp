@@ -101,6 +101,24 @@ struct InFrontOfClipPlane {
   }
 };
 
+// Appends the blocks of object `o` (of the scene `blocks` was built from) that may write a
+// fragment into the image.
+void keep_object_blocks(const ClusterVolume& volume, const CameraProjection& projection, float near,
+                        const TriangleBlocks& blocks, uint32_t o, float margin, std::vector<TriangleRun>& out) {
+  for (uint32_t i = blocks.object_first_block[o]; i < blocks.object_first_block[o + 1]; ++i) {
+    if (volume.box_outside(blocks.bounds[i], margin)) continue;
+    if (between_pixel_centres(projection, near, blocks.bounds[i], kCentreSlackPx)) continue;
+    out.push_back({blocks.first[i], blocks.count[i], blocks.first_vertex[i], blocks.vertex_count[i]});
+  }
+}
+
+// Triangle ids of a level-of-detail draw back to the source triangles they stand for.
+void to_source_triangles(std::span<const uint32_t> source_triangle, ImageU32& triangle) {
+  if (source_triangle.empty()) return;
+  for (uint32_t& t : triangle.data())
+    if (t != kNoTriangle) t = source_triangle[t];
+}
+
 // Images of an empty draw list: what the rasterizer leaves where nothing is drawn.
 RasterStats empty_images(const Camera& cam, RasterImages& out) {
   out.depth = ImageF(cam.width, cam.height, 1, kInf);
@@ -129,17 +147,6 @@ RasterOptions cluster_raster_options(const Scene& scene, const ClusterDrawList& 
 bool draws_nothing(const Scene& scene, const ClusterDrawList& draw) {
   if (draw.culled) return draw.triangles.empty();
   return draw.excluded_object != kNoObject && scene.objects.size() == 1 && draw.excluded_object == 0;
-}
-
-// Appends the blocks of object `o` that may write a fragment into the image.
-void cull_object(const ClusterVolume& volume, const CameraProjection& projection, float near,
-                 const TriangleBlocks& blocks, uint32_t o, float margin, std::vector<TriangleRun>& out) {
-  if (volume.box_outside(blocks.object_bounds[o], margin)) return;
-  for (uint32_t i = blocks.object_first_block[o]; i < blocks.object_first_block[o + 1]; ++i) {
-    if (volume.box_outside(blocks.bounds[i], margin)) continue;
-    if (between_pixel_centres(projection, near, blocks.bounds[i], kCentreSlackPx)) continue;
-    out.push_back({blocks.first[i], blocks.count[i], blocks.first_vertex[i], blocks.vertex_count[i]});
-  }
 }
 
 }  // namespace
@@ -190,8 +197,10 @@ bool cull_cluster_triangles(const Scene& scene, const TriangleBlocks& blocks, co
   if (scene.objects.empty() || blocks.object_first_block.size() != scene.objects.size() + 1) return false;
   const ClusterVolume volume(camera);
   const CameraProjection projection(camera.camera);
-  for (uint32_t o = 0; o < scene.objects.size(); ++o)
-    if (o != excluded_object) cull_object(volume, projection, camera.camera.near, blocks, o, margin, out);
+  for (uint32_t o = 0; o < scene.objects.size(); ++o) {
+    if (o == excluded_object || volume.box_outside(blocks.object_bounds[o], margin)) continue;
+    keep_object_blocks(volume, projection, camera.camera.near, blocks, o, margin, out);
+  }
   return true;
 }
 
@@ -199,8 +208,32 @@ bool cull_cluster_object(const Scene& scene, const TriangleBlocks& blocks, const
                          float margin, std::vector<TriangleRun>& out) {
   out.clear();
   if (scene.objects.empty() || blocks.object_first_block.size() != scene.objects.size() + 1) return false;
-  if (object < scene.objects.size())
-    cull_object(ClusterVolume(camera), CameraProjection(camera.camera), camera.camera.near, blocks, object, margin, out);
+  const ClusterVolume volume(camera);
+  if (object < scene.objects.size() && !volume.box_outside(blocks.object_bounds[object], margin))
+    keep_object_blocks(volume, CameraProjection(camera.camera), camera.camera.near, blocks, object, margin, out);
+  return true;
+}
+
+bool cull_cluster_triangles_lod(const SceneLod& lod, const TriangleBlocks& blocks, const ClusterCamera& camera,
+                                uint32_t excluded_object, float margin, float lod_texels, std::vector<TriangleRun>& out) {
+  out.clear();
+  if (lod.source_objects == 0 || blocks.object_first_block.size() != lod.objects.size() + 1) return false;
+  const ClusterVolume volume(camera);
+  const CameraProjection projection(camera.camera);
+  const Camera& cam = camera.camera;
+  const vec3 fwd = camera_forward(cam);
+  // A texel's footprint at depth z is z / focal (at the image centre; larger off-axis).
+  const float cell_per_depth = lod_texels / focal_length_px(cam);
+  for (uint32_t o = 0; o < lod.source_objects; ++o) {
+    const Bounds3& box = blocks.object_bounds[lod.object(0, o)];
+    if (o == excluded_object || volume.box_outside(box, margin)) continue;
+    float nearest = kInf;
+    for (int i = 0; i < 8; ++i) nearest = std::min(nearest, glm::dot(box.corner(i) - cam.position, fwd));
+    const float cell_max = std::max(nearest, cam.near) * cell_per_depth;
+    uint32_t level = 0;
+    while (level < lod.cell.size() && lod.cell[level] <= cell_max) ++level;
+    keep_object_blocks(volume, projection, cam.near, blocks, lod.object(level, o), margin, out);
+  }
   return true;
 }
 
@@ -209,7 +242,9 @@ RasterStats rasterize_cluster_image(const Scene& scene, const ClusterCamera& cam
   if (draws_nothing(scene, draw)) return empty_images(camera.camera, out);
   std::vector<uint32_t> others;
   const RasterOptions ro = cluster_raster_options(scene, draw, others);
-  return rasterize(scene, camera.camera, ro, out, InFrontOfClipPlane{scene, camera, draw.clip_margin});
+  const RasterStats stats = rasterize(scene, camera.camera, ro, out, InFrontOfClipPlane{scene, camera, draw.clip_margin});
+  to_source_triangles(draw.source_triangle, out.triangle);
+  return stats;
 }
 
 RasterStats rasterize_cluster_second_layer(const Scene& scene, const ClusterCamera& camera,
@@ -223,8 +258,10 @@ RasterStats rasterize_cluster_second_layer(const Scene& scene, const ClusterCame
   ro.cull = CullMode::Back;
   const BehindLayerTest behind{first.depth, first.triangle, separation};
   const InFrontOfClipPlane in_front{scene, camera, draw.clip_margin};
-  return rasterize(scene, camera.camera, ro, out,
-                   [&](const Fragment& fr) { return behind(fr) && in_front(fr); });
+  const RasterStats stats =
+      rasterize(scene, camera.camera, ro, out, [&](const Fragment& fr) { return behind(fr) && in_front(fr); });
+  to_source_triangles(draw.source_triangle, out.triangle);
+  return stats;
 }
 
 RasterStats rasterize_cluster_own_layer(const Scene& scene, const ClusterCamera& camera, const ClusterDrawList& draw,

@@ -87,6 +87,12 @@ bool quiet_steps4(const MarchLine& m, int i, bool may_fill, float& prev_alpha, f
 
 }  // namespace
 
+namespace {
+// The march over texel coordinates pb → pe (1/depth inv_zb → inv_ze) of `depth`.
+std::optional<DepthImageHit> march_texels(vec2 pb, vec2 pe, float inv_zb, float inv_ze, const ImageF& depth,
+                                          const MarchOptions& options);
+}  // namespace
+
 ImageF depth_block_min(const ImageF& depth, int block) {
   const int w = depth.width(), h = depth.height();
   const int bw = (w + block - 1) / block, bh = (h + block - 1) / block;
@@ -109,8 +115,20 @@ std::optional<DepthImageHit> march_depth_image(const CameraProjection& camera, c
   auto b = camera(begin);
   auto e = camera(end);
   if (!b || !e) return std::nullopt;
-  const vec2 pb = b->pixel, pe = e->pixel;
-  const float inv_zb = 1.0f / b->depth, inv_ze = 1.0f / e->depth;
+  const float to_texel = options.coarse > 1 ? 1.0f / float(options.coarse) : 1.0f;
+  const vec2 pb = b->pixel * to_texel, pe = e->pixel * to_texel;
+  if (options.coarse > 1) {
+    auto hit = march_texels(pb, pe, 1.0f / b->depth, 1.0f / e->depth, depth, options);
+    if (hit) hit->pixel *= float(options.coarse);
+    return hit;
+  }
+  return march_texels(pb, pe, 1.0f / b->depth, 1.0f / e->depth, depth, options);
+}
+
+namespace {
+
+std::optional<DepthImageHit> march_texels(vec2 pb, vec2 pe, float inv_zb, float inv_ze, const ImageF& depth,
+                                          const MarchOptions& options) {
   const int w = depth.width(), h = depth.height();
 
   // Clip the screen segment pb + α·(pe − pb) to the image, α ∈ [a0, a1].
@@ -225,5 +243,7 @@ std::optional<DepthImageHit> march_depth_image(const CameraProjection& camera, c
   }
   return fill;
 }
+
+}  // namespace
 
 }  // namespace proxima

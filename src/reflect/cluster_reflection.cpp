@@ -280,7 +280,16 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
   out.occlusion_cause.assign(n, uint8_t(OcclusionCause::None));
   // Culling hierarchy of the posed scene, built once per frame (part of step 3b).
   clock.restart();
-  const TriangleBlocks blocks = options.cull ? triangle_blocks(scene) : TriangleBlocks{};
+  // With levels of detail the cluster images are drawn from a scene holding every level.
+  std::optional<SceneLod> own_lod;
+  const SceneLod* lod = nullptr;
+  if (options.cull && options.lod_texels > 0.0f && !scene.objects.empty()) {
+    if (!options.lod) own_lod = build_scene_lod(scene, lod_cells(frame.scene_diagonal, kClusterLodLevels));
+    lod = options.lod ? options.lod : &*own_lod;
+  }
+  const Scene lod_scene = lod ? lod_draw_scene(*lod, scene) : Scene{};
+  const Scene& draw_scene = lod ? lod_scene : scene;
+  const TriangleBlocks blocks = options.cull ? triangle_blocks(draw_scene) : TriangleBlocks{};
   const float cull_margin = kCullMargin * frame.scene_diagonal;
   clock.add_to(st.depth_images_ms, st.depth_images_cpu_ms);
   RasterImages images, back, own;
@@ -289,6 +298,13 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
   ImageF color;
   std::vector<TriangleRun> drawn;
   std::vector<uint8_t> needed;
+  // Per-ray buffers of a cluster, reused across clusters: allocated per cluster they cost
+  // more in page faults and zeroing than the march of a small cluster.
+  enum Answer : uint8_t { kHit, kFill, kEnv, kSecond, kOwn };
+  std::vector<uint8_t> ray_occluded, answer, needs_second;
+  std::vector<float> second_t;
+  std::vector<vec3> ray_color;
+  std::vector<DepthImageHit> ray_hit;
   out.cameras = cameras;
   for (size_t c = 0; c < nc; ++c) {
     const std::span<const uint32_t> members = clusters.cluster(c);
@@ -316,9 +332,15 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     draw.excluded_object = k.planar ? kNoObject : clusters.reflector[c];
     draw.object_bounds = object_bounds;
     draw.clip_margin = cull_margin;
-    draw.culled = options.cull && cull_cluster_triangles(scene, blocks, k, draw.excluded_object, cull_margin, drawn);
+    draw.culled = options.cull && (lod ? cull_cluster_triangles_lod(*lod, blocks, k, draw.excluded_object, cull_margin,
+                                                                    options.lod_texels, drawn)
+                                       : cull_cluster_triangles(scene, blocks, k, draw.excluded_object, cull_margin, drawn));
+    if (lod) {
+      draw.object_bounds = blocks.object_bounds;
+      draw.source_triangle = lod->source_triangle;
+    }
     draw.triangles = drawn;
-    RasterStats rs = rasterize_cluster_image(scene, k, draw, images);
+    RasterStats rs = rasterize_cluster_image(draw_scene, k, draw, images);
     st.objects_drawn += rs.objects_drawn;
     st.triangles_drawn += rs.triangles_submitted;
     st.texels += uint64_t(cam.width) * uint64_t(cam.height);
@@ -335,13 +357,20 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     march.block = block;
     const ImageF block_min = block > 0 ? depth_block_min(images.depth, block) : ImageF();
     if (block > 0) march.block_min = &block_min;
+    // Lobe rays, averaged per sample, march a coarser image of block nearest depths.
+    march.coarse = glossy ? options.glossy_march_coarse : 1;
+    const ImageF coarse_depth = march.coarse > 1 ? depth_block_min(images.depth, march.coarse) : ImageF();
+    if (march.coarse > 1) march.block_min = nullptr;
+    const ImageF& march_depth = march.coarse > 1 ? coarse_depth : images.depth;
     const uint32_t ray_base = frame.first_ray[members.front()];
     const size_t ray_count = frame.first_ray[members.back() + 1] - ray_base;
-    std::vector<uint8_t> ray_occluded(ray_count, 0);
-    std::vector<vec3> ray_color(ray_count, vec3(0.0f));
-    std::vector<DepthImageHit> ray_hit(ray_count);
-    enum Answer : uint8_t { kHit, kFill, kEnv, kSecond, kOwn };
-    std::vector<uint8_t> answer(ray_count, kHit);
+    // The span of rays can hold rays of samples of other clusters between the members':
+    // those stay `kEnv` (no texel marked for them). Every other entry read is written
+    // first, so hits and colors are only resized; the flags start at zero.
+    ray_occluded.assign(ray_count, 0);
+    ray_color.resize(ray_count);
+    ray_hit.resize(ray_count);
+    answer.assign(ray_count, kEnv);
     // Glossy hits in the last fade_fraction of the far distance fade to the environment.
     auto fade_at = [&](float t, vec3 dir, vec3 c_hit) {
       float w = std::clamp((far - t) / (options.fade_fraction * far), 0.0f, 1.0f);
@@ -353,8 +382,8 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     // The second layer (rays off the centre only) is needed by rays that went behind a
     // first-layer surface for good or found nothing.
     const bool layered = options.second_layer && (!k.planar || glossy);
-    std::vector<uint8_t> needs_second(layered ? ray_count : 0, 0);
-    std::vector<float> second_t(layered ? ray_count : 0, kInf);
+    needs_second.assign(layered ? ray_count : 0, 0);
+    second_t.assign(layered ? ray_count : 0, kInf);
     parallel_for(members.size(), 64, [&](size_t b, size_t e) {
       for (size_t m = b; m < e; ++m) {
         const uint32_t i = members[m];
@@ -363,7 +392,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
           float t0 = 0.0f, t1 = 0.0f;
           std::optional<DepthImageHit> hit;
           const bool inside = clip_ray(k, o, dir, far, t0, t1);
-          if (inside) hit = march_depth_image(projection, images.depth, o + t0 * dir, o + t1 * dir, march);
+          if (inside) hit = march_depth_image(projection, march_depth, o + t0 * dir, o + t1 * dir, march);
           if (layered && inside && (!hit || hit->filled)) needs_second[r - ray_base] = 1;
           if (hit) {
             ray_hit[r - ray_base] = *hit;
@@ -401,7 +430,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
       // Step 3b for the second layer: the nearest front face behind the first layer, e.g.
       // the wall behind a fixture standing on a glossy floor.
       clock.restart();
-      rs = rasterize_cluster_second_layer(scene, k, draw, images, options.second_layer_separation, back);
+      rs = rasterize_cluster_second_layer(draw_scene, k, draw, images, options.second_layer_separation, back);
       st.triangles_drawn += rs.triangles_submitted;
       st.second_layer_texels += uint64_t(cam.width) * uint64_t(cam.height);
       clock.add_to(st.depth_images_ms, st.depth_images_cpu_ms);

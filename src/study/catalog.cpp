@@ -437,6 +437,10 @@ Entry cluster_entry() {
                        &C::second_layer));
   f.push_back(field<O>("march_block", "block size of the depth minima the march skips with (0 = none; same result)",
                        &O::cluster, &C::march_block));
+  f.push_back(field<O>("glossy_march_coarse", "glossy lobe rays march the nearest depth per B×B texels (1 = full image)",
+                       &O::cluster, &C::glossy_march_coarse));
+  f.push_back(field<O>("lod", "level of detail: largest cell in texel footprints (0 = exact triangles)", &O::cluster,
+                       &C::lod_texels));
   return entry<O>("cluster_reflect", "reflections from clustered depth images (proxima reflect --method cluster)",
                   std::move(f), run_cluster_reflect, cluster_finish, run_cluster_reflect_part,
                   cluster_reflect_results);

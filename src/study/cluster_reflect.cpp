@@ -607,6 +607,8 @@ void validate(const ClusterReflectOptions& o) {
   require_in_range(o.cube_size, 1, kMaxImageSide, "--cube-size");
   validate(o.envmap_groups);
   require_in_range(o.cluster.march_block, 0, 256, "--march-block");
+  require_in_range(o.cluster.lod_texels, 0.0f, 16.0f, "--lod");
+  require_in_range(o.cluster.glossy_march_coarse, 1, 64, "--glossy-march-coarse");
   validate(o.ssr_options);
 }
 
@@ -626,6 +628,13 @@ void run_frames(const Scene& rest, const ClusterReflectOptions& o, const Schedul
   const ReflectionOptions& ro = o.reflection;
   const int image_index = o.image_frame < 0 ? sched.indices.front() : o.image_frame;
   if (progress) progress->begin("reflect cluster", last - first);
+  // The levels of detail, once per scene (rest pose; posing is rigid per object).
+  SceneLod lod;
+  ClusterReflectOptions with_lod = o;
+  if (o.cluster.lod_texels > 0.0f) {
+    lod = build_scene_lod(rest, lod_cells(std::max(scene_bounds(rest).diagonal(), 1e-3f), kClusterLodLevels));
+    with_lod.cluster.lod = &lod;
+  }
   for (int k = first; k < last; ++k) {
     const int frame_index = sched.indices[size_t(k)];
     if (progress) progress->step("frame " + std::to_string(frame_index) + "/" + std::to_string(sched.frames));
@@ -634,7 +643,7 @@ void run_frames(const Scene& rest, const ClusterReflectOptions& o, const Schedul
     const Scene& scene = has_animation(rest) ? posed : rest;
     const Camera camera = sched.sequence ? camera_at_time(*sched.path, t, o.width, o.height, 0.01f, far)
                                          : pick_camera(rest, o.camera, o.width, o.height);
-    const FrameRun f = run_frame(scene, camera, o, ro);
+    const FrameRun f = run_frame(scene, camera, with_lod, ro);
     const ImageU8 mask = reflective_pixel_mask(f.frame);
     size_t reflective = 0;
     for (uint8_t m : mask.data()) reflective += m;

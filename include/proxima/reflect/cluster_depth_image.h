@@ -19,6 +19,7 @@
 
 #include "proxima/raster/rasterizer.h"
 #include "proxima/reflect/cluster_camera.h"
+#include "proxima/reflect/scene_lod.h"
 #include "proxima/scene/scene.h"
 
 namespace proxima {
@@ -54,6 +55,13 @@ bool cull_cluster_triangles(const Scene& scene, const TriangleBlocks& blocks, co
 // tests of cull_cluster_triangles). False when the scene has no objects.
 bool cull_cluster_object(const Scene& scene, const TriangleBlocks& blocks, const ClusterCamera& camera, uint32_t object,
                          float margin, std::vector<TriangleRun>& out);
+// The same with levels of detail: `blocks` of lod_draw_scene(lod, …), `excluded_object` a
+// source object. Each source object is drawn at the coarsest level whose cell is at most
+// `lod_texels` texel footprints at the nearest depth of its bounds (footprint = depth /
+// focal length in pixels), level 0 (the exact triangles) when no level's cell is small
+// enough. Not exact: the image differs from the exact one by up to about a cell.
+bool cull_cluster_triangles_lod(const SceneLod& lod, const TriangleBlocks& blocks, const ClusterCamera& camera,
+                                uint32_t excluded_object, float margin, float lod_texels, std::vector<TriangleRun>& out);
 
 // Which triangles a cluster image draws: all of the scene but `excluded_object`
 // (`culled` = false), or exactly the runs `triangles` (`culled` = true, e.g. from
@@ -66,6 +74,9 @@ struct ClusterDrawList {
   // Meters (> 0, far above float rounding): triangles wholly this far in front of the clip
   // plane keep every fragment without the per-fragment clip test (the same image).
   float clip_margin = kInf;
+  // Drawing a SceneLod's levels (the scene passed is lod_draw_scene): per drawn triangle the
+  // source triangle, which the images' triangle ids are mapped to. Empty = the scene's own.
+  std::span<const uint32_t> source_triangle;
 };
 
 // First layer: depth (−z_cam), triangle id and barycentrics of the nearest surface in

@@ -19,6 +19,7 @@
 #include "proxima/reflect/cluster_camera.h"
 #include "proxima/reflect/reflection_clustering.h"
 #include "proxima/reflect/reflection_frame.h"
+#include "proxima/reflect/scene_lod.h"
 #include "proxima/scene/scene.h"
 #include "proxima/trace/ray_scene.h"
 
@@ -38,6 +39,10 @@ struct ClusterReflectionOptions {
   bool second_layer = true;
   float second_layer_separation = 0.05f;
   int march_block = 0;  // > 0: block size of depth minima the march skips with (same result); 0 = none
+  // Not in the thesis: > 1, the lobe rays of glossy clusters march an image of the nearest
+  // depth per glossy_march_coarse² block of texels (MarchOptions::coarse; colors still
+  // from the full image); 1 = every ray marches the full image.
+  int glossy_march_coarse = 1;
   // Each cluster image draws only the triangle blocks its frustum and clip plane can hold
   // (cluster_depth_image.h; identical images); false = every cluster draws the whole scene.
   bool cull = true;
@@ -51,7 +56,18 @@ struct ClusterReflectionOptions {
   float own_layer_separation = 2.0f;
   int own_layer_scale = 4;       // own-layer texels per cluster-image texel, per axis
   int own_layer_max_side = 512;  // ... while its longer side stays at most this
+  // Not in the thesis: with culling, lod_texels > 0 draws each object of a cluster image at
+  // the coarsest level of detail (scene_lod.h) whose cell is at most lod_texels texel
+  // footprints at the object's nearest depth; 0 = the exact triangles everywhere. `lod`:
+  // the levels of the scene (build_scene_lod with lod_cells; built once per scene by the
+  // caller); null = built in each call from the scene as posed.
+  float lod_texels = 0.0f;
+  const SceneLod* lod = nullptr;
 };
+
+// Levels of detail render_cluster_reflections builds when ClusterReflectionOptions::lod is
+// null: lod_cells(scene diagonal, kClusterLodLevels).
+inline constexpr int kClusterLodLevels = 9;
 
 // Why a ray's Embree hit is absent from its cluster image (the first cause that applies).
 enum class OcclusionCause : uint8_t {

@@ -35,6 +35,11 @@ struct MarchOptions {
   // Four steps at a time where SSE2 is available (runs that only move on are passed in one
   // check); false marches one step at a time. The result is identical.
   bool batch = true;
+  // > 1: `depth` is depth_block_min(image, coarse) of the camera's image, one texel per
+  // coarse × coarse block (nearest depth), and the march steps over it; hit pixels are
+  // returned in the camera's pixel coordinates. An approximation: surfaces are taken at
+  // their block's nearest depth and silhouettes grow by up to a block.
+  int coarse = 1;
 };
 
 // Per block × block tile of `depth` (1 channel) the minimum depth; ceil(w / block) × ceil(h / block).
