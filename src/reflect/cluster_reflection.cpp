@@ -290,6 +290,9 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
   const Scene lod_scene = lod ? lod_draw_scene(*lod, scene) : Scene{};
   const Scene& draw_scene = lod ? lod_scene : scene;
   const TriangleBlocks blocks = options.cull ? triangle_blocks(draw_scene) : TriangleBlocks{};
+  // The own layer draws the exact reflector: its blocks come from the scene itself.
+  const TriangleBlocks exact_blocks = options.cull && lod && options.own_layer ? triangle_blocks(scene) : TriangleBlocks{};
+  const TriangleBlocks& own_blocks = lod ? exact_blocks : blocks;
   const float cull_margin = kCullMargin * frame.scene_diagonal;
   clock.add_to(st.depth_images_ms, st.depth_images_cpu_ms);
   RasterImages images, back, own;
@@ -484,7 +487,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     if (own_drawn) {
       clock.restart();
       const Object& obj = scene.objects[own_object];
-      if (!options.cull || !cull_cluster_object(scene, blocks, own_k, own_object, cull_margin, own_runs))
+      if (!options.cull || !cull_cluster_object(scene, own_blocks, own_k, own_object, cull_margin, own_runs))
         own_runs.assign(1, TriangleRun{obj.first_triangle, obj.triangle_count, obj.first_vertex, obj.vertex_count});
       const float focal_k = focal_length_px(own_cam), p = footprint[c];
       // The points' footprint in texels at their depth, one more for the texels between them.
