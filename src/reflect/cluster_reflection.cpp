@@ -192,6 +192,15 @@ bool clip_ray(const ClusterCamera& k, vec3 origin, vec3 dir, float far_distance,
   return t0 < t1;
 }
 
+// Calls f(i, r) for every ray r of every sample i of a cluster, in parallel over its samples.
+template <typename F>
+void for_each_cluster_ray(const ReflectionFrame& frame, std::span<const uint32_t> members, F&& f) {
+  parallel_for(members.size(), 64, [&](size_t b, size_t e) {
+    for (size_t m = b; m < e; ++m)
+      for (uint32_t r = frame.first_ray[members[m]]; r < frame.first_ray[members[m] + 1]; ++r) f(members[m], r);
+  });
+}
+
 }  // namespace
 
 ClusterReflections render_cluster_reflections(const Scene& scene, const ReflectionFrame& frame,
@@ -387,24 +396,19 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     const bool layered = options.second_layer && (!k.planar || glossy);
     needs_second.assign(layered ? ray_count : 0, 0);
     second_t.assign(layered ? ray_count : 0, kInf);
-    parallel_for(members.size(), 64, [&](size_t b, size_t e) {
-      for (size_t m = b; m < e; ++m) {
-        const uint32_t i = members[m];
-        for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
-          const vec3 o = frame.origin[i], dir = frame.direction[r];
-          float t0 = 0.0f, t1 = 0.0f;
-          std::optional<DepthImageHit> hit;
-          const bool inside = clip_ray(k, o, dir, far, t0, t1);
-          if (inside) hit = march_depth_image(projection, march_depth, o + t0 * dir, o + t1 * dir, march);
-          if (layered && inside && (!hit || hit->filled)) needs_second[r - ray_base] = 1;
-          if (hit) {
-            ray_hit[r - ray_base] = *hit;
-            answer[r - ray_base] = hit->filled ? kFill : kHit;
-          } else {
-            ray_color[r - ray_base] = environment_radiance(scene.environment, dir);
-            answer[r - ray_base] = kEnv;
-          }
-        }
+    for_each_cluster_ray(frame, members, [&](uint32_t i, uint32_t r) {
+      const vec3 o = frame.origin[i], dir = frame.direction[r];
+      float t0 = 0.0f, t1 = 0.0f;
+      std::optional<DepthImageHit> hit;
+      const bool inside = clip_ray(k, o, dir, far, t0, t1);
+      if (inside) hit = march_depth_image(projection, march_depth, o + t0 * dir, o + t1 * dir, march);
+      if (layered && inside && (!hit || hit->filled)) needs_second[r - ray_base] = 1;
+      if (hit) {
+        ray_hit[r - ray_base] = *hit;
+        answer[r - ray_base] = hit->filled ? kFill : kHit;
+      } else {
+        ray_color[r - ray_base] = environment_radiance(scene.environment, dir);
+        answer[r - ray_base] = kEnv;
       }
     });
     clock.add_to(st.intersection_ms, st.intersection_cpu_ms);
@@ -416,16 +420,11 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     st.texel_shading_ms += clock.wall_ms();
     clock.add_to(st.depth_images_ms, st.depth_images_cpu_ms);
     clock.restart();
-    parallel_for(members.size(), 64, [&](size_t b, size_t e) {
-      for (size_t m = b; m < e; ++m) {
-        const uint32_t i = members[m];
-        for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
-          if (answer[r - ray_base] == kEnv) continue;
-          const DepthImageHit& hit = ray_hit[r - ray_base];
-          const vec3 c_hit = lookup_color(color, images.depth, hit.pixel, hit.depth);
-          ray_color[r - ray_base] = glossy ? fade(hit, frame.origin[i], frame.direction[r], c_hit) : c_hit;
-        }
-      }
+    for_each_cluster_ray(frame, members, [&](uint32_t i, uint32_t r) {
+      if (answer[r - ray_base] == kEnv) return;
+      const DepthImageHit& hit = ray_hit[r - ray_base];
+      const vec3 c_hit = lookup_color(color, images.depth, hit.pixel, hit.depth);
+      ray_color[r - ray_base] = glossy ? fade(hit, frame.origin[i], frame.direction[r], c_hit) : c_hit;
     });
     clock.add_to(st.intersection_ms, st.intersection_cpu_ms);
     const bool two_layers = layered && std::find(needs_second.begin(), needs_second.end(), 1) != needs_second.end();
@@ -443,28 +442,23 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
       MarchOptions plain;
       plain.block = block;
       if (block > 0) plain.block_min = &back_block_min;
-      parallel_for(members.size(), 64, [&](size_t b, size_t e) {
-        for (size_t m = b; m < e; ++m) {
-          const uint32_t i = members[m];
-          for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
-            if (!needs_second[r - ray_base]) continue;
-            const vec3 o = frame.origin[i], dir = frame.direction[r];
-            float t0 = 0.0f, t1 = 0.0f;
-            clip_ray(k, o, dir, far, t0, t1);
-            auto second = march_depth_image(projection, back.depth, o + t0 * dir, o + t1 * dir, plain);
-            if (!second) continue;
-            const int x = std::clamp(int(second->pixel.x), 0, cam.width - 1);
-            const int y = std::clamp(int(second->pixel.y), 0, cam.height - 1);
-            const uint32_t t = back.triangle.at(x, y);
-            if (t == kNoTriangle) continue;
-            const float u = back.barycentric.at(x, y, 0), v = back.barycentric.at(x, y, 1);
-            vec3 c_hit = shade_reflected_point(scene, t, u, v, cam.position - triangle_point(scene, t, u, v),
-                                               frame.area_light_samples);
-            ray_color[r - ray_base] = glossy ? fade(*second, o, dir, c_hit) : c_hit;
-            answer[r - ray_base] = kSecond;
-            second_t[r - ray_base] = glm::length(projection.unproject(second->pixel, second->depth) - o);
-          }
-        }
+      for_each_cluster_ray(frame, members, [&](uint32_t i, uint32_t r) {
+        if (!needs_second[r - ray_base]) return;
+        const vec3 o = frame.origin[i], dir = frame.direction[r];
+        float t0 = 0.0f, t1 = 0.0f;
+        clip_ray(k, o, dir, far, t0, t1);
+        auto second = march_depth_image(projection, back.depth, o + t0 * dir, o + t1 * dir, plain);
+        if (!second) return;
+        const int x = std::clamp(int(second->pixel.x), 0, cam.width - 1);
+        const int y = std::clamp(int(second->pixel.y), 0, cam.height - 1);
+        const uint32_t t = back.triangle.at(x, y);
+        if (t == kNoTriangle) return;
+        const float u = back.barycentric.at(x, y, 0), v = back.barycentric.at(x, y, 1);
+        vec3 c_hit = shade_reflected_point(scene, t, u, v, cam.position - triangle_point(scene, t, u, v),
+                                           frame.area_light_samples);
+        ray_color[r - ray_base] = glossy ? fade(*second, o, dir, c_hit) : c_hit;
+        answer[r - ray_base] = kSecond;
+        second_t[r - ray_base] = glm::length(projection.unproject(second->pixel, second->depth) - o);
       });
       clock.add_to(st.intersection_ms, st.intersection_cpu_ms);
     }
@@ -515,40 +509,35 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
       plain.block = block;
       if (block > 0) plain.block_min = &own_block_min;
       const Bounds3& box = own_box[own_object];
-      parallel_for(members.size(), 64, [&](size_t b, size_t e) {
-        for (size_t m = b; m < e; ++m) {
-          const uint32_t i = members[m];
-          for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
-            const vec3 o = frame.origin[i], dir = frame.direction[r];
-            float t0 = 0.0f, t1 = 0.0f;
-            if (!clip_ray(k, o, dir, far, t0, t1)) continue;
-            const uint8_t a = answer[r - ray_base];
-            if (a == kHit) {
-              const DepthImageHit& h = ray_hit[r - ray_base];
-              t1 = std::min(t1, glm::length(projection.unproject(h.pixel, h.depth) - o));
-            } else if (a == kSecond) {
-              t1 = std::min(t1, second_t[r - ray_base]);
-            }
-            // Past its own start surface: where the ray has risen `separation` above the
-            // sample's tangent plane (a hit before that is the surface it starts on).
-            t0 = std::max(t0, own_separation / std::max(glm::dot(dir, frame.normal[i]), 0.05f));
-            if (!clip_to_box(box, o, dir, t0, t1)) continue;
-            auto hit = march_depth_image(own_projection, own.depth, o + t0 * dir, o + t1 * dir, plain);
-            if (!hit) continue;
-            const int x = std::clamp(int(hit->pixel.x), 0, own_cam.width - 1);
-            const int y = std::clamp(int(hit->pixel.y), 0, own_cam.height - 1);
-            const uint32_t t = own.triangle.at(x, y);
-            // A ray meets a surface from its front; a "hit" on a back face is the ray passing
-            // behind a silhouette of the reflector.
-            if (t == kNoTriangle || !(glm::dot(dir, triangle_normal(scene, t)) < 0.0f)) continue;
-            const float u = own.barycentric.at(x, y, 0), v = own.barycentric.at(x, y, 1);
-            const vec3 c_hit = shade_reflected_point(scene, t, u, v, cam.position - triangle_point(scene, t, u, v),
-                                                     frame.area_light_samples);
-            const float t_hit = glm::length(own_projection.unproject(hit->pixel, hit->depth) - o);
-            ray_color[r - ray_base] = glossy ? fade_at(t_hit, dir, c_hit) : c_hit;
-            answer[r - ray_base] = kOwn;
-          }
+      for_each_cluster_ray(frame, members, [&](uint32_t i, uint32_t r) {
+        const vec3 o = frame.origin[i], dir = frame.direction[r];
+        float t0 = 0.0f, t1 = 0.0f;
+        if (!clip_ray(k, o, dir, far, t0, t1)) return;
+        const uint8_t a = answer[r - ray_base];
+        if (a == kHit) {
+          const DepthImageHit& h = ray_hit[r - ray_base];
+          t1 = std::min(t1, glm::length(projection.unproject(h.pixel, h.depth) - o));
+        } else if (a == kSecond) {
+          t1 = std::min(t1, second_t[r - ray_base]);
         }
+        // Past its own start surface: where the ray has risen `separation` above the
+        // sample's tangent plane (a hit before that is the surface it starts on).
+        t0 = std::max(t0, own_separation / std::max(glm::dot(dir, frame.normal[i]), 0.05f));
+        if (!clip_to_box(box, o, dir, t0, t1)) return;
+        auto hit = march_depth_image(own_projection, own.depth, o + t0 * dir, o + t1 * dir, plain);
+        if (!hit) return;
+        const int x = std::clamp(int(hit->pixel.x), 0, own_cam.width - 1);
+        const int y = std::clamp(int(hit->pixel.y), 0, own_cam.height - 1);
+        const uint32_t t = own.triangle.at(x, y);
+        // A ray meets a surface from its front; a "hit" on a back face is the ray passing
+        // behind a silhouette of the reflector.
+        if (t == kNoTriangle || !(glm::dot(dir, triangle_normal(scene, t)) < 0.0f)) return;
+        const float u = own.barycentric.at(x, y, 0), v = own.barycentric.at(x, y, 1);
+        const vec3 c_hit = shade_reflected_point(scene, t, u, v, cam.position - triangle_point(scene, t, u, v),
+                                                 frame.area_light_samples);
+        const float t_hit = glm::length(own_projection.unproject(hit->pixel, hit->depth) - o);
+        ray_color[r - ray_base] = glossy ? fade_at(t_hit, dir, c_hit) : c_hit;
+        answer[r - ray_base] = kOwn;
       });
       clock.add_to(st.intersection_ms, st.intersection_cpu_ms);
     }
@@ -573,37 +562,32 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
       return p && held_near(own, p->pixel, p->depth, tri);
     };
     if (reference) {
-      parallel_for(members.size(), 64, [&](size_t b, size_t e) {
-        for (size_t m = b; m < e; ++m) {
-          const uint32_t i = members[m];
-          for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
-            if (reference->hit_triangle[r] == kNoTriangle) continue;
-            const vec3 o = frame.origin[i], dir = frame.direction[r];
-            const vec3 x = o + reference->hit_t[r] * dir;
-            const uint32_t tri = reference->hit_triangle[r];
-            auto pr = projection(x);
-            OcclusionCause cause = OcclusionCause::None;
-            if (reference->hit_t[r] > far)
-              cause = OcclusionCause::None;  // beyond the (glossy) far distance: faded out by design
-            else if (glm::dot(x - k.plane_point, k.plane_normal) <= k.clip_offset)
-              cause = OcclusionCause::BehindNear;
-            else if (!pr || pr->pixel.x < 0.0f || pr->pixel.y < 0.0f || pr->pixel.x >= float(cam.width) ||
-                     pr->pixel.y >= float(cam.height))
-              cause = OcclusionCause::OutsideImage;
-            else if (!k.planar && scene.triangle_object[tri] == own_object &&
-                     !(own_drawn && held_in_own(x, tri)))
-              cause = OcclusionCause::OwnReflector;
-            else if (!visible_near(images, pr->pixel, pr->depth, tri) &&
-                     !(two_layers && visible_near(back, pr->pixel, pr->depth, tri)))
-              // Hidden only if no texel within one of its projection holds the surface or
-              // something at its depth or beyond (resolution is not occlusion), in either layer.
-              cause = OcclusionCause::Hidden;
-            if (cause != OcclusionCause::None) {
-              out.flags[i] |= kOcclusionError;
-              ray_occluded[r - ray_base] = 1;
-              if (out.occlusion_cause[i] == uint8_t(OcclusionCause::None)) out.occlusion_cause[i] = uint8_t(cause);
-            }
-          }
+      for_each_cluster_ray(frame, members, [&](uint32_t i, uint32_t r) {
+        if (reference->hit_triangle[r] == kNoTriangle) return;
+        const vec3 o = frame.origin[i], dir = frame.direction[r];
+        const vec3 x = o + reference->hit_t[r] * dir;
+        const uint32_t tri = reference->hit_triangle[r];
+        auto pr = projection(x);
+        OcclusionCause cause = OcclusionCause::None;
+        if (reference->hit_t[r] > far)
+          cause = OcclusionCause::None;  // beyond the (glossy) far distance: faded out by design
+        else if (glm::dot(x - k.plane_point, k.plane_normal) <= k.clip_offset)
+          cause = OcclusionCause::BehindNear;
+        else if (!pr || pr->pixel.x < 0.0f || pr->pixel.y < 0.0f || pr->pixel.x >= float(cam.width) ||
+                 pr->pixel.y >= float(cam.height))
+          cause = OcclusionCause::OutsideImage;
+        else if (!k.planar && scene.triangle_object[tri] == own_object &&
+                 !(own_drawn && held_in_own(x, tri)))
+          cause = OcclusionCause::OwnReflector;
+        else if (!visible_near(images, pr->pixel, pr->depth, tri) &&
+                 !(two_layers && visible_near(back, pr->pixel, pr->depth, tri)))
+          // Hidden only if no texel within one of its projection holds the surface or
+          // something at its depth or beyond (resolution is not occlusion), in either layer.
+          cause = OcclusionCause::Hidden;
+        if (cause != OcclusionCause::None) {
+          out.flags[i] |= kOcclusionError;
+          ray_occluded[r - ray_base] = 1;
+          if (out.occlusion_cause[i] == uint8_t(OcclusionCause::None)) out.occlusion_cause[i] = uint8_t(cause);
         }
       });
     }
