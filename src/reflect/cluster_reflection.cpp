@@ -192,6 +192,18 @@ bool clip_ray(const ClusterCamera& k, vec3 origin, vec3 dir, float far_distance,
   return t0 < t1;
 }
 
+// A march without fill over `depth` that skips runs of texels the ray stays in front of by
+// their block minima (block > 0; kept in `block_min`).
+MarchOptions block_march(const ImageF& depth, int block, ImageF& block_min) {
+  MarchOptions o;
+  o.block = block;
+  if (block > 0) {
+    block_min = depth_block_min(depth, block);
+    o.block_min = &block_min;
+  }
+  return o;
+}
+
 // Calls f(i, r) for every ray r of every sample i of a cluster, in parallel over its samples.
 template <typename F>
 void for_each_cluster_ray(const ReflectionFrame& frame, std::span<const uint32_t> members, F&& f) {
@@ -367,12 +379,11 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     // Block minima let the march skip runs of texels the ray stays in front of.
     const int block = options.march_block;
     march.block = block;
-    const ImageF block_min = block > 0 ? depth_block_min(images.depth, block) : ImageF();
-    if (block > 0) march.block_min = &block_min;
     // Lobe rays, averaged per sample, march a coarser image of block nearest depths.
     march.coarse = glossy ? options.glossy_march_coarse : 1;
+    const ImageF block_min = block > 0 && march.coarse <= 1 ? depth_block_min(images.depth, block) : ImageF();
+    if (block > 0 && march.coarse <= 1) march.block_min = &block_min;
     const ImageF coarse_depth = march.coarse > 1 ? depth_block_min(images.depth, march.coarse) : ImageF();
-    if (march.coarse > 1) march.block_min = nullptr;
     const ImageF& march_depth = march.coarse > 1 ? coarse_depth : images.depth;
     const uint32_t ray_base = frame.first_ray[members.front()];
     const size_t ray_count = frame.first_ray[members.back() + 1] - ray_base;
@@ -438,10 +449,8 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
       clock.add_to(st.depth_images_ms, st.depth_images_cpu_ms);
       // Those rays marched again in it (without fill); its texels are shaded on demand.
       clock.restart();
-      const ImageF back_block_min = block > 0 ? depth_block_min(back.depth, block) : ImageF();
-      MarchOptions plain;
-      plain.block = block;
-      if (block > 0) plain.block_min = &back_block_min;
+      ImageF back_block_min;
+      const MarchOptions plain = block_march(back.depth, block, back_block_min);
       for_each_cluster_ray(frame, members, [&](uint32_t i, uint32_t r) {
         if (!needs_second[r - ray_base]) return;
         const vec3 o = frame.origin[i], dir = frame.direction[r];
@@ -504,10 +513,8 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     }
     if (own_holds) {
       clock.restart();
-      const ImageF own_block_min = block > 0 ? depth_block_min(own.depth, block) : ImageF();
-      MarchOptions plain;
-      plain.block = block;
-      if (block > 0) plain.block_min = &own_block_min;
+      ImageF own_block_min;
+      const MarchOptions plain = block_march(own.depth, block, own_block_min);
       const Bounds3& box = own_box[own_object];
       for_each_cluster_ray(frame, members, [&](uint32_t i, uint32_t r) {
         const vec3 o = frame.origin[i], dir = frame.direction[r];
