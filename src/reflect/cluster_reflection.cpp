@@ -474,9 +474,11 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
       });
       clock.add_to(st.intersection_ms, st.intersection_cpu_ms);
     }
-    // Own layer: a curved cluster's own reflector alone, without the surface its rays start
-    // on; every ray is marched again in it within the reflector's bounds, up to its hit so
-    // far, and a hit there answers it (shaded on demand).
+    // A curved cluster's own reflector, left out of its image: by default every ray is
+    // intersected exactly with its triangles (own_exact); else an own layer (that reflector
+    // alone, without the surface its rays start on) where every ray is marched again within
+    // the reflector's bounds, up to its hit so far, and a hit there answers it (shaded on
+    // demand).
     const uint32_t own_object = clusters.reflector[c];
     const bool own_drawn = options.own_layer && !k.planar && own_object < scene.objects.size();
     bool own_holds = false;
