@@ -48,6 +48,7 @@ set(PROXIMA_LIB_SOURCES
   src/reflect/envmap_set.cpp
   src/reflect/envmap_lookup.cpp
   src/reflect/envmap_reflection.cpp
+  src/reflect/object_bvh.cpp
   src/reflect/reflection_comparison.cpp
   src/reflect/reflection_frame.cpp
   src/reflect/scene_lod.cpp

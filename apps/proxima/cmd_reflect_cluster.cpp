@@ -61,6 +61,11 @@ void add_method_flags(CLI::App* app, ClusterReflectFlags& f) {
          "surface are marched in (true/false)")
       ->capture_default_str()
       ->group(kGroup);
+  app->add_option("--own-exact", f.cluster.own_exact,
+                  "cluster: rays of curved clusters are intersected exactly with their own reflector's triangles "
+                  "(true) or marched in its rasterized own layer (false)")
+      ->capture_default_str()
+      ->group(kGroup);
   app->add_option(
          "--march-block", f.cluster.march_block,
          "cluster: block size of the depth minima the march skips with (0 = texel by texel; same result)")

@@ -14,7 +14,7 @@ struct ClusterReflectFlags : study::ClusterReflectOptions {
 };
 
 // Adds the cluster-only flags (--frames --frame-step --ss --theta-bins --phi-bins
-// --min-bin-scale --resolution-scale --second-layer --march-block --image-frame
+// --min-bin-scale --resolution-scale --second-layer --own-exact --march-block --image-frame
 // --full-reference) to `app`.
 void add_cluster_reflect_flags(CLI::App* app, ClusterReflectFlags& flags);
 

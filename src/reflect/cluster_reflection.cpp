@@ -24,6 +24,7 @@
 #include "proxima/reflect/cluster_camera.h"
 #include "proxima/reflect/cluster_depth_image.h"
 #include "proxima/reflect/depth_image_march.h"
+#include "proxima/reflect/object_bvh.h"
 #include "proxima/scene/shading.h"
 
 namespace proxima {
@@ -319,6 +320,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
   RasterImages images, back, own;
   std::vector<TriangleRun> own_runs;
   std::vector<Bounds3> own_box(scene.objects.size());  // the reflectors' bounds, as needed
+  std::vector<std::optional<ObjectBvh>> own_bvh(scene.objects.size());  // built as needed
   ImageF color;
   std::vector<TriangleRun> drawn;
   std::vector<uint8_t> needed;
@@ -326,7 +328,8 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
   // more in page faults and zeroing than the march of a small cluster.
   enum Answer : uint8_t { kHit, kFill, kEnv, kSecond, kOwn };
   std::vector<uint8_t> ray_occluded, answer, needs_second;
-  std::vector<float> second_t;
+  std::vector<float> second_t, own_t;
+  std::vector<uint32_t> own_triangle;
   std::vector<vec3> ray_color;
   std::vector<DepthImageHit> ray_hit;
   out.cameras = cameras;
@@ -471,9 +474,11 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
       });
       clock.add_to(st.intersection_ms, st.intersection_cpu_ms);
     }
-    // Own layer: a curved cluster's own reflector alone, without the surface its rays start
-    // on; every ray is marched again in it within the reflector's bounds, up to its hit so
-    // far, and a hit there answers it (shaded on demand).
+    // A curved cluster's own reflector, left out of its image: by default every ray is
+    // intersected exactly with its triangles (own_exact); else an own layer (that reflector
+    // alone, without the surface its rays start on) where every ray is marched again within
+    // the reflector's bounds, up to its hit so far, and a hit there answers it (shaded on
+    // demand).
     const uint32_t own_object = clusters.reflector[c];
     const bool own_drawn = options.own_layer && !k.planar && own_object < scene.objects.size();
     bool own_holds = false;
@@ -487,7 +492,43 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     const Camera& own_cam = own_k.camera;
     const CameraProjection own_projection(own_cam);
     const float own_separation = options.own_layer_separation * footprint[c] + epsilon;
-    if (own_drawn) {
+    const bool own_exact = own_drawn && options.own_exact;
+    if (own_exact) {
+      // Every ray against its reflector's triangles, from its origin (as the reference
+      // traces it) up to its hit so far; the nearest hit there answers it, shaded towards
+      // the ray's origin.
+      const double cpu0 = process_cpu_ms();
+      clock.restart();
+      if (!own_bvh[own_object]) {
+        own_bvh[own_object].emplace(scene, own_object);
+        st.own_exact_triangles += scene.objects[own_object].triangle_count;
+      }
+      clock.add_to(st.depth_images_ms, st.depth_images_cpu_ms);
+      clock.restart();
+      const ObjectBvh& bvh = *own_bvh[own_object];
+      own_t.assign(ray_count, kInf);
+      own_triangle.assign(ray_count, kNoTriangle);
+      for_each_cluster_ray(frame, members, [&](uint32_t i, uint32_t r) {
+        const vec3 o = frame.origin[i], dir = frame.direction[r];
+        float t1 = far;
+        const uint8_t a = answer[r - ray_base];
+        if (a == kHit) {
+          const DepthImageHit& h = ray_hit[r - ray_base];
+          t1 = std::min(t1, glm::length(projection.unproject(h.pixel, h.depth) - o));
+        } else if (a == kSecond) {
+          t1 = std::min(t1, second_t[r - ray_base]);
+        }
+        const auto hit = bvh.intersect(o, dir, 0.0f, t1);
+        if (!hit) return;
+        const vec3 c_hit = shade_reflected_point(scene, hit->triangle, hit->u, hit->v, -dir, frame.area_light_samples);
+        ray_color[r - ray_base] = glossy ? fade_at(hit->t, dir, c_hit) : c_hit;
+        answer[r - ray_base] = kOwn;
+        own_t[r - ray_base] = hit->t;
+        own_triangle[r - ray_base] = hit->triangle;
+      });
+      clock.add_to(st.intersection_ms, st.intersection_cpu_ms);
+      st.own_exact_cpu_ms += process_cpu_ms() - cpu0;
+    } else if (own_drawn) {
       clock.restart();
       const Object& obj = scene.objects[own_object];
       if (!options.cull || !cull_cluster_object(scene, own_blocks, own_k, own_object, cull_margin, own_runs))
@@ -568,6 +609,12 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
       const auto p = own_projection(x);
       return p && held_near(own, p->pixel, p->depth, tri);
     };
+    // An exact own-reflector hit is right when it is the reference's triangle or point.
+    auto own_hit_right = [&](uint32_t r, uint32_t tri) {
+      const float t = reference->hit_t[r];
+      return own_exact && answer[r - ray_base] == kOwn &&
+             (own_triangle[r - ray_base] == tri || std::abs(own_t[r - ray_base] - t) <= 0.01f * t);
+    };
     if (reference) {
       for_each_cluster_ray(frame, members, [&](uint32_t i, uint32_t r) {
         if (reference->hit_triangle[r] == kNoTriangle) return;
@@ -578,13 +625,15 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
         OcclusionCause cause = OcclusionCause::None;
         if (reference->hit_t[r] > far)
           cause = OcclusionCause::None;  // beyond the (glossy) far distance: faded out by design
+        else if (own_hit_right(r, tri))
+          cause = OcclusionCause::None;  // the exact own-reflector test answered it with that surface
         else if (glm::dot(x - k.plane_point, k.plane_normal) <= k.clip_offset)
           cause = OcclusionCause::BehindNear;
         else if (!pr || pr->pixel.x < 0.0f || pr->pixel.y < 0.0f || pr->pixel.x >= float(cam.width) ||
                  pr->pixel.y >= float(cam.height))
           cause = OcclusionCause::OutsideImage;
         else if (!k.planar && scene.triangle_object[tri] == own_object &&
-                 !(own_drawn && held_in_own(x, tri)))
+                 !(own_drawn && !own_exact && held_in_own(x, tri)))
           cause = OcclusionCause::OwnReflector;
         else if (!visible_near(images, pr->pixel, pr->depth, tri) &&
                  !(two_layers && visible_near(back, pr->pixel, pr->depth, tri)))

@@ -113,7 +113,7 @@ struct ClusterSeries {
       occlusion_mirror_pct, occlusion_glossy_pct, full_r, full_g, full_b, traced_full, second_texels,
       second_ray_pct, cluster_cpu_ms, reference_cpu_ms, reference_dynamic_cpu_ms, step1_cpu_ms, cameras_cpu_ms,
       images_cpu_ms, intersection_cpu_ms, texel_shading_ms, triangles_drawn, shaded_texels, own_texels,
-      own_ray_pct;
+      own_ray_pct, own_exact_cpu_ms;
   Series cause_pct[kOcclusionCauses], cause_mirror_pct[kOcclusionCauses];
   // SSR and the box probe alone (ssr).
   Series ssr_ms, box_ms, ssr_r, ssr_g, ssr_b, box_r, box_g, box_b, ssr_fallback_pct, ssr_fallback_rays_pct,
@@ -371,6 +371,7 @@ void add_frame(const FrameRun& f, size_t reflective, size_t pixels, bool compare
     s.second_ray_pct.add(100.0 * double(st.second_layer_rays) / std::max<double>(1.0, double(st.rays)));
     s.own_texels.add(double(st.own_layer_texels));
     s.own_ray_pct.add(100.0 * double(st.own_layer_rays) / std::max<double>(1.0, double(st.rays)));
+    s.own_exact_cpu_ms.add(st.own_exact_cpu_ms);
     s.samples_per_cluster.add(double(st.reflective_samples) / double(st.clusters));
     s.planar_pct.add(100.0 * double(st.planar_samples) / samples);
   }
@@ -445,6 +446,7 @@ void add_metrics(const ClusterReflectOptions& o, const ClusterSeries& s, Results
   m["second_layer_rays_pct_avg"] = s.second_ray_pct.avg();
   m["own_layer_texels_avg"] = s.own_texels.avg();
   m["own_layer_rays_pct_avg"] = s.own_ray_pct.avg();
+  m["own_exact_cpu_ms_avg"] = s.own_exact_cpu_ms.avg();
   m["behind_fill_pct_avg"] = s.fill_pct.avg();
   m["planar_samples_pct_avg"] = s.planar_pct.avg();
   m["planar_samples_pct_max"] = s.planar_pct.max();
@@ -701,7 +703,7 @@ void for_each_series(S& s, F&& f) {
                   &s.traced_full, &s.second_texels, &s.second_ray_pct, &s.cluster_cpu_ms, &s.reference_cpu_ms,
                   &s.reference_dynamic_cpu_ms, &s.step1_cpu_ms, &s.cameras_cpu_ms, &s.images_cpu_ms,
                   &s.intersection_cpu_ms, &s.texel_shading_ms, &s.triangles_drawn, &s.shaded_texels, &s.own_texels,
-                  &s.own_ray_pct})
+                  &s.own_ray_pct, &s.own_exact_cpu_ms})
     f(*x);
   for (auto& x : s.cause_pct) f(x);
   for (auto& x : s.cause_mirror_pct) f(x);
@@ -713,7 +715,7 @@ void for_each_series(S& s, F&& f) {
 }
 
 // A series added to ClusterSeries but not listed above would be lost by a split run.
-constexpr size_t kClusterSeries = 44 + 2 * kOcclusionCauses + 12 + 5 + 4;
+constexpr size_t kClusterSeries = 45 + 2 * kOcclusionCauses + 12 + 5 + 4;
 static_assert(sizeof(ClusterSeries) == kClusterSeries * sizeof(Series), "list every series in for_each_series");
 
 }  // namespace

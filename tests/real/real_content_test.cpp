@@ -140,26 +140,22 @@ TEST(RealContent, EnvMapsInTheGallery) {
 
 // Cluster depth-image reflections: mean error per channel ≤ 6 / 3 / 9 (the
 // thesis'), occlusion-error samples ≤ 3 % on average.
-void expect_cluster_bounds(const fs::path& dir, const std::string& scene, bool known) {
+void expect_cluster_bounds(const fs::path& dir, const std::string& scene) {
   const Results r = run(dir, "cluster-" + scene, "reflect --method cluster", scene + ".json",
                         "--path walk --frames 100 --frame-step 50 --width 256 --height 192 --ss 2 --compare");
   const char* ch[] = {"r", "g", "b"};
   const double bound[] = {6.0, 3.0, 9.0};
   for (int c = 0; c < 3; ++c)
     expect_le(scene + " cluster_mae_" + ch[c], metric(r, std::string("cluster_mae_") + ch[c]), bound[c]);
-  const double occ = metric(r, "occlusion_error_pct_avg");
-  if (known)
-    known_failure(scene + " occlusion_error_pct_avg", occ, "≤", 3.0, occ <= 3.0);
-  else
-    expect_le(scene + " occlusion_error_pct_avg", occ, 3.0);
+  expect_le(scene + " occlusion_error_pct_avg", metric(r, "occlusion_error_pct_avg"), 3.0);
 }
 TEST(RealContent, ClusterReflectionsInTheHouse) {
   REQUIRE_CORPUS();
-  expect_cluster_bounds(dir, "house", true);
+  expect_cluster_bounds(dir, "house");
 }
 TEST(RealContent, ClusterReflectionsInTheGallery) {
   REQUIRE_CORPUS();
-  expect_cluster_bounds(dir, "gallery", false);
+  expect_cluster_bounds(dir, "gallery");
 }
 
 // Temporal reuse of reflections: mean error ≤ 1.0 on 0–255, ≤ 25 % of the

@@ -170,4 +170,105 @@ TEST(ClusterReflection, OwnLayerAnswersRaysThatHitTheirOwnConcaveReflector) {
   EXPECT_TRUE(one == own.radiance);
 }
 
+// A (u, v) grid of `nu` × `nv` quads over surface(u, v) in [0, 1]², front towards
+// normal(u, v) (each triangle wound so its face normal agrees with it).
+template <class Surface, class Normal>
+Mesh grid_mesh(int nu, int nv, Surface surface, Normal normal) {
+  Mesh m;
+  for (int j = 0; j <= nv; ++j)
+    for (int i = 0; i <= nu; ++i) {
+      const float u = float(i) / float(nu), v = float(j) / float(nv);
+      m.positions.push_back(surface(u, v));
+      m.normals.push_back(glm::normalize(normal(u, v)));
+    }
+  auto at = [&](int i, int j) { return uint32_t(j * (nu + 1) + i); };
+  auto add = [&](uint32_t a, uint32_t b, uint32_t c) {
+    const vec3 face = glm::cross(m.positions[b] - m.positions[a], m.positions[c] - m.positions[a]);
+    const vec3 want = m.normals[a] + m.normals[b] + m.normals[c];
+    m.triangles.push_back(glm::dot(face, want) >= 0.0f ? uvec3(a, b, c) : uvec3(a, c, b));
+  };
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      add(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      add(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  return m;
+}
+
+// A glossy tub chair, one object: a round, gently dished seat, a half-cylinder back 0.6 m
+// high around its rear half, and a slightly domed armrest top on that back. The seat's and
+// the armrest top's points share a normal bin, so a curved cluster holds points 0.6 m
+// apart along its normal that overlap in its camera's view; the seat's lobe rays hit the
+// back, the back's hit the seat and the armrests.
+TEST(ClusterReflection, OwnReflectorHitsAreRightWhereTheClusterOverlapsItself) {
+  Scene scene;
+  scene.name = "glossy-tub";
+  const uint32_t mat = test::add_diffuse(scene, vec3(0.3f, 0.5f, 0.8f), 0.8f, 0.3f);
+  const float pi = 3.14159265f, height = 0.6f;
+  Mesh tub = grid_mesh(
+      12, 32, [&](float u, float v) {
+        const float r = u, a = 2.0f * pi * v;
+        return vec3(r * std::cos(a), r * std::sin(a), 0.06f * r * r);
+      },
+      [&](float u, float v) {
+        const float a = 2.0f * pi * v;
+        return vec3(-0.12f * u * std::cos(a), -0.12f * u * std::sin(a), 1.0f);
+      });
+  append_mesh(tub, grid_mesh(
+                       24, 8, [&](float u, float v) {
+                         const float a = pi * u;
+                         return vec3(1.02f * std::cos(a), 1.02f * std::sin(a), 0.06f + (height - 0.06f) * v);
+                       },
+                       [&](float u, float) { return vec3(-std::cos(pi * u), -std::sin(pi * u), 0.0f); }));
+  append_mesh(tub, grid_mesh(
+                       24, 4, [&](float u, float v) {
+                         const float a = pi * u, r = 1.02f + 0.3f * v;
+                         return vec3(r * std::cos(a), r * std::sin(a), height + 0.08f * v * (1.0f - v));
+                       },
+                       [&](float u, float v) {
+                         const float a = pi * u, slope = 0.08f * (1.0f - 2.0f * v) / 0.3f;
+                         return vec3(-slope * std::cos(a), -slope * std::sin(a), 1.0f);
+                       }));
+  add_object(scene, tub, "glossy-tub", mat);
+  scene.point_lights.push_back({vec3(0.4f, -0.8f, 2.5f), vec3(8.0f)});
+  scene.ambient = vec3(0.1f);
+  const Camera eye = look_at(vec3(0.3f, -2.0f, 1.9f), vec3(0.0f, 0.2f, 0.2f), vec3(0, 0, 1), 60.0f, 48, 48, 0.01f, 100.0f);
+  ReflectionOptions opts;
+  opts.supersample = 2;
+  opts.glossy_rays = 8;
+  const ReflectionFrame frame = prepare_reflection_frame(scene, eye, opts);
+  ASSERT_GT(frame.sample_count(), 2000u);
+  RayScene rays(scene);
+  const TracedReflections traced = trace_reflections(scene, rays, frame);
+  ClusterReflectionOptions layer, exact;
+  layer.own_exact = false;
+  const ClusterReflections by_layer = render_cluster_reflections(scene, frame, layer, {}, &traced);
+  const ClusterReflections by_exact = render_cluster_reflections(scene, frame, exact, {}, &traced);
+  const uint64_t n = frame.sample_count();
+  const uint64_t before = by_layer.stats.occlusion_cause_samples[int(OcclusionCause::OwnReflector)];
+  const uint64_t after = by_exact.stats.occlusion_cause_samples[int(OcclusionCause::OwnReflector)];
+  const ImageU8 mask = reflective_pixel_mask(frame);
+  const ImageF truth = compose_reflections(frame, traced.radiance);
+  const double err_before = compare_images(compose_reflections(frame, by_layer.radiance), truth, &mask).mae_avg;
+  const double err_after = compare_images(compose_reflections(frame, by_exact.radiance), truth, &mask).mae_avg;
+  std::cout << "own_curved_reflector samples " << before << " -> " << after << " of " << n << ", occlusion "
+            << by_layer.stats.occlusion_error_samples << " -> " << by_exact.stats.occlusion_error_samples
+            << ", mae " << err_before << " -> " << err_after << "\n";
+  EXPECT_LT(by_exact.stats.planar_clusters, by_exact.stats.clusters);
+  EXPECT_GT(by_exact.stats.own_layer_rays, 0u);
+  EXPECT_GT(by_exact.stats.own_exact_triangles, 0u);
+  EXPECT_EQ(by_exact.stats.own_layer_texels, 0u);
+  // The own layer misses its own hits on a sizeable share of the samples; the exact test on
+  // almost none.
+  EXPECT_GT(before * 20, n) << before << " of " << n;
+  EXPECT_LT(after * 100, n) << after << " of " << n;
+  EXPECT_LT(err_after, err_before);
+  std::vector<vec3> one;
+  {
+    ThreadLimit limit(1);
+    one = render_cluster_reflections(scene, frame, exact, {}, &traced).radiance;
+  }
+  EXPECT_TRUE(one == by_exact.radiance);
+}
+
 }  // namespace proxima

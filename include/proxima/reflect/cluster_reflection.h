@@ -53,6 +53,11 @@ struct ClusterReflectionOptions {
   // (fragments up to own_layer_separation footprints behind the cluster's points at their
   // texel). false = left out.
   bool own_layer = true;
+  // With own_layer: true = instead of the own layer, each ray is intersected exactly with
+  // its own reflector's triangles (ObjectBvh, built once per frame and reflector), up to its
+  // hit so far: right per ray also where a strongly curved reflector's points overlap in the
+  // camera's view. Makes the method a hybrid (one object ray-traced per curved cluster).
+  bool own_exact = true;
   float own_layer_separation = 2.0f;
   int own_layer_scale = 4;       // own-layer texels per cluster-image texel, per axis
   int own_layer_max_side = 512;  // ... while its longer side stays at most this
@@ -74,7 +79,8 @@ enum class OcclusionCause : uint8_t {
   None = 0,
   BehindNear = 1,    // behind the near (fitting) plane, clipped out of the image
   OutsideImage = 2,  // projects outside the cluster image (outside the frustum)
-  OwnReflector = 3,  // on the cluster's own curved reflector, absent from its own layer
+  OwnReflector = 3,  // on the cluster's own curved reflector, absent from its own layer (own_exact: not
+                     // the ray's own-reflector hit)
   Hidden = 4,        // inside the frustum, hidden behind nearer surfaces of the image (in every layer)
 };
 inline constexpr int kOcclusionCauses = 5;
@@ -101,7 +107,10 @@ struct ClusterFrameStats {
   uint64_t second_layer_texels = 0;     // Σ second-layer image pixels
   uint64_t second_layer_rays = 0;       // rays answered by a hit in the second layer
   uint64_t own_layer_texels = 0;        // Σ own-layer image pixels
-  uint64_t own_layer_rays = 0;          // rays answered by a hit in the own layer
+  uint64_t own_layer_rays = 0;          // rays answered by a hit in the own layer (or own_exact test)
+  uint64_t own_exact_triangles = 0;     // Σ triangles of the reflectors own_exact built a BVH over
+  double own_exact_cpu_ms = 0.0;        // process CPU time of own_exact: BVH builds + ray tests
+                                        // (inside depth_images / intersection CPU ms)
   uint64_t planar_clusters = 0;
   uint64_t planar_samples = 0;          // samples in planar clusters
   double clustering_ms = 0.0;           // step 2
