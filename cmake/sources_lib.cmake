@@ -48,7 +48,6 @@ set(PROXIMA_LIB_SOURCES
   src/reflect/envmap_set.cpp
   src/reflect/envmap_lookup.cpp
   src/reflect/envmap_reflection.cpp
-  src/reflect/object_bvh.cpp
   src/reflect/reflection_comparison.cpp
   src/reflect/reflection_frame.cpp
   src/reflect/scene_lod.cpp
@@ -112,6 +111,7 @@ set(PROXIMA_LIB_SOURCES
   src/sweep/manifest.cpp
   src/sweep/sweep.cpp
   src/trace/direct_light.cpp
+  src/trace/object_bvh.cpp
   src/trace/ray_batch.cpp
   src/trace/ray_scene.cpp
   src/trace/reference_renderer.cpp

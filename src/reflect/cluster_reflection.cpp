@@ -24,7 +24,7 @@
 #include "proxima/reflect/cluster_camera.h"
 #include "proxima/reflect/cluster_depth_image.h"
 #include "proxima/reflect/depth_image_march.h"
-#include "proxima/reflect/object_bvh.h"
+#include "proxima/trace/object_bvh.h"
 #include "proxima/scene/shading.h"
 
 namespace proxima {

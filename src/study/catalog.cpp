@@ -435,6 +435,9 @@ Entry cluster_entry() {
                        &C::resolution_scale));
   f.push_back(field<O>("second_layer", "glossy and curved clusters get a second depth layer", &O::cluster,
                        &C::second_layer));
+  f.push_back(field<O>("own_exact",
+                       "curved clusters' rays intersected exactly with their own reflector (false = own layer)",
+                       &O::cluster, &C::own_exact));
   f.push_back(field<O>("march_block", "block size of the depth minima the march skips with (0 = none; same result)",
                        &O::cluster, &C::march_block));
   f.push_back(field<O>("glossy_march_coarse", "glossy lobe rays march the nearest depth per B×B texels (1 = full image)",

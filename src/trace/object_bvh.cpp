@@ -1,4 +1,4 @@
-#include "proxima/reflect/object_bvh.h"
+#include "proxima/trace/object_bvh.h"
 
 #include <algorithm>
 #include <cmath>

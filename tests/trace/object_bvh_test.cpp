@@ -3,7 +3,7 @@
 #include <iostream>
 
 #include "proxima/core/rng.h"
-#include "proxima/reflect/object_bvh.h"
+#include "proxima/trace/object_bvh.h"
 #include "proxima/trace/ray_scene.h"
 #include "trace/test_geometry.h"
 
