@@ -288,6 +288,79 @@ void depth_setup(const Setup& s, float* inv_depth, int width) {
   }
 }
 
+// An unclipped triangle straight into the depth-only image, keeping each pixel's greatest
+// 1/W: the setup of emit_setup and the fragments of depth_setup with the same arithmetic
+// (same bits), but without building a Setup, with the row scan inlined, and with the 1/W
+// plane (double, one division) computed only once a pixel center is covered — a triangle
+// of about one texel often covers none. Returns whether emit_setup would emit a setup.
+bool depth_triangle(SetupVertex a, SetupVertex b, SetupVertex c, bool cull_back, int width, int height,
+                    float* inv_depth) {
+  const int64_t area2 =
+      (int64_t(b.x) - a.x) * (int64_t(c.y) - a.y) - (int64_t(b.y) - a.y) * (int64_t(c.x) - a.x);
+  if (area2 == 0 || (cull_back && area2 > 0)) return false;
+  if (area2 < 0) std::swap(b, c);
+  const int32_t min_x = std::min({a.x, b.x, c.x}), max_x = std::max({a.x, b.x, c.x});
+  const int32_t min_y = std::min({a.y, b.y, c.y}), max_y = std::max({a.y, b.y, c.y});
+  const int x0 = std::max((min_x - kSubpixel / 2 + kSubpixel - 1) >> kSubpixelBits, 0);
+  const int y0 = std::max((min_y - kSubpixel / 2 + kSubpixel - 1) >> kSubpixelBits, 0);
+  const int x1 = std::min((max_x - kSubpixel / 2) >> kSubpixelBits, width - 1);
+  const int y1 = std::min((max_y - kSubpixel / 2) >> kSubpixelBits, height - 1);
+  if (x0 > x1 || y0 > y1) return false;
+
+  Setup s;
+  const SetupVertex* v[3] = {&a, &b, &c};
+  for (int i = 0; i < 3; ++i) {
+    s.x[i] = v[i]->x;
+    s.y[i] = v[i]->y;
+  }
+  int64_t e[3], step_x[3], step_y[3];
+  edge_functions(s, x0, y0, e, step_x, step_y);
+  bool have_plane = false;
+  float z0 = 0.0f, zx = 0.0f, zy = 0.0f;
+  for (int y = y0; y <= y1; ++y) {
+    int64_t e0 = e[0], e1 = e[1], e2 = e[2];
+    int x = x0;
+    while (x <= x1 && (e0 | e1 | e2) < 0) {
+      ++x;
+      e0 += step_x[0];
+      e1 += step_x[1];
+      e2 += step_x[2];
+    }
+    const int begin = x;
+    while (x <= x1 && (e0 | e1 | e2) >= 0) {
+      ++x;
+      e0 += step_x[0];
+      e1 += step_x[1];
+      e2 += step_x[2];
+    }
+    const int end = x;
+    if (begin < end) {
+      if (!have_plane) {
+        // emit_setup's plane of 1/W, referenced to the center of pixel (x0, y0).
+        const double inv_scale = 1.0 / kSubpixel;
+        const double x10 = (b.x - a.x) * inv_scale, y10 = (b.y - a.y) * inv_scale;
+        const double x20 = (c.x - a.x) * inv_scale, y20 = (c.y - a.y) * inv_scale;
+        const double inv_det = 1.0 / (x10 * y20 - x20 * y10);
+        const double ox = (x0 + 0.5) - a.x * inv_scale, oy = (y0 + 0.5) - a.y * inv_scale;
+        const double q0 = a.iw, d1 = double(b.iw) - q0, d2 = double(c.iw) - q0;
+        const double gx = (d1 * y20 - d2 * y10) * inv_det;
+        const double gy = (d2 * x10 - d1 * x20) * inv_det;
+        z0 = float(q0 + gx * ox + gy * oy);
+        zx = float(gx);
+        zy = float(gy);
+        have_plane = true;
+      }
+      const float z_row = z0 + zy * float(y - y0);
+      float* row = inv_depth + size_t(y) * size_t(width);
+      for (int px = begin; px < end; ++px) row[px] = std::max(row[px], z_row + zx * float(px - x0));
+    }
+    e[0] += step_y[0];
+    e[1] += step_y[1];
+    e[2] += step_y[2];
+  }
+  return true;
+}
+
 // Triangle setup and binning for draw-list positions [begin, end).
 void build_chunk(const Frame& frame, const ClipSpace& cs, bool cull_back, uint64_t begin, uint64_t end,
                  Chunk& chunk) {
@@ -675,9 +748,18 @@ RasterStats rasterize_depth_serial(const Scene& scene, const Camera& camera, std
     stats.triangles_submitted += triangle_count;
     for (uint32_t t = first_triangle; t < first_triangle + triangle_count; ++t) {
       const uvec3 idx = scene.triangles[t];
+      const ClipVertex &v0 = scratch.vertices[idx.x], &v1 = scratch.vertices[idx.y], &v2 = scratch.vertices[idx.z];
+      if (!((v0.code | v1.code | v2.code) & (kClipMask | kNotFinite))) {
+        const bool rejected = v0.code & v1.code & v2.code & kRejectMask;
+        const bool drawn = !rejected && depth_triangle({v0.fx, v0.fy, 1.0f / v0.W, 0.0f, 0.0f},
+                                                       {v1.fx, v1.fy, 1.0f / v1.W, 0.0f, 0.0f},
+                                                       {v2.fx, v2.fy, 1.0f / v2.W, 0.0f, 0.0f}, cull_back, w, h, image);
+        stats.triangles_culled += !drawn;
+        stats.triangles_rasterized += drawn;
+        continue;
+      }
       scratch.setups.clear();
-      const TriangleFate fate = setup_triangle(cs, scratch.vertices[idx.x], scratch.vertices[idx.y],
-                                               scratch.vertices[idx.z], t, cull_back, false, w, h, scratch.setups);
+      const TriangleFate fate = setup_triangle(cs, v0, v1, v2, t, cull_back, false, w, h, scratch.setups);
       stats.triangles_culled += fate == TriangleFate::Culled || fate == TriangleFate::ClippedAway;
       stats.triangles_clipped += fate == TriangleFate::Clipped || fate == TriangleFate::ClippedAway;
       stats.triangles_rasterized += scratch.setups.size();
