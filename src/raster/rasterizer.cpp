@@ -103,6 +103,39 @@ struct SetupVertex {
   float iw, u, v;
 };
 
+// The pixels whose centers (kSubpixel·x + kSubpixel/2) lie in the snapped triangle's
+// bounding box, clamped to the image; x0 > x1 or y0 > y1 when there are none.
+struct PixelBox {
+  int x0, y0, x1, y1;
+  bool empty() const { return x0 > x1 || y0 > y1; }
+};
+PixelBox pixel_box(const SetupVertex& a, const SetupVertex& b, const SetupVertex& c, int width, int height) {
+  const int32_t min_x = std::min({a.x, b.x, c.x}), max_x = std::max({a.x, b.x, c.x});
+  const int32_t min_y = std::min({a.y, b.y, c.y}), max_y = std::max({a.y, b.y, c.y});
+  return {std::max((min_x - kSubpixel / 2 + kSubpixel - 1) >> kSubpixelBits, 0),
+          std::max((min_y - kSubpixel / 2 + kSubpixel - 1) >> kSubpixelBits, 0),
+          std::min((max_x - kSubpixel / 2) >> kSubpixelBits, width - 1),
+          std::min((max_y - kSubpixel / 2) >> kSubpixelBits, height - 1)};
+}
+
+// Screen-space plane (value, d/dx, d/dy) of a quantity given at the snapped vertices
+// (q0, q1, q2), through them by Cramer's rule in double, referenced to the center of pixel
+// (x0, y0).
+void screen_plane(const SetupVertex& a, const SetupVertex& b, const SetupVertex& c, int x0, int y0, double q0,
+                  double q1, double q2, float* p) {
+  const double inv_scale = 1.0 / kSubpixel;
+  const double x10 = (b.x - a.x) * inv_scale, y10 = (b.y - a.y) * inv_scale;
+  const double x20 = (c.x - a.x) * inv_scale, y20 = (c.y - a.y) * inv_scale;
+  const double inv_det = 1.0 / (x10 * y20 - x20 * y10);
+  const double ox = (x0 + 0.5) - a.x * inv_scale, oy = (y0 + 0.5) - a.y * inv_scale;
+  const double d1 = q1 - q0, d2 = q2 - q0;
+  const double gx = (d1 * y20 - d2 * y10) * inv_det;
+  const double gy = (d2 * x10 - d1 * x20) * inv_det;
+  p[0] = float(q0 + gx * ox + gy * oy);
+  p[1] = float(gx);
+  p[2] = float(gy);
+}
+
 // Setup of one screen triangle; false when it covers no pixel center's bbox, is
 // degenerate after snapping, or is culled as a back face.
 bool emit_setup(SetupVertex a, SetupVertex b, SetupVertex c, uint32_t triangle, bool cull_back, bool with_uv,
@@ -113,15 +146,13 @@ bool emit_setup(SetupVertex a, SetupVertex b, SetupVertex c, uint32_t triangle, 
   if (area2 == 0 || (cull_back && area2 > 0)) return false;
   if (area2 < 0) std::swap(b, c);
 
-  // Pixels whose centers (kSubpixel·x + kSubpixel/2) lie in the bbox.
-  const int32_t min_x = std::min({a.x, b.x, c.x}), max_x = std::max({a.x, b.x, c.x});
-  const int32_t min_y = std::min({a.y, b.y, c.y}), max_y = std::max({a.y, b.y, c.y});
+  const PixelBox box = pixel_box(a, b, c, width, height);
+  if (box.empty()) return false;
   Setup s;
-  s.x0 = std::max((min_x - kSubpixel / 2 + kSubpixel - 1) >> kSubpixelBits, 0);
-  s.y0 = std::max((min_y - kSubpixel / 2 + kSubpixel - 1) >> kSubpixelBits, 0);
-  s.x1 = std::min((max_x - kSubpixel / 2) >> kSubpixelBits, width - 1);
-  s.y1 = std::min((max_y - kSubpixel / 2) >> kSubpixelBits, height - 1);
-  if (s.x0 > s.x1 || s.y0 > s.y1) return false;
+  s.x0 = box.x0;
+  s.y0 = box.y0;
+  s.x1 = box.x1;
+  s.y1 = box.y1;
 
   const SetupVertex* v[3] = {&a, &b, &c};
   for (int i = 0; i < 3; ++i) {
@@ -130,25 +161,11 @@ bool emit_setup(SetupVertex a, SetupVertex b, SetupVertex c, uint32_t triangle, 
   }
   s.triangle = triangle;
 
-  // Screen-space planes of 1/W, u/W, v/W through the snapped vertices (Cramer's rule in
-  // double), referenced to the center of pixel (x0, y0).
-  const double inv_scale = 1.0 / kSubpixel;
-  const double x10 = (b.x - a.x) * inv_scale, y10 = (b.y - a.y) * inv_scale;
-  const double x20 = (c.x - a.x) * inv_scale, y20 = (c.y - a.y) * inv_scale;
-  const double inv_det = 1.0 / (x10 * y20 - x20 * y10);
-  const double ox = (s.x0 + 0.5) - a.x * inv_scale, oy = (s.y0 + 0.5) - a.y * inv_scale;
-  auto plane = [&](double q0, double q1, double q2, float* p) {
-    const double d1 = q1 - q0, d2 = q2 - q0;
-    const double gx = (d1 * y20 - d2 * y10) * inv_det;
-    const double gy = (d2 * x10 - d1 * x20) * inv_det;
-    p[0] = float(q0 + gx * ox + gy * oy);
-    p[1] = float(gx);
-    p[2] = float(gy);
-  };
-  plane(a.iw, b.iw, c.iw, s.z);
+  // Screen-space planes of 1/W, u/W, v/W.
+  screen_plane(a, b, c, s.x0, s.y0, a.iw, b.iw, c.iw, s.z);
   if (with_uv) {
-    plane(double(a.u) * a.iw, double(b.u) * b.iw, double(c.u) * c.iw, s.u);
-    plane(double(a.v) * a.iw, double(b.v) * b.iw, double(c.v) * c.iw, s.v);
+    screen_plane(a, b, c, s.x0, s.y0, double(a.u) * a.iw, double(b.u) * b.iw, double(c.u) * c.iw, s.u);
+    screen_plane(a, b, c, s.x0, s.y0, double(a.v) * a.iw, double(b.v) * b.iw, double(c.v) * c.iw, s.v);
   }
   out.push_back(s);
   return true;
@@ -299,13 +316,9 @@ bool depth_triangle(SetupVertex a, SetupVertex b, SetupVertex c, bool cull_back,
       (int64_t(b.x) - a.x) * (int64_t(c.y) - a.y) - (int64_t(b.y) - a.y) * (int64_t(c.x) - a.x);
   if (area2 == 0 || (cull_back && area2 > 0)) return false;
   if (area2 < 0) std::swap(b, c);
-  const int32_t min_x = std::min({a.x, b.x, c.x}), max_x = std::max({a.x, b.x, c.x});
-  const int32_t min_y = std::min({a.y, b.y, c.y}), max_y = std::max({a.y, b.y, c.y});
-  const int x0 = std::max((min_x - kSubpixel / 2 + kSubpixel - 1) >> kSubpixelBits, 0);
-  const int y0 = std::max((min_y - kSubpixel / 2 + kSubpixel - 1) >> kSubpixelBits, 0);
-  const int x1 = std::min((max_x - kSubpixel / 2) >> kSubpixelBits, width - 1);
-  const int y1 = std::min((max_y - kSubpixel / 2) >> kSubpixelBits, height - 1);
-  if (x0 > x1 || y0 > y1) return false;
+  const PixelBox box = pixel_box(a, b, c, width, height);
+  if (box.empty()) return false;
+  const int x0 = box.x0, y0 = box.y0, x1 = box.x1;
 
   Setup s;
   const SetupVertex* v[3] = {&a, &b, &c};
@@ -316,8 +329,8 @@ bool depth_triangle(SetupVertex a, SetupVertex b, SetupVertex c, bool cull_back,
   int64_t e[3], step_x[3], step_y[3];
   edge_functions(s, x0, y0, e, step_x, step_y);
   bool have_plane = false;
-  float z0 = 0.0f, zx = 0.0f, zy = 0.0f;
-  for (int y = y0; y <= y1; ++y) {
+  float z[3] = {0.0f, 0.0f, 0.0f};  // the 1/W plane, once a pixel center is covered
+  for (int y = y0; y <= box.y1; ++y) {
     int64_t e0 = e[0], e1 = e[1], e2 = e[2];
     int x = x0;
     while (x <= x1 && (e0 | e1 | e2) < 0) {
@@ -336,23 +349,12 @@ bool depth_triangle(SetupVertex a, SetupVertex b, SetupVertex c, bool cull_back,
     const int end = x;
     if (begin < end) {
       if (!have_plane) {
-        // emit_setup's plane of 1/W, referenced to the center of pixel (x0, y0).
-        const double inv_scale = 1.0 / kSubpixel;
-        const double x10 = (b.x - a.x) * inv_scale, y10 = (b.y - a.y) * inv_scale;
-        const double x20 = (c.x - a.x) * inv_scale, y20 = (c.y - a.y) * inv_scale;
-        const double inv_det = 1.0 / (x10 * y20 - x20 * y10);
-        const double ox = (x0 + 0.5) - a.x * inv_scale, oy = (y0 + 0.5) - a.y * inv_scale;
-        const double q0 = a.iw, d1 = double(b.iw) - q0, d2 = double(c.iw) - q0;
-        const double gx = (d1 * y20 - d2 * y10) * inv_det;
-        const double gy = (d2 * x10 - d1 * x20) * inv_det;
-        z0 = float(q0 + gx * ox + gy * oy);
-        zx = float(gx);
-        zy = float(gy);
+        screen_plane(a, b, c, x0, y0, a.iw, b.iw, c.iw, z);
         have_plane = true;
       }
-      const float z_row = z0 + zy * float(y - y0);
+      const float z_row = z[0] + z[2] * float(y - y0);
       float* row = inv_depth + size_t(y) * size_t(width);
-      for (int px = begin; px < end; ++px) row[px] = std::max(row[px], z_row + zx * float(px - x0));
+      for (int px = begin; px < end; ++px) row[px] = std::max(row[px], z_row + z[1] * float(px - x0));
     }
     e[0] += step_y[0];
     e[1] += step_y[1];
