@@ -479,6 +479,15 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
     // alone, without the surface its rays start on) where every ray is marched again within
     // the reflector's bounds, up to its hit so far, and a hit there answers it (shaded on
     // demand).
+    // Ray r's distance to its hit so far (first or second layer), at most t1.
+    auto hit_so_far = [&](uint32_t r, vec3 o, float t1) {
+      const uint8_t a = answer[r - ray_base];
+      if (a == kHit) {
+        const DepthImageHit& h = ray_hit[r - ray_base];
+        return std::min(t1, glm::length(projection.unproject(h.pixel, h.depth) - o));
+      }
+      return a == kSecond ? std::min(t1, second_t[r - ray_base]) : t1;
+    };
     const uint32_t own_object = clusters.reflector[c];
     const bool own_drawn = options.own_layer && !k.planar && own_object < scene.objects.size();
     bool own_holds = false;
@@ -510,15 +519,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
       own_triangle.assign(ray_count, kNoTriangle);
       for_each_cluster_ray(frame, members, [&](uint32_t i, uint32_t r) {
         const vec3 o = frame.origin[i], dir = frame.direction[r];
-        float t1 = far;
-        const uint8_t a = answer[r - ray_base];
-        if (a == kHit) {
-          const DepthImageHit& h = ray_hit[r - ray_base];
-          t1 = std::min(t1, glm::length(projection.unproject(h.pixel, h.depth) - o));
-        } else if (a == kSecond) {
-          t1 = std::min(t1, second_t[r - ray_base]);
-        }
-        const auto hit = bvh.intersect(o, dir, 0.0f, t1);
+        const auto hit = bvh.intersect(o, dir, 0.0f, hit_so_far(r, o, far));
         if (!hit) return;
         const vec3 c_hit = shade_reflected_point(scene, hit->triangle, hit->u, hit->v, -dir, frame.area_light_samples);
         ray_color[r - ray_base] = glossy ? fade_at(hit->t, dir, c_hit) : c_hit;
@@ -561,13 +562,7 @@ ClusterReflections render_cluster_reflections(const Scene& scene, const Reflecti
         const vec3 o = frame.origin[i], dir = frame.direction[r];
         float t0 = 0.0f, t1 = 0.0f;
         if (!clip_ray(k, o, dir, far, t0, t1)) return;
-        const uint8_t a = answer[r - ray_base];
-        if (a == kHit) {
-          const DepthImageHit& h = ray_hit[r - ray_base];
-          t1 = std::min(t1, glm::length(projection.unproject(h.pixel, h.depth) - o));
-        } else if (a == kSecond) {
-          t1 = std::min(t1, second_t[r - ray_base]);
-        }
+        t1 = hit_so_far(r, o, t1);
         // Past its own start surface: where the ray has risen `separation` above the
         // sample's tangent plane (a hit before that is the surface it starts on).
         t0 = std::max(t0, own_separation / std::max(glm::dot(dir, frame.normal[i]), 0.05f));
