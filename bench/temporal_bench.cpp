@@ -19,6 +19,7 @@
 
 #include "proxima/core/parallel.h"
 #include "proxima/core/timer.h"
+#include "proxima/eval/image_error.h"
 #include "proxima/reflect/temporal_reuse.h"
 #include "proxima/scene/builtin_scenes.h"
 #include "proxima/scene/camera_path.h"
@@ -164,10 +165,12 @@ void BM_ReflectionCompose(benchmark::State& state) {
 // The walk's `frames` frames, each: the G-buffer, temporal reuse (timed), full reflection
 // tracing of the same frame (timed), the blend (timed). Counters: mean ms per frame of each
 // and their ratio, for the reflection work alone and for the whole frame (G-buffer, base
-// shading and ray set-up, reflections, blend: what a user waits for).
+// shading and ray set-up, reflections, blend: what a user waits for). `scene`: 0 =
+// living-room, 1 = bathroom (each along its walk); `blend`: --blend-error (8, the CLI's
+// default). Untimed: the MAE against the full trace, as `proxima reflect --compare` gives it.
 void BM_TemporalWalk(benchmark::State& state) {
   const int side = int(state.range(0)), frames = int(state.range(1)), threads = int(state.range(2));
-  const Scene scene = make_builtin_scene("living-room");
+  const Scene scene = make_builtin_scene(state.range(3) == 0 ? "living-room" : "bathroom");
   const RayScene rays(scene);
   const CameraPath& path = scene.camera_paths[size_t(find_camera_path(scene, "walk"))];
   const float t0 = path.keys.front().time, t1 = path.keys.back().time;
@@ -178,20 +181,25 @@ void BM_TemporalWalk(benchmark::State& state) {
   TemporalOptions to;  // the CLI's defaults where they differ from the library's
   to.keyframe_threshold = 0.3f;
   to.keyframe_cost = 1.0f;
-  to.warp.blend_error = 8.0f;
+  to.warp.blend_error = float(state.range(4));
   ThreadLimit limit(threads);
   // Wall and process CPU time: on a shared machine the CPU times are the steadier figures.
   double temporal_ms = 0.0, reference_ms = 0.0, temporal_cpu = 0.0, reference_cpu = 0.0;
   double shared_ms = 0.0, shared_cpu = 0.0;  // G-buffer pass and one blend per frame, both sides
   double key_ms = 0.0, match_ms = 0.0, warp_ms = 0.0, reproject_ms = 0.0, recompute_ms = 0.0;  // wall, per step
-  int keyframes = 0;
+  double key_cpu = 0.0, key_reference_cpu = 0.0;  // CPU time of the key frames, temporal and full trace
+  double recompute_pct = 0.0;      // Σ recomputed % of the reuse frames
+  double match_steps = 0.0, match_pixels = 0.0;  // Σ best-match descent steps and searched pixels
+  double mae = 0.0;                // Σ MAE against the full trace (untimed), frames with reflective pixels
+  int keyframes = 0, mae_frames = 0;
   for (auto _ : state) {
     TemporalState temporal;
     std::vector<vec3> reflected;
     std::vector<uint8_t> flags;
     temporal_ms = reference_ms = temporal_cpu = reference_cpu = shared_ms = shared_cpu = 0.0;
     key_ms = match_ms = warp_ms = reproject_ms = recompute_ms = 0.0;
-    keyframes = 0;
+    keyframes = mae_frames = 0;
+    key_cpu = key_reference_cpu = recompute_pct = match_steps = match_pixels = mae = 0.0;
     for (int f = 0; f < frames; ++f) {
       const float t = frames > 1 ? t0 + float(f) * (t1 - t0) / float(frames - 1) : t0;
       Stopwatch shared;
@@ -202,7 +210,13 @@ void BM_TemporalWalk(benchmark::State& state) {
       TemporalFrameStats st;
       cpu = process_cpu_ms();
       temporal_reflections_into(scene, rays, frame, temporal, to, reflected, &st, &flags);
-      temporal_cpu += process_cpu_ms() - cpu;
+      const double step_cpu = process_cpu_ms() - cpu;
+      temporal_cpu += step_cpu;
+      if (st.key) key_cpu += step_cpu;
+      if (!st.key) {
+        recompute_pct += 100.0 * st.recompute_fraction();
+        match_steps += double(st.match_steps), match_pixels += double(st.reflective);
+      }
       temporal_ms += st.reflection_ms();
       keyframes += st.key ? 1 : 0;
       key_ms += st.key_ms, match_ms += st.match_ms, warp_ms += st.warp_ms;
@@ -210,14 +224,21 @@ void BM_TemporalWalk(benchmark::State& state) {
       Stopwatch watch;
       cpu = process_cpu_ms();
       const TracedReflections traced = trace_reflections(scene, rays, frame);
-      reference_cpu += process_cpu_ms() - cpu;
+      const double trace_cpu = process_cpu_ms() - cpu;
+      reference_cpu += trace_cpu;
       reference_ms += watch.elapsed_ms();
+      if (st.key) key_reference_cpu += trace_cpu;
       benchmark::DoNotOptimize(traced.radiance.data());
       shared.restart();
       cpu = process_cpu_ms();
-      benchmark::DoNotOptimize(compose_reflections(frame, reflected).data().data());
+      const ImageF composite = compose_reflections(frame, reflected);
       shared_cpu += process_cpu_ms() - cpu;
       shared_ms += shared.elapsed_ms();
+      if (frame.sample_count() > 0) {  // the CLI's temporal_mae_avg (`proxima reflect --compare`)
+        const ImageU8 mask = reflective_pixel_mask(frame);
+        mae += compare_images(composite, compose_reflections(frame, traced.radiance), &mask).mae_avg;
+        ++mae_frames;
+      }
     }
   }
   state.counters["temporal_ms"] = temporal_ms / frames;
@@ -227,6 +248,11 @@ void BM_TemporalWalk(benchmark::State& state) {
   state.counters["reference_cpu_ms"] = reference_cpu / frames;
   state.counters["speedup_cpu"] = temporal_cpu > 0.0 ? reference_cpu / temporal_cpu : 0.0;
   state.counters["keyframes"] = keyframes;
+  state.counters["mae"] = mae_frames > 0 ? mae / mae_frames : 0.0;
+  state.counters["recompute_pct"] = keyframes < frames ? recompute_pct / double(frames - keyframes) : 0.0;
+  state.counters["match_steps_per_px"] = match_pixels > 0.0 ? match_steps / match_pixels : 0.0;
+  state.counters["key_cpu_ms"] = key_cpu / frames;  // per frame of the walk, key frames amortized
+  state.counters["key_reference_cpu_ms"] = key_reference_cpu / frames;  // the full trace on those frames
   state.counters["key_ms"] = key_ms / frames;  // per frame of the walk, key frames amortized
   state.counters["match_ms"] = match_ms / frames;
   state.counters["warp_ms"] = warp_ms / frames;
@@ -251,8 +277,8 @@ BENCHMARK(BM_TemporalTrace)->ArgsProduct({{256, 512, 1024}, {0}})->ArgNames({"si
 BENCHMARK(BM_ReflectionFramePrepare)->ArgsProduct({{1024}, {1, 2}})->ArgNames({"side", "threads"})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ReflectionCompose)->ArgsProduct({{1024}, {1, 2}})->ArgNames({"side", "threads"})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TemporalWalk)
-    ->ArgsProduct({{1024}, {100, 500}, {1, 2}})
-    ->ArgNames({"side", "frames", "threads"})
+    ->ArgsProduct({{1024}, {100, 500}, {1, 2}, {0, 1}, {8, 12, 16}})
+    ->ArgNames({"side", "frames", "threads", "scene", "blend"})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);
 
