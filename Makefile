@@ -52,7 +52,7 @@ test-real: build
 bench: build
 	$(BUILD)/proxima bench trace --out out/bench-trace
 
-# Debug build (-O1, assertions on) with AddressSanitizer + UndefinedBehaviorSanitizer (+ float-cast-overflow),
+# Debug build with AddressSanitizer + UndefinedBehaviorSanitizer (+ float-cast-overflow),
 # whole test suite. Every report is fatal (-fno-sanitize-recover), leaks included.
 SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:detect_stack_use_after_return=1:strict_string_checks=1 \
 	LSAN_OPTIONS=suppressions=$(CURDIR)/fuzz/lsan.supp UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
