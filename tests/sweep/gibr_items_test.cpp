@@ -94,17 +94,17 @@ TEST(SweepGibr, ALayerOutsideTheModelIsRefusedAtTheMerge) {
     gibr::add_photographs(m, std::move(photos), mo);
   };
   EXPECT_NO_THROW(merge([](gibr::PhotoMapping&, const gibr::GibrModel&) {}));
-  EXPECT_THROW(merge([](gibr::PhotoMapping& p, const gibr::GibrModel& m) {
-                 p.layers.layers.front().first = uint32_t(m.maps.grids.size());
+  EXPECT_THROW(merge([](gibr::PhotoMapping& photo, const gibr::GibrModel& m) {
+                 photo.layers.layers.front().first = uint32_t(m.maps.grids.size());
                }),
                InputError);
-  EXPECT_THROW(merge([](gibr::PhotoMapping& p, const gibr::GibrModel& m) {
-                 auto& [polygon, layer] = p.layers.layers.front();
+  EXPECT_THROW(merge([](gibr::PhotoMapping& photo, const gibr::GibrModel& m) {
+                 auto& [polygon, layer] = photo.layers.layers.front();
                  layer.x0 = m.maps.grids[polygon].width - layer.width + 1;
                }),
                InputError);
-  EXPECT_THROW(merge([](gibr::PhotoMapping& p, const gibr::GibrModel& m) {
-                 p.item_layers.layers.front().second.photo = uint32_t(m.cameras.size());
+  EXPECT_THROW(merge([](gibr::PhotoMapping& photo, const gibr::GibrModel& m) {
+                 photo.item_layers.layers.front().second.photo = uint32_t(m.cameras.size());
                }),
                InputError);
 }
