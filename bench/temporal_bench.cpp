@@ -212,8 +212,9 @@ void BM_TemporalWalk(benchmark::State& state) {
       temporal_reflections_into(scene, rays, frame, temporal, to, reflected, &st, &flags);
       const double step_cpu = process_cpu_ms() - cpu;
       temporal_cpu += step_cpu;
-      if (st.key) key_cpu += step_cpu;
-      if (!st.key) {
+      if (st.key) {
+        key_cpu += step_cpu;
+      } else {
         recompute_pct += 100.0 * st.recompute_fraction();
         match_steps += double(st.match_steps), match_pixels += double(st.reflective);
       }

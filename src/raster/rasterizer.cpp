@@ -118,6 +118,27 @@ PixelBox pixel_box(const SetupVertex& a, const SetupVertex& b, const SetupVertex
           std::min((max_y - kSubpixel / 2) >> kSubpixelBits, height - 1)};
 }
 
+// The common start of a triangle's setup: false when it is degenerate after snapping or
+// culled as a back face, or covers no pixel center's bbox; else b and c swapped if needed
+// so that the triangle is counter-clockwise on screen, its vertices in `s` and its pixel
+// box in `box`.
+bool orient_and_bound(SetupVertex& a, SetupVertex& b, SetupVertex& c, bool cull_back, int width, int height,
+                      Setup& s, PixelBox& box) {
+  const int64_t area2 =
+      (int64_t(b.x) - a.x) * (int64_t(c.y) - a.y) - (int64_t(b.y) - a.y) * (int64_t(c.x) - a.x);
+  // With y down, a counter-clockwise (front) scene triangle has area2 < 0.
+  if (area2 == 0 || (cull_back && area2 > 0)) return false;
+  if (area2 < 0) std::swap(b, c);
+  box = pixel_box(a, b, c, width, height);
+  if (box.empty()) return false;
+  const SetupVertex* v[3] = {&a, &b, &c};
+  for (int i = 0; i < 3; ++i) {
+    s.x[i] = v[i]->x;
+    s.y[i] = v[i]->y;
+  }
+  return true;
+}
+
 // Screen-space plane (value, d/dx, d/dy) of a quantity given at the snapped vertices
 // (q0, q1, q2), through them by Cramer's rule in double, referenced to the center of pixel
 // (x0, y0).
@@ -140,25 +161,13 @@ void screen_plane(const SetupVertex& a, const SetupVertex& b, const SetupVertex&
 // degenerate after snapping, or is culled as a back face.
 bool emit_setup(SetupVertex a, SetupVertex b, SetupVertex c, uint32_t triangle, bool cull_back, bool with_uv,
                 int width, int height, std::vector<Setup>& out) {
-  const int64_t area2 =
-      (int64_t(b.x) - a.x) * (int64_t(c.y) - a.y) - (int64_t(b.y) - a.y) * (int64_t(c.x) - a.x);
-  // With y down, a counter-clockwise (front) scene triangle has area2 < 0.
-  if (area2 == 0 || (cull_back && area2 > 0)) return false;
-  if (area2 < 0) std::swap(b, c);
-
-  const PixelBox box = pixel_box(a, b, c, width, height);
-  if (box.empty()) return false;
   Setup s;
+  PixelBox box;
+  if (!orient_and_bound(a, b, c, cull_back, width, height, s, box)) return false;
   s.x0 = box.x0;
   s.y0 = box.y0;
   s.x1 = box.x1;
   s.y1 = box.y1;
-
-  const SetupVertex* v[3] = {&a, &b, &c};
-  for (int i = 0; i < 3; ++i) {
-    s.x[i] = v[i]->x;
-    s.y[i] = v[i]->y;
-  }
   s.triangle = triangle;
 
   // Screen-space planes of 1/W, u/W, v/W.
@@ -312,20 +321,10 @@ void depth_setup(const Setup& s, float* inv_depth, int width) {
 // of about one texel often covers none. Returns whether emit_setup would emit a setup.
 bool depth_triangle(SetupVertex a, SetupVertex b, SetupVertex c, bool cull_back, int width, int height,
                     float* inv_depth) {
-  const int64_t area2 =
-      (int64_t(b.x) - a.x) * (int64_t(c.y) - a.y) - (int64_t(b.y) - a.y) * (int64_t(c.x) - a.x);
-  if (area2 == 0 || (cull_back && area2 > 0)) return false;
-  if (area2 < 0) std::swap(b, c);
-  const PixelBox box = pixel_box(a, b, c, width, height);
-  if (box.empty()) return false;
-  const int x0 = box.x0, y0 = box.y0, x1 = box.x1;
-
   Setup s;
-  const SetupVertex* v[3] = {&a, &b, &c};
-  for (int i = 0; i < 3; ++i) {
-    s.x[i] = v[i]->x;
-    s.y[i] = v[i]->y;
-  }
+  PixelBox box;
+  if (!orient_and_bound(a, b, c, cull_back, width, height, s, box)) return false;
+  const int x0 = box.x0, y0 = box.y0, x1 = box.x1;
   int64_t e[3], step_x[3], step_y[3];
   edge_functions(s, x0, y0, e, step_x, step_y);
   bool have_plane = false;

@@ -29,6 +29,45 @@ Scene mirror_and_wall() {
 
 const Camera kEye = look_at(vec3(0.4f, 0.3f, 2.5f), vec3(0.0f), vec3(0, 1, 0), 50.0f, 48, 48, 0.01f, 100.0f);
 
+// Cluster reflections of `scene` from `eye` (2 × 2 samples, 8 lobe rays on glossy
+// surfaces) with each option set of `variants`, against Embree on the same rays: per
+// variant the output, its samples with an own-reflector occlusion error and its MAE over
+// the reflective pixels; and whether the last variant gives the same bits on one thread.
+struct OwnRun {
+  ClusterReflections out;
+  uint64_t own_errors = 0;
+  double mae = 0.0;
+};
+struct OwnComparison {
+  uint64_t samples = 0;
+  std::vector<OwnRun> runs;
+  bool last_same_on_one_thread = false;
+};
+OwnComparison compare_own_variants(const Scene& scene, const Camera& eye,
+                                   const std::vector<ClusterReflectionOptions>& variants) {
+  ReflectionOptions opts;
+  opts.supersample = 2;
+  opts.glossy_rays = 8;
+  const ReflectionFrame frame = prepare_reflection_frame(scene, eye, opts);
+  RayScene rays(scene);
+  const TracedReflections traced = trace_reflections(scene, rays, frame);
+  const ImageU8 mask = reflective_pixel_mask(frame);
+  const ImageF truth = compose_reflections(frame, traced.radiance);
+  OwnComparison c;
+  c.samples = frame.sample_count();
+  for (const ClusterReflectionOptions& o : variants) {
+    OwnRun run;
+    run.out = render_cluster_reflections(scene, frame, o, {}, &traced);
+    run.own_errors = run.out.stats.occlusion_cause_samples[int(OcclusionCause::OwnReflector)];
+    run.mae = compare_images(compose_reflections(frame, run.out.radiance), truth, &mask).mae_avg;
+    c.runs.push_back(std::move(run));
+  }
+  ThreadLimit limit(1);
+  c.last_same_on_one_thread =
+      render_cluster_reflections(scene, frame, variants.back(), {}, &traced).radiance == c.runs.back().out.radiance;
+  return c;
+}
+
 }  // namespace
 
 TEST(ClusterReflection, PlanarMirrorReproducesTheTracedReflection) {
@@ -112,7 +151,7 @@ TEST(ClusterReflection, SecondLayerAnswersGlossyRaysHiddenBehindAnOccluder) {
 // A glossy L-shaped reflector, one object: a gently curved seat (a curved cluster) and a
 // back standing at its edge. The seat's lobe rays hit the back and the back's hit the
 // seat, i.e. their own reflector elsewhere, which a curved cluster's image leaves out.
-TEST(ClusterReflection, OwnLayerAnswersRaysThatHitTheirOwnConcaveReflector) {
+TEST(ClusterReflection, OwnLayerAndExactTestAnswerRaysThatHitTheirOwnConcaveReflector) {
   Scene scene;
   scene.name = "glossy-l";
   const uint32_t mat = test::add_diffuse(scene, vec3(0.8f, 0.3f, 0.2f), 0.8f, 0.3f);
@@ -136,38 +175,26 @@ TEST(ClusterReflection, OwnLayerAnswersRaysThatHitTheirOwnConcaveReflector) {
   scene.point_lights.push_back({vec3(0.3f, 1.0f, 2.5f), vec3(8.0f)});
   scene.ambient = vec3(0.1f);
   const Camera eye = look_at(vec3(0.2f, 1.6f, 1.6f), vec3(0.0f, -0.2f, 0.2f), vec3(0, 0, 1), 60.0f, 48, 48, 0.01f, 100.0f);
-  ReflectionOptions opts;
-  opts.supersample = 2;
-  opts.glossy_rays = 8;
-  const ReflectionFrame frame = prepare_reflection_frame(scene, eye, opts);
-  ASSERT_GT(frame.sample_count(), 2000u);
-  RayScene rays(scene);
-  const TracedReflections traced = trace_reflections(scene, rays, frame);
-  ClusterReflectionOptions without, with;
-  without.own_layer = false;
-  const ClusterReflections left_out = render_cluster_reflections(scene, frame, without, {}, &traced);
-  const ClusterReflections own = render_cluster_reflections(scene, frame, with, {}, &traced);
-  const uint64_t n = frame.sample_count();
-  const uint64_t before = left_out.stats.occlusion_cause_samples[int(OcclusionCause::OwnReflector)];
-  const uint64_t after = own.stats.occlusion_cause_samples[int(OcclusionCause::OwnReflector)];
-  EXPECT_LT(left_out.stats.planar_clusters, left_out.stats.clusters);
-  EXPECT_EQ(left_out.stats.own_layer_texels, 0u);
-  EXPECT_GT(own.stats.own_layer_rays, 0u);
-  EXPECT_GT(before * 5, n) << before << " of " << n;  // > 20% of the samples before
-  EXPECT_LT(after * 4, before) << after << " vs " << before;
-  const ImageU8 mask = reflective_pixel_mask(frame);
-  const ImageF truth = compose_reflections(frame, traced.radiance);
-  const double err_before = compare_images(compose_reflections(frame, left_out.radiance), truth, &mask).mae_avg;
-  const double err_after = compare_images(compose_reflections(frame, own.radiance), truth, &mask).mae_avg;
-  EXPECT_LT(err_after, err_before);
-  std::cout << "own_curved_reflector samples " << before << " -> " << after << " of " << n << ", mae " << err_before
-            << " -> " << err_after << "\n";
-  std::vector<vec3> one;
-  {
-    ThreadLimit limit(1);
-    one = render_cluster_reflections(scene, frame, with, {}, &traced).radiance;
-  }
-  EXPECT_TRUE(one == own.radiance);
+  ClusterReflectionOptions left_out, layer, exact;
+  left_out.own_layer = false;
+  layer.own_exact = false;
+  const OwnComparison c = compare_own_variants(scene, eye, {left_out, layer, exact});
+  ASSERT_GT(c.samples, 2000u);
+  const OwnRun &none = c.runs[0], &by_layer = c.runs[1], &by_exact = c.runs[2];
+  std::cout << "own_curved_reflector samples " << none.own_errors << " -> " << by_layer.own_errors << " (layer), "
+            << by_exact.own_errors << " (exact) of " << c.samples << ", mae " << none.mae << " -> " << by_layer.mae
+            << ", " << by_exact.mae << "\n";
+  EXPECT_LT(none.out.stats.planar_clusters, none.out.stats.clusters);
+  EXPECT_EQ(none.out.stats.own_layer_texels, 0u);
+  EXPECT_GT(by_layer.out.stats.own_layer_texels, 0u);
+  EXPECT_GT(by_layer.out.stats.own_layer_rays, 0u);
+  EXPECT_GT(by_exact.out.stats.own_layer_rays, 0u);
+  EXPECT_GT(none.own_errors * 5, c.samples) << none.own_errors << " of " << c.samples;  // > 20% before
+  EXPECT_LT(by_layer.own_errors * 4, none.own_errors) << by_layer.own_errors << " vs " << none.own_errors;
+  EXPECT_LE(by_exact.own_errors, by_layer.own_errors);
+  EXPECT_LT(by_layer.mae, none.mae);
+  EXPECT_LE(by_exact.mae, by_layer.mae);
+  EXPECT_TRUE(c.last_same_on_one_thread);
 }
 
 // A (u, v) grid of `nu` × `nv` quads over surface(u, v) in [0, 1]², front towards
@@ -233,42 +260,25 @@ TEST(ClusterReflection, OwnReflectorHitsAreRightWhereTheClusterOverlapsItself) {
   scene.point_lights.push_back({vec3(0.4f, -0.8f, 2.5f), vec3(8.0f)});
   scene.ambient = vec3(0.1f);
   const Camera eye = look_at(vec3(0.3f, -2.0f, 1.9f), vec3(0.0f, 0.2f, 0.2f), vec3(0, 0, 1), 60.0f, 48, 48, 0.01f, 100.0f);
-  ReflectionOptions opts;
-  opts.supersample = 2;
-  opts.glossy_rays = 8;
-  const ReflectionFrame frame = prepare_reflection_frame(scene, eye, opts);
-  ASSERT_GT(frame.sample_count(), 2000u);
-  RayScene rays(scene);
-  const TracedReflections traced = trace_reflections(scene, rays, frame);
   ClusterReflectionOptions layer, exact;
   layer.own_exact = false;
-  const ClusterReflections by_layer = render_cluster_reflections(scene, frame, layer, {}, &traced);
-  const ClusterReflections by_exact = render_cluster_reflections(scene, frame, exact, {}, &traced);
-  const uint64_t n = frame.sample_count();
-  const uint64_t before = by_layer.stats.occlusion_cause_samples[int(OcclusionCause::OwnReflector)];
-  const uint64_t after = by_exact.stats.occlusion_cause_samples[int(OcclusionCause::OwnReflector)];
-  const ImageU8 mask = reflective_pixel_mask(frame);
-  const ImageF truth = compose_reflections(frame, traced.radiance);
-  const double err_before = compare_images(compose_reflections(frame, by_layer.radiance), truth, &mask).mae_avg;
-  const double err_after = compare_images(compose_reflections(frame, by_exact.radiance), truth, &mask).mae_avg;
-  std::cout << "own_curved_reflector samples " << before << " -> " << after << " of " << n << ", occlusion "
-            << by_layer.stats.occlusion_error_samples << " -> " << by_exact.stats.occlusion_error_samples
-            << ", mae " << err_before << " -> " << err_after << "\n";
-  EXPECT_LT(by_exact.stats.planar_clusters, by_exact.stats.clusters);
-  EXPECT_GT(by_exact.stats.own_layer_rays, 0u);
-  EXPECT_GT(by_exact.stats.own_exact_triangles, 0u);
-  EXPECT_EQ(by_exact.stats.own_layer_texels, 0u);
+  const OwnComparison c = compare_own_variants(scene, eye, {layer, exact});
+  ASSERT_GT(c.samples, 2000u);
+  const OwnRun &by_layer = c.runs[0], &by_exact = c.runs[1];
+  std::cout << "own_curved_reflector samples " << by_layer.own_errors << " -> " << by_exact.own_errors << " of "
+            << c.samples << ", occlusion " << by_layer.out.stats.occlusion_error_samples << " -> "
+            << by_exact.out.stats.occlusion_error_samples << ", mae " << by_layer.mae << " -> " << by_exact.mae
+            << "\n";
+  EXPECT_LT(by_exact.out.stats.planar_clusters, by_exact.out.stats.clusters);
+  EXPECT_GT(by_exact.out.stats.own_layer_rays, 0u);
+  EXPECT_GT(by_exact.out.stats.own_exact_triangles, 0u);
+  EXPECT_EQ(by_exact.out.stats.own_layer_texels, 0u);
   // The own layer misses its own hits on a sizeable share of the samples; the exact test on
   // almost none.
-  EXPECT_GT(before * 20, n) << before << " of " << n;
-  EXPECT_LT(after * 100, n) << after << " of " << n;
-  EXPECT_LT(err_after, err_before);
-  std::vector<vec3> one;
-  {
-    ThreadLimit limit(1);
-    one = render_cluster_reflections(scene, frame, exact, {}, &traced).radiance;
-  }
-  EXPECT_TRUE(one == by_exact.radiance);
+  EXPECT_GT(by_layer.own_errors * 20, c.samples) << by_layer.own_errors << " of " << c.samples;
+  EXPECT_LT(by_exact.own_errors * 100, c.samples) << by_exact.own_errors << " of " << c.samples;
+  EXPECT_LT(by_exact.mae, by_layer.mae);
+  EXPECT_TRUE(c.last_same_on_one_thread);
 }
 
 }  // namespace proxima
