@@ -40,7 +40,7 @@ const GrassSetup& grass(int blades) {
     const Camera view = look_at(g.scene.cameras[0].camera.position, vec3(0, 0.1f, 0), vec3(0, 1, 0),
                                 g.scene.cameras[0].camera.vfov_deg, 256, 256, 0.01f, 200.0f);
     const Receivers receivers = render_receivers(g.scene, view);
-    std::vector<vec3> eyes = light_samples(light, 16);
+    std::vector<vec3> eyes = light_samples(light, 16).points;
     for (const vec3& c : light_corners(light)) eyes.push_back(c);
     g.cams = fit_light_cameras(g.scene, light, receivers, eyes);
     g.map_camera = light_camera(g.cams, light.point(0.5f, 0.5f), kMapRes);

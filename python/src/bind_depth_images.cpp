@@ -195,7 +195,7 @@ class SoftShadows {
   }
 
   py::array light_sample_positions() const {
-    std::vector<vec3> samples = setting_.samples;
+    std::vector<vec3> samples = setting_.samples.points;
     const auto n = py::ssize_t(samples.size());
     return buffer_array<float>(std::move(samples), {n, 3});
   }

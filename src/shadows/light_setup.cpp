@@ -24,12 +24,17 @@ AreaLight shadow_light(const Scene& scene, float size) {
   return light;
 }
 
-std::vector<vec3> light_samples(const AreaLight& light, int n) {
-  std::vector<vec3> s;
-  s.reserve(size_t(n) * size_t(n));
+LightSamples light_samples(const AreaLight& light, int n) {
+  LightSamples s{light, {}};
+  s.points.reserve(size_t(n) * size_t(n));
   for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) s.push_back(light.point((float(i) + 0.5f) / float(n), (float(j) + 0.5f) / float(n)));
+    for (int i = 0; i < n; ++i)
+      s.points.push_back(light.point((float(i) + 0.5f) / float(n), (float(j) + 0.5f) / float(n)));
   return s;
+}
+
+bool on_emitting_side(const AreaLight& light, vec3 p) {
+  return glm::dot(light.normal(), p - light.point(0.5f, 0.5f)) > 0.0f;
 }
 
 std::vector<vec3> light_corners(const AreaLight& light) {

@@ -1,6 +1,6 @@
 // Algorithm 5 step 3 (light_visibility.h). Paper: Xie Naiwen, PhD thesis, ch. 3 §3.3
 // (../shared/papers/004_d1af2812aec5f9c7.txt, lines 888–925):
-//   s        samples[k], one light sample
+//   s        samples.points[k], one light sample
 //   SM       the shadow map: depth image of the occluders seen from s
 //   o        a receiver pixel (position p, normal n)
 #include "proxima/shadows/light_visibility.h"
@@ -132,18 +132,21 @@ float map_focal_px(const LightCameras& cams, const Receivers& receivers, const s
 
 namespace {
 
-// A receiver pixel facing the light: its index in the image, position and normal.
+// A receiver pixel on the light's emitting side: its index in the image, position and normal.
 struct ReceiverPoint {
   int pixel;
   vec3 p, n;
 };
 
-std::vector<ReceiverPoint> receiver_list(const Receivers& r) {
+// The receivers the light can reach; the others stay unlit, are not tested and are not
+// fitted (a map could not hold a point behind the light's plane).
+std::vector<ReceiverPoint> receiver_list(const Receivers& r, const AreaLight& light) {
   std::vector<ReceiverPoint> list;
   list.reserve(r.count);
   for (int y = 0; y < r.mask.height(); ++y)
     for (int x = 0; x < r.mask.width(); ++x)
-      if (r.mask.at(x, y)) list.push_back({y * r.mask.width() + x, rgb_at(r.position, x, y), rgb_at(r.normal, x, y)});
+      if (r.mask.at(x, y) && on_emitting_side(light, rgb_at(r.position, x, y)))
+        list.push_back({y * r.mask.width() + x, rgb_at(r.position, x, y), rgb_at(r.normal, x, y)});
   return list;
 }
 
@@ -178,15 +181,16 @@ uint32_t test_receivers(const std::vector<ReceiverPoint>& list, size_t i0, size_
 }  // namespace
 
 LightVisibility shadow_map_visibility(const Scene& occluders, const Receivers& receivers,
-                                      const std::vector<vec3>& samples, const LightCameras& cams,
+                                      const LightSamples& light_samples, const LightCameras& cams,
                                       const ShadowMapOptions& options, double* ms, ShadowMapStats* stats) {
+  const std::vector<vec3>& samples = light_samples.points;
   Stopwatch watch;
   ShadowMapStats st;
   const int w = receivers.mask.width(), h = receivers.mask.height();
   LightVisibility v(w, h, int(samples.size()));
   const std::vector<Bounds3> bounds = raster_object_bounds(occluders);
   st.focal_px = map_focal_px(cams, receivers, samples, options);
-  const std::vector<ReceiverPoint> list = receiver_list(receivers);
+  const std::vector<ReceiverPoint> list = receiver_list(receivers, light_samples.light);
   const size_t count = list.size(), n = samples.size();
 
   Stopwatch fit;
@@ -264,17 +268,18 @@ LightVisibility shadow_map_visibility(const Scene& occluders, const Receivers& r
 }
 
 LightVisibility ray_visibility(const RayScene& rays, const Scene& scene, const Receivers& receivers,
-                               const std::vector<vec3>& samples, double* ms) {
+                               const LightSamples& light_samples, double* ms) {
+  const std::vector<vec3>& samples = light_samples.points;
   Stopwatch watch;
   const int w = receivers.mask.width(), h = receivers.mask.height();
   LightVisibility v(w, h, int(samples.size()));
   const float eps = 1e-4f * scene_bounds(scene).diagonal();
-  // Receiver pixels, row-major, and their ray origins.
+  // Receiver pixels the light can reach, row-major, and their ray origins.
   std::vector<int> pixel;
   std::vector<vec3> origin;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      if (receivers.mask.at(x, y)) {
+      if (receivers.mask.at(x, y) && on_emitting_side(light_samples.light, rgb_at(receivers.position, x, y))) {
         pixel.push_back(y * w + x);
         origin.push_back(rgb_at(receivers.position, x, y) + eps * rgb_at(receivers.normal, x, y));
       }

@@ -110,7 +110,7 @@ ShadowSetting shadow_setting(const Scene& scene, const RayScene& rays, const Cam
   s.light = shadow_light(scene, o.light_size);
   s.samples = light_samples(s.light, o.light_samples);
   s.receivers = render_receivers(scene, view);
-  std::vector<vec3> eyes = s.samples;
+  std::vector<vec3> eyes = s.samples.points;
   for (const vec3& c : light_corners(s.light)) eyes.push_back(c);
   s.cams = fit_light_cameras(scene, s.light, s.receivers, eyes);
   s.shadow_maps.resolution = o.shadow_res;
@@ -162,7 +162,7 @@ Results run_shadows(const Scene& scene, const ShadowsOptions& o, const StudyOutp
   add_ground_truth(results, t, scene, s, !o.no_rays, out);
   for (ShadowSampling sampling : o.samplings) add_sampling(results, t, scene, rays, s, o, sampling, out);
   results.metrics["light_size"] = o.light_size;
-  results.metrics["light_samples"] = double(s.samples.size());
+  results.metrics["light_samples"] = double(s.samples.points.size());
   results.metrics["receivers"] = double(s.receivers.count);
   results.metrics["triangles"] = double(scene.triangles.size());
   results.metrics["light_fov_deg"] = s.cams.vfov_deg;

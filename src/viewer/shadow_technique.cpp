@@ -17,7 +17,7 @@ namespace proxima {
 Technique shadow_technique(std::shared_ptr<ViewerScene> vs, const TechniqueSettings& s) {
   struct Setup {
     AreaLight light;
-    std::vector<vec3> samples;
+    LightSamples samples;
     LightCameras cams;
     std::optional<Occluders> occluders;
   };
@@ -31,7 +31,7 @@ Technique shadow_technique(std::shared_ptr<ViewerScene> vs, const TechniqueSetti
   whole.mask = ImageU8(2, 1, 1, 1);
   whole.count = 2;
   for (int c = 0; c < 3; ++c) whole.position.at(0, 0, c) = box.min[c], whole.position.at(1, 0, c) = box.max[c];
-  std::vector<vec3> eyes = setup->samples;
+  std::vector<vec3> eyes = setup->samples.points;
   for (const vec3& c : light_corners(setup->light)) eyes.push_back(c);
   setup->cams = fit_light_cameras(vs->scene, setup->light, whole, eyes);
 

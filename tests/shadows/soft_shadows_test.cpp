@@ -3,6 +3,7 @@
 // the geometry, and thread-count independence.
 #include <gtest/gtest.h>
 
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "proxima/core/error.h"
@@ -38,7 +39,7 @@ TEST(SoftShadows, LightIsAHorizontalSquareSizedByTheSceneDiagonal) {
   EXPECT_NEAR(glm::length(c[2] - c[0]), 0.5f * scene_bounds(s).diagonal(), 1e-4f);
   EXPECT_NEAR(glm::length(light.point(0.5f, 0.5f) - vec3(0, 3, 0)), 0.0f, 1e-5f);
   EXPECT_NEAR(light.normal().y, -1.0f, 1e-6f);
-  const std::vector<vec3> samples = light_samples(light, 4);
+  const std::vector<vec3> samples = light_samples(light, 4).points;
   ASSERT_EQ(samples.size(), 16u);
   EXPECT_NEAR(samples[0].x, c[0].x + light.edge_u.x / 8.0f, 1e-5f);
 }
@@ -46,14 +47,14 @@ TEST(SoftShadows, LightIsAHorizontalSquareSizedByTheSceneDiagonal) {
 struct LightSetup {
   Scene scene = box_scene();
   AreaLight light;
-  std::vector<vec3> samples;
+  LightSamples samples;
   Receivers receivers;
   LightCameras cams;
   explicit LightSetup(float size, int n, int res) {
     light = shadow_light(scene, size);
     samples = light_samples(light, n);
     receivers = render_receivers(scene, box_view(res));
-    std::vector<vec3> eyes = samples;
+    std::vector<vec3> eyes = samples.points;
     for (const vec3& c : light_corners(light)) eyes.push_back(c);
     cams = fit_light_cameras(scene, light, receivers, eyes);
   }
@@ -78,6 +79,48 @@ TEST(SoftShadows, ShadowMapsAgreeWithShadowRays) {
       }
   EXPECT_GT(dark, 20);
   EXPECT_GT(lit, 200);
+}
+
+// The light inside a room (as in a furnished house): the ceiling above the light's plane is
+// behind the one-sided light, so no sample lights it, for the maps and the rays alike, and
+// no receiver falls outside its fitted map.
+TEST(SoftShadows, ReceiversBehindTheLightAreUnlitForEveryMethod) {
+  Scene scene = box_scene();
+  Material m;
+  m.diffuse = vec3(0.5f);
+  Mesh ceiling = make_plane(4.0f, 4.0f, 1, 1);
+  transform_mesh(ceiling, glm::translate(mat4(1.0f), vec3(0, 4, 0)) *
+                              glm::rotate(mat4(1.0f), glm::pi<float>(), vec3(1, 0, 0)));  // faces down
+  add_object(scene, ceiling, "ceiling", add_material(scene, m));
+  const AreaLight light = shadow_light(scene, 0.2f);  // around the point light at y = 3
+  const LightSamples samples = light_samples(light, 4);
+  const Receivers receivers =
+      render_receivers(scene, look_at(vec3(0, 2, 3.5f), vec3(0, 2, 0), vec3(0, 1, 0), 100.0f, 64, 64, 0.05f, 50.0f));
+  std::vector<vec3> eyes = samples.points;
+  for (const vec3& c : light_corners(light)) eyes.push_back(c);
+  const LightCameras cams = fit_light_cameras(scene, light, receivers, eyes);
+  ShadowMapOptions o;
+  o.resolution = 256;
+  ShadowMapStats st;
+  const LightVisibility maps = shadow_map_visibility(scene, receivers, samples, cams, o, nullptr, &st);
+  const RayScene rays(scene);
+  const LightVisibility exact = ray_visibility(rays, scene, receivers, samples);
+  EXPECT_EQ(st.receivers_outside, 0u);
+  int behind = 0, lit_below = 0;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      if (!receivers.mask.at(x, y)) continue;
+      if (receivers.position.at(x, y, 1) > 3.0f) {
+        ++behind;
+        EXPECT_EQ(maps.lit_count(x, y), 0) << x << "," << y;
+        EXPECT_EQ(exact.lit_count(x, y), 0) << x << "," << y;
+      } else {
+        lit_below += exact.lit_count(x, y) > 0;
+      }
+    }
+  EXPECT_GT(behind, 300);
+  EXPECT_GT(lit_below, 300);
+  EXPECT_LT(compare_visibility(maps, exact, receivers).visibility_mean, 4.0);
 }
 
 TEST(SoftShadows, ErrorsCountWrongSamplesAndColourTheirSign) {
@@ -152,7 +195,7 @@ TEST(SoftShadows, FittedMapCameraHoldsEveryReceiver) {
                               s.receivers.position.at(x, y, 2)));
   ASSERT_GT(points.size(), 1000u);
   const float focal = 200.0f;
-  for (const vec3& eye : s.samples) {
+  for (const vec3& eye : s.samples.points) {
     const Camera cam = fitted_shadow_map_camera(s.cams, eye, points, focal);
     EXPECT_NEAR(focal_length_px(cam), focal, 1e-3f * focal);
     EXPECT_LT(cam.vfov_deg, s.cams.vfov_deg);  // the receivers fill part of the light field only

@@ -18,8 +18,19 @@ namespace proxima {
 // its geometry; without one: above the bounds' top by half the diagonal).
 AreaLight shadow_light(const Scene& scene, float size);
 
+// The point samples of an area light and the light itself. The light is one-sided, as the
+// shading's area lights are: it reaches only points on the side its normal points to, so a
+// receiver behind its plane is never lit by any sample (on_emitting_side), for every method.
+struct LightSamples {
+  AreaLight light;
+  std::vector<vec3> points;
+};
+
 // n×n light samples at the centres of the light's n×n cells, row-major over (edge_v, edge_u).
-std::vector<vec3> light_samples(const AreaLight& light, int n);
+LightSamples light_samples(const AreaLight& light, int n);
+
+// p is strictly on the side `light` emits to (normal · (p − centre) > 0).
+bool on_emitting_side(const AreaLight& light, vec3 p);
 
 // Corners V_0 … V_3 of the light (Algorithm 5 step 1), in order around it.
 std::vector<vec3> light_corners(const AreaLight& light);

@@ -13,7 +13,8 @@
 namespace proxima {
 
 // One bit per (receiver pixel, light sample): 1 = the sample lights the pixel. A sample
-// below a receiver's tangent plane (n · (s − p) ≤ 0) never does, for every method.
+// below a receiver's tangent plane (n · (s − p) ≤ 0) never does, nor does a one-sided light
+// whose plane the receiver is behind (on_emitting_side false), for every method.
 struct LightVisibility {
   int width = 0, height = 0, samples = 0;
   int words = 0;  // 64-bit words per pixel
@@ -76,7 +77,7 @@ struct ShadowMapStats {
 // bias is ≤ the map's nearest-texel depth (outside the map: lit). `ms` gets the wall time.
 // Deterministic for any thread count.
 LightVisibility shadow_map_visibility(const Scene& occluders, const Receivers& receivers,
-                                      const std::vector<vec3>& samples, const LightCameras& cams,
+                                      const LightSamples& samples, const LightCameras& cams,
                                       const ShadowMapOptions& options, double* ms = nullptr,
                                       ShadowMapStats* stats = nullptr);
 
@@ -89,6 +90,6 @@ Camera fitted_shadow_map_camera(const LightCameras& cams, vec3 eye, std::span<co
 // Exact visibility: an Embree shadow ray from each receiver (offset ε = 1e-4 × scene
 // diagonal along its normal) to each light sample (stopping ε short).
 LightVisibility ray_visibility(const RayScene& rays, const Scene& scene, const Receivers& receivers,
-                               const std::vector<vec3>& samples, double* ms = nullptr);
+                               const LightSamples& samples, double* ms = nullptr);
 
 }  // namespace proxima

@@ -50,7 +50,7 @@ void validate(const ShadowsOptions& options, const Scene& scene);
 // shadow rays (`exact`, `rays_ms`). `rays` is the BVH of `scene`; `options` valid.
 struct ShadowSetting {
   AreaLight light;
-  std::vector<vec3> samples;
+  LightSamples samples;
   Receivers receivers;
   LightCameras cams;
   ShadowMapOptions shadow_maps;
