@@ -46,6 +46,18 @@ void add_reuse_flags(CLI::App* app, TemporalReflectFlags& f) {
          "recomputed; inf = off (the thesis' method; docs/temporal.md)")
       ->capture_default_str();
   app->add_option(
+         "--refine-error", f.refine_error,
+         "temporal: where a recomputed pixel's reuse value (the blend-error rule's) turns out to err by "
+         "more than this (0-255, any channel), its reused neighbours on the same reflector are recomputed "
+         "too, and theirs in turn, until none is added; inf = off (docs/temporal.md)")
+      ->capture_default_str();
+  app->add_option(
+         "--learn-error", f.learn_error,
+         "temporal: where a recomputed pixel's reuse value turns out to err by more than this (0-255, any "
+         "channel), later frames of the key cycle recompute the pixels that would reuse the same key pixel, "
+         "and observe them in turn; inf = off (docs/temporal.md)")
+      ->capture_default_str();
+  app->add_option(
          "--keyframe-cost", f.keyframe_cost,
          "temporal: also start a key frame once a reuse frame's work (traced rays + this many rays per "
          "reflective key pixel for best match, warp and reprojection) reaches the average work per frame "

@@ -36,6 +36,7 @@ void reproject_reflections_into(const ReflectionFrame& frame, const ReflectionDe
   // growth, in the vectors' memory when they have room).
   out.radiance.resize(n);
   out.flag.resize(n);
+  out.key_pixel.resize(n);
   assert(frame.base.empty() || (frame.base.width() == frame.sample_camera.width && frame.base.channels() == 3));
   const float* base = frame.base.data().data();
   // Raw rows of the key's images (Image::at's index arithmetic per read, without its
@@ -73,6 +74,7 @@ void reproject_reflections_into(const ReflectionFrame& frame, const ReflectionDe
       uint8_t& flag = out.flag[i];
       value = vec3(0.0f);
       flag = kReuseOk;
+      out.key_pixel[i] = kNoKeyPixel;
       if (!projected) {  // behind the key camera
         flag = kReuseDisoccluded, ++n_disoccluded;
         continue;
@@ -90,6 +92,7 @@ void reproject_reflections_into(const ReflectionFrame& frame, const ReflectionDe
         flag = kReuseDisoccluded, ++n_disoccluded;
         continue;
       }
+      out.key_pixel[i] = uint32_t(ny) * uint32_t(kw) + uint32_t(nx);
       if (const uint8_t st = warp_state(nx, ny); st != kWarpReliable) {
         flag = uint8_t(kReuseUnreliable | (st == kWarpCurved ? kReuseCurved : 0) |
                        (st == kWarpEdge ? kReuseEdge : 0));
@@ -102,9 +105,8 @@ void reproject_reflections_into(const ReflectionFrame& frame, const ReflectionDe
         return blend_risk_exceeds(blend, v, frame.specular[i], vec3(rgb[0], rgb[1], rgb[2]),
                                   mesh->blend_error);
       };
-      auto recompute_edge = [&] {
-        value = vec3(0.0f);
-        flag = uint8_t(kReuseUnreliable | kReuseEdge);
+      auto recompute_edge = [&] {  // keeps the value: the recompute observes its error
+        flag = uint8_t(kReuseUnreliable | kReuseEdge | kReuseKept);
         ++n_unreliable, ++n_edge;
       };
       if (mesh && warped_radiance_at(*mesh, q, value, gate ? &blend : nullptr)) {

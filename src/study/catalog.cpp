@@ -476,6 +476,10 @@ Entry temporal_entry() {
   f.push_back(field<O>("recompute_splats", "samples no warp triangle reached are recomputed", &O::recompute_splats));
   f.push_back(field<O>("blend_error", "reused samples above this expected display error are recomputed; inf = off",
                        &O::blend_error));
+  f.push_back(field<O>("refine_error", "reused neighbours of samples seen to err above this are recomputed; inf = off",
+                       &O::refine_error));
+  f.push_back(field<O>("learn_error", "key pixels where reuse was seen to err above this are recomputed; inf = off",
+                       &O::learn_error));
   f.push_back(field<O>("keyframe_cost", "rays per reflective key pixel the fixed steps cost; 0 = off",
                        &O::keyframe_cost));
   f.push_back(field<O>("match_extrapolate", "best match also starts from the last change continued",

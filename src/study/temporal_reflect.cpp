@@ -133,7 +133,7 @@ struct TemporalSeries {
   Series mirror_temporal_mae, mirror_direct_mae;
   Series reflective_pct, recompute_pct, traced_pct, temporal_mae, direct_mae, direct_recompute_pct,
       temporal_ms, reference_ms, frame_temporal_ms, frame_reference_ms, diffuse_ms, key_ms, match_ms, warp_ms,
-      reproject_ms, recompute_ms, compose_ms, intervals, curved_pct, edge_pct, temporal_cpu_ms,
+      reproject_ms, recompute_ms, compose_ms, intervals, curved_pct, edge_pct, refined_pct, learned_pct, temporal_cpu_ms,
       reference_cpu_ms, match_steps;
   Table per_frame{"Per frame",
                   {"frame", "key", "reflective_pct", "recompute_pct", "disoccluded_pct", "unreliable_pct",
@@ -168,6 +168,8 @@ void add_temporal(const TemporalFrame& f, TemporalSeries& s) {
     s.recompute_pct.add(100.0 * st.recompute_fraction());
     s.curved_pct.add(st.reflective ? 100.0 * double(st.curved) / double(st.reflective) : 0.0);
     s.edge_pct.add(st.reflective ? 100.0 * double(st.edge) / double(st.reflective) : 0.0);
+    s.refined_pct.add(st.reflective ? 100.0 * double(st.refined) / double(st.reflective) : 0.0);
+    s.learned_pct.add(st.reflective ? 100.0 * double(st.learned) / double(st.reflective) : 0.0);
     s.match_steps.add(st.reflective ? double(st.match_steps) / double(st.reflective) : 0.0);
     s.traced_pct.add(100.0 * st.recompute_fraction());
   }
@@ -307,6 +309,10 @@ void add_metrics(const TemporalReflectOptions& o, const TemporalSeries& s, Resul
   m["blend_error"] = o.blend_error;
   m["keyframe_cost"] = o.keyframe_cost;
   m["edge_pct_avg"] = s.edge_pct.avg();      // of those, on reflected edges (--edge-rule recompute)
+  m["refine_error"] = o.refine_error;
+  m["refined_pct_avg"] = s.refined_pct.avg();  // of those, added by the refinement (--refine-error)
+  m["learn_error"] = o.learn_error;
+  m["learned_pct_avg"] = s.learned_pct.avg();  // of those, in key pixels marked by observed error (--learn-error)
   m["traced_pct_avg"] = s.traced_pct.avg();  // every frame, key frames at 100%
   m["keyframe_interval_avg"] = s.intervals.avg();
   m["keyframe_interval_max"] = s.intervals.max();
@@ -495,6 +501,8 @@ TemporalOptions temporal_options(const TemporalReflectOptions& o) {
   to.warp.recompute_splats = o.recompute_splats;
   to.warp.blend_error = o.blend_error;
   to.keyframe_cost = o.keyframe_cost;
+  to.refine_error = o.refine_error;
+  to.learn_error = o.learn_error;
   to.warp.edge_rule = parse_reflected_edge_rule(o.edge_rule, "--edge-rule");
   to.warp.depth_discontinuity = o.depth_discontinuity;
   to.match.extrapolate = o.match_extrapolate;
@@ -516,6 +524,8 @@ void validate(const TemporalReflectOptions& o) {
   require_at_least(o.curved_contrast, 0.0f, "--curved-contrast");
   require_at_least(o.edge_contrast, 0.0f, "--edge-contrast", "(inf = off)");
   require_at_least(o.blend_error, 0.0f, "--blend-error", "(inf = off)");
+  require_at_least(o.refine_error, 0.0f, "--refine-error", "(inf = off)");
+  require_at_least(o.learn_error, 0.0f, "--learn-error", "(inf = off)");
   if (!(o.keyframe_cost >= 0.0f && o.keyframe_cost < kInf))
     fail_input("--keyframe-cost: must be finite and ≥ 0 (0 = off)");
   parse_reflected_edge_rule(o.edge_rule, "--edge-rule");

@@ -591,6 +591,106 @@ TEST(TemporalReflections, BlendErrorSpendsRecomputesWhereTheErrorIs) {
   EXPECT_LT(o_low.mae, 0.1 * off.mae);
 }
 
+// Feedback from observed error: the blend-error rule's samples keep their reuse value, so
+// the recompute sees its error; above refine_error their reused neighbours are traced too,
+// above learn_error their key pixels are marked and later frames of the key cycle trace the
+// samples reusing them. Every traced sample is counted, and each is the full trace's value.
+TEST(TemporalReflections, FeedbackTracesWhereReuseWasSeenToErr) {
+  const Scene scene = striped_mirror();
+  RayScene rays(scene);
+  struct Run {
+    std::vector<TemporalFrameStats> stats;
+    double mae = 0.0;
+    std::vector<vec3> radiance;
+  };
+  auto run = [&](float refine, float learn, int threads) {
+    ThreadLimit limit(threads);
+    TemporalOptions o;
+    o.warp.blend_error = 8.0f;
+    o.keyframe_threshold = 1.0f;  // one key cycle
+    o.refine_error = refine;
+    o.learn_error = learn;
+    TemporalState state;
+    Run out;
+    for (int f = 0; f < 4; ++f) {
+      const ReflectionFrame frame = frame_at(scene, kKeyEye + 0.5f * float(f) * kMove);
+      TemporalFrameStats st;
+      std::vector<uint8_t> flags;
+      const std::vector<vec3> r = temporal_reflections(scene, rays, frame, state, o, &st, &flags);
+      const TracedReflections truth = trace_reflections(scene, rays, frame);
+      uint64_t flagged = 0, refined = 0, learned = 0, traced_rays = 0;
+      const int w = frame.camera.width;
+      std::vector<int> sample_at(size_t(w) * size_t(frame.camera.height), -1);
+      for (size_t i = 0; i < flags.size(); ++i) sample_at[frame.pixel[i]] = int(i);
+      for (size_t i = 0; i < flags.size(); ++i) {
+        if (flags[i] == kReuseOk) continue;
+        ++flagged, refined += (flags[i] & kReuseRefined) != 0, learned += (flags[i] & kReuseLearned) != 0;
+        traced_rays += frame.first_ray[i + 1] - frame.first_ray[i];
+        EXPECT_EQ(r[i], truth.radiance[i]) << "frame " << f << " sample " << i;
+        if (!(flags[i] & kReuseRefined)) continue;
+        // A refined sample is next to an observed one (its reuse value kept) on its reflector.
+        bool beside_observed = false;
+        const int x = int(frame.pixel[i]) % w, y = int(frame.pixel[i]) / w;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int nx = x + dx, ny = y + dy;
+            if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= w || ny >= frame.camera.height) continue;
+            const int j = sample_at[size_t(ny) * size_t(w) + size_t(nx)];
+            beside_observed = beside_observed || (j >= 0 && (flags[size_t(j)] & kReuseKept) &&
+                                                  frame.reflector[size_t(j)] == frame.reflector[i]);
+          }
+        EXPECT_TRUE(beside_observed) << "frame " << f << " sample " << i;
+      }
+      if (!st.key) {
+        EXPECT_EQ(st.recomputed, flagged) << f;
+        EXPECT_EQ(st.refined, refined) << f;
+        EXPECT_EQ(st.learned, learned) << f;
+        EXPECT_EQ(st.traced_rays, traced_rays) << f;
+        if (f == 1) EXPECT_EQ(st.learned, 0u);  // no earlier frame of the cycle marked anything
+        const ImageU8 all = mask_of(frame, std::vector<uint8_t>(frame.sample_count(), 1));
+        out.mae += compare_images(compose_reflections(frame, r), compose_reflections(frame, truth.radiance), &all)
+                       .mae_avg;
+      }
+      out.stats.push_back(st);
+      out.radiance.insert(out.radiance.end(), r.begin(), r.end());
+    }
+    return out;
+  };
+  auto total = [](const Run& run, uint64_t TemporalFrameStats::*field) {
+    uint64_t n = 0;
+    for (const TemporalFrameStats& st : run.stats) n += st.*field;
+    return n;
+  };
+  const Run off = run(kInf, kInf, 1), refine = run(16.0f, kInf, 1), learn = run(kInf, 16.0f, 1),
+            both = run(16.0f, 16.0f, 1), both2 = run(16.0f, 16.0f, 2);
+  std::printf("striped mirror, 3 reuse frames: MAE sum off %.3f (%llu recomputed), refine %.3f (+%llu refined), "
+              "learn %.3f (+%llu learned)\n",
+              off.mae, static_cast<unsigned long long>(total(off, &TemporalFrameStats::recomputed)), refine.mae,
+              static_cast<unsigned long long>(total(refine, &TemporalFrameStats::refined)), learn.mae,
+              static_cast<unsigned long long>(total(learn, &TemporalFrameStats::learned)));
+  EXPECT_EQ(total(off, &TemporalFrameStats::refined) + total(off, &TemporalFrameStats::learned), 0u);
+  EXPECT_EQ(total(off, &TemporalFrameStats::observed), 0u);
+  ASSERT_GT(total(refine, &TemporalFrameStats::refined), 0u);
+  ASSERT_GT(total(learn, &TemporalFrameStats::learned), 0u);
+  EXPECT_EQ(total(learn, &TemporalFrameStats::refined), 0u);
+  EXPECT_EQ(total(refine, &TemporalFrameStats::learned), 0u);
+  // The same key frames and the same rule flags: only the feedback's samples were added, and
+  // each is now exact, so the error can only fall.
+  EXPECT_EQ(total(refine, &TemporalFrameStats::recomputed),
+            total(off, &TemporalFrameStats::recomputed) + total(refine, &TemporalFrameStats::refined));
+  EXPECT_EQ(total(learn, &TemporalFrameStats::recomputed),
+            total(off, &TemporalFrameStats::recomputed) + total(learn, &TemporalFrameStats::learned));
+  EXPECT_LT(refine.mae, off.mae);
+  EXPECT_LT(learn.mae, off.mae);
+  // Any thread count: the same samples traced, the same values.
+  ASSERT_EQ(both.radiance.size(), both2.radiance.size());
+  for (size_t i = 0; i < both.radiance.size(); ++i) ASSERT_EQ(both.radiance[i], both2.radiance[i]) << i;
+  for (size_t f = 0; f < both.stats.size(); ++f) {
+    EXPECT_EQ(both.stats[f].recomputed, both2.stats[f].recomputed) << f;
+    EXPECT_EQ(both.stats[f].learned, both2.stats[f].learned) << f;
+  }
+}
+
 // Key samples no warp triangle reached are splatted as lone points; with recompute_splats
 // they are unreliable (recomputed) instead of reused through the bilinear fallback.
 TEST(TemporalReflections, RecomputeSplatsMarksSplattedPointsUnreliable) {

@@ -26,15 +26,25 @@ enum ReuseFlag : uint8_t {
   kReuseUnreliable = 1u << 1,   // the image is empty or unreliable there
   kReuseCurved = 1u << 2,       // with kReuseUnreliable: on a strongly curved reflector (kWarpCurved)
   kReuseEdge = 1u << 3,         // with kReuseUnreliable: on an edge of the reflected image (kWarpEdge)
+  kReuseKept = 1u << 4,         // flagged, but the radiance holds the value reuse would have given
+                                // (the blend-error rule's samples): its error is observed once traced
+  kReuseRefined = 1u << 5,      // with kReuseUnreliable: next to a recomputed sample whose reuse
+                                // value erred (TemporalOptions::refine_error)
+  kReuseLearned = 1u << 6,      // with kReuseUnreliable: in a key pixel where reuse erred on an
+                                // earlier frame of the key cycle (TemporalOptions::learn_error)
 };
 
 struct ReprojectOptions {
   float depth_tolerance = 0.02f;  // relative depth difference accepted as the same surface
 };
 
+inline constexpr uint32_t kNoKeyPixel = 0xFFFFFFFFu;
+
 struct ReflectionReprojection {
-  std::vector<vec3> radiance;  // per sample of the frame; 0 where flagged
+  std::vector<vec3> radiance;  // per sample of the frame; 0 where flagged but under kReuseKept
   std::vector<uint8_t> flag;   // ReuseFlag bits
+  std::vector<uint32_t> key_pixel;  // per sample: the key pixel it projects into (y·width + x), or
+                                    // kNoKeyPixel where disoccluded
   uint64_t disoccluded = 0, unreliable = 0, curved = 0, edge = 0;  // curved, edge ⊂ unreliable
   uint64_t recompute() const { return disoccluded + unreliable; }
 };

@@ -5,12 +5,14 @@
 // only the disoccluded and unreliable samples. The result composes as base + s·Lr
 // (compose_reflections), the same blend full ray tracing uses (docs/temporal.md).
 // Key-frame policy (§5.4.4): when a frame recomputes more than `keyframe_threshold` of its
-// reflective samples, the next frame is a key frame (samples on strongly curved reflectors
-// or reflected edges, recomputed whatever the key frame, do not count).
+// reflective samples, the next frame is a key frame (samples on strongly curved reflectors,
+// reflected edges or detail between key samples, recomputed whatever the key frame, do not
+// count).
 #pragma once
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "proxima/reflect/reflection_frame.h"
@@ -33,6 +35,16 @@ struct TemporalOptions {
   // a new cycle is cheaper on average. Work counts traced rays, and the fixed steps (best
   // match, warp, reprojection) as this many rays per reflective key pixel; 0 = off.
   float keyframe_cost = 0.0f;
+  // Not in the thesis: feedback from observed error (docs/temporal.md). A recomputed sample
+  // whose reuse value was kept (kReuseKept: the blend-error rule's, and those added below)
+  // shows, once traced, that value's display error (0–255, any channel, as blend_risk).
+  // Above refine_error its reused 8-neighbours on the same reflector are recomputed too, and
+  // observed in turn, round after round until none is added; inf = off.
+  float refine_error = kInf;
+  // Above learn_error the key pixel the sample projects into is marked for the rest of the
+  // key cycle; later frames recompute (and observe) the reused samples projecting into a
+  // marked key pixel before reusing them; inf = off.
+  float learn_error = kInf;
 };
 
 // What persists between frames.
@@ -48,6 +60,11 @@ struct TemporalState {
   TracedReflections traced;             // the last key frame's trace
   ReflectionReprojection reprojection;  // the last reprojection (its vectors swap with the caller's)
   std::vector<uint32_t> todo;           // the samples the last frame recomputed
+  // Feedback from observed error (refine_error, learn_error):
+  std::vector<uint8_t> marked;          // per key pixel: reuse erred there in this key cycle
+  uint64_t marked_serial = 0;           // the key frame (ReflectionDepthImage::serial) `marked` is of
+  std::vector<uint32_t> sample_at;      // per G-buffer pixel, its sample, or none
+  std::vector<std::pair<uint32_t, vec3>> observed, next;  // samples with their reuse values
   bool need_key = true;    // the next frame is a key frame
   int frames_since_key = 0;
   double cycle_work = 0.0;  // Σ work / full-trace work of the frames since the key frame, it included
@@ -62,6 +79,10 @@ struct TemporalFrameStats {
   uint64_t disoccluded = 0, unreliable = 0, invalid_offsets = 0;
   uint64_t curved = 0;       // of the unreliable: on a strongly curved reflector (kReuseCurved)
   uint64_t edge = 0;         // of the unreliable: on an edge of the reflected image (kReuseEdge)
+  uint64_t refined = 0;      // of the unreliable: neighbours of observed errors (kReuseRefined)
+  uint64_t learned = 0;      // of the unreliable: in key pixels marked by observed errors (kReuseLearned)
+  uint64_t observed = 0;     // recomputed samples whose reuse error was observed (feedback on)
+  uint64_t refine_rounds = 0;  // refinement rounds that added samples
   uint64_t match_steps = 0;  // Σ best-match descent steps
   double key_ms = 0.0;        // key frame: full trace + reflection depth image
   double match_ms = 0.0;      // best match (Algorithm 9)
@@ -70,10 +91,11 @@ struct TemporalFrameStats {
   double recompute_ms = 0.0;  // tracing the flagged samples
   double reflection_ms() const { return key_ms + match_ms + warp_ms + reproject_ms + recompute_ms; }
   double recompute_fraction() const { return reflective ? double(recomputed) / double(reflective) : 0.0; }
-  // What a new key frame would save: the recomputed samples bar the curved and edge ones,
-  // which are recomputed whatever the key frame.
+  // What a new key frame would save: the recomputed samples bar the curved, edge, refined
+  // and learned ones: reflected edges and detail between key samples are there whatever the
+  // key frame.
   double stale_fraction() const {
-    return reflective ? double(recomputed - curved - edge) / double(reflective) : 0.0;
+    return reflective ? double(recomputed - curved - edge - refined - learned) / double(reflective) : 0.0;
   }
 };
 

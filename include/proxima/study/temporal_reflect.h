@@ -55,6 +55,12 @@ struct TemporalReflectOptions {
   // --blend-error: reused samples whose expected display error (0–255) exceeds this are
   // recomputed; inf = off (the thesis' method).
   float blend_error = 8.0f;
+  // --refine-error: reused neighbours of recomputed samples whose reuse value erred by more
+  // than this (0–255) are recomputed too, until none is added; inf = off.
+  float refine_error = kInf;
+  // --learn-error: a recomputed sample whose reuse value erred by more than this (0–255)
+  // marks its key pixel; later frames of the key cycle recompute samples reusing it; inf = off.
+  float learn_error = kInf;
   // --keyframe-cost: TemporalOptions::keyframe_cost (rays per reflective key pixel that the
   // fixed steps cost); 0 = off (the thesis' threshold policy alone).
   float keyframe_cost = 1.0f;
