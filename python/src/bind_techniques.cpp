@@ -188,6 +188,7 @@ class TemporalReflections {
     py::dict stats = named({{"key", st.key}, {"reflective", st.reflective}, {"recomputed", st.recomputed},
         {"rays", st.rays}, {"traced_rays", st.traced_rays}, {"disoccluded", st.disoccluded},
         {"unreliable", st.unreliable}, {"curved", st.curved}, {"edge", st.edge},
+        {"refined", st.refined}, {"learned", st.learned},
         {"invalid_offsets", st.invalid_offsets}, {"match_steps", st.match_steps},
         {"recompute_fraction", st.recompute_fraction()}, {"work", st.work},
         {"reflection_ms", st.reflection_ms()}});
@@ -215,7 +216,7 @@ std::unique_ptr<TemporalReflections> make_temporal(std::shared_ptr<SceneHandle> 
                                                    float curved_contrast, float edge_contrast,
                                                    const std::string& edge_rule, bool recompute_splats,
                                                    float blend_error, float keyframe_cost, bool match_extrapolate,
-                                                   float lobe_seed_cell) {
+                                                   float lobe_seed_cell, float refine_error, float learn_error) {
   study::TemporalReflectOptions o;
   o.path = "-";  // the caller's cameras take the path's place; validate() asks for one
   o.threshold = threshold;
@@ -233,6 +234,8 @@ std::unique_ptr<TemporalReflections> make_temporal(std::shared_ptr<SceneHandle> 
   o.keyframe_cost = keyframe_cost;
   o.match_extrapolate = match_extrapolate;
   o.lobe_seed_cell = lobe_seed_cell;
+  o.refine_error = refine_error;
+  o.learn_error = learn_error;
   return std::make_unique<TemporalReflections>(std::move(scene), o);
 }
 
@@ -245,7 +248,7 @@ void bind_temporal(py::module_& m) {
       "policy decides when a frame is traced in full. The options are `proxima reflect --method temporal`'s "
       "flags without --, '-' → '_' (threshold, light_samples, glossy_rays, seed, stretch_limit, spread_limit, "
       "depth_discontinuity, curved_contrast, edge_contrast, edge_rule, recompute_splats, blend_error, "
-      "keyframe_cost, match_extrapolate, lobe_seed_cell). The scene's rest pose is used; one sample per pixel.")
+      "keyframe_cost, match_extrapolate, lobe_seed_cell, refine_error, learn_error). The scene's rest pose is used; one sample per pixel.")
       .def(py::init(&make_temporal), py::arg("scene"), py::kw_only(), py::arg("threshold") = d.threshold,
            py::arg("light_samples") = d.light_samples, py::arg("glossy_rays") = d.glossy_rays,
            py::arg("seed") = d.seed, py::arg("stretch_limit") = d.stretch_limit,
@@ -253,13 +256,15 @@ void bind_temporal(py::module_& m) {
            py::arg("curved_contrast") = d.curved_contrast, py::arg("edge_contrast") = d.edge_contrast,
            py::arg("edge_rule") = d.edge_rule, py::arg("recompute_splats") = d.recompute_splats,
            py::arg("blend_error") = d.blend_error, py::arg("keyframe_cost") = d.keyframe_cost,
-           py::arg("match_extrapolate") = d.match_extrapolate, py::arg("lobe_seed_cell") = d.lobe_seed_cell)
+           py::arg("match_extrapolate") = d.match_extrapolate, py::arg("lobe_seed_cell") = d.lobe_seed_cell,
+           py::arg("refine_error") = d.refine_error, py::arg("learn_error") = d.learn_error)
       .def("step", &TemporalReflections::step, py::arg("camera"),
            "Renders the next frame from `camera`; GIL released (steps of one object run one at a time). Returns "
            "a dict: color (H×W×3 float32 linear RGB, the frame: base + s·reflected), reflective (H×W bool, "
            "pixels of a reflective surface), reuse (H×W uint8, the reuse flags of reflective pixels: 0 reused, "
-           "bit 0 disoccluded, bit 1 unreliable, bit 2 curved, bit 3 edge — flagged pixels were traced), stats "
-           "(dict: key, reflective, recomputed, rays, traced_rays, disoccluded, unreliable, curved, edge, "
+           "bit 0 disoccluded, bit 1 unreliable, bit 2 curved, bit 3 edge, bit 4 kept (the blend-error rule's, its reuse "
+           "value observed), bit 5 refined, bit 6 learned — flagged pixels were traced), stats "
+           "(dict: key, reflective, recomputed, rays, traced_rays, disoccluded, unreliable, curved, edge, refined, learned, "
            "invalid_offsets, match_steps, recompute_fraction, work, reflection_ms).")
       .def_property_readonly("frames", &TemporalReflections::frames, "Frames stepped so far.");
 }

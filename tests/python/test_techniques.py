@@ -102,6 +102,28 @@ def test_temporal_bad_input(room):
         proxima.TemporalReflections(room, threshold=2.0)
     with pytest.raises(ValueError, match="edge-rule"):
         proxima.TemporalReflections(room, edge_rule="nope")
+    with pytest.raises(ValueError, match="learn-error"):
+        proxima.TemporalReflections(room, learn_error=-1.0)
+    with pytest.raises(ValueError, match="refine-error"):
+        proxima.TemporalReflections(room, refine_error=-1.0)
+
+
+def test_temporal_feedback_traces_more(room):
+    """The observed-error options reach the method: with both at 0 every reused pixel next to
+    or projecting into an observed error is traced, so more pixels than without."""
+    w, h = 64, 48
+    recomputed = {}
+    for name, kw in (("off", {}), ("on", {"refine_error": 0.0, "learn_error": 0.0})):
+        t = proxima.TemporalReflections(room, **kw)
+        total, added = 0, 0
+        for i in range(4):
+            st = t.step(room.path_camera(0, i, width=w, height=h))["stats"]
+            total += st["recomputed"]
+            added += st["refined"] + st["learned"]
+        recomputed[name] = (total, added)
+    assert recomputed["off"][1] == 0
+    assert recomputed["on"][1] > 0
+    assert recomputed["on"][0] > recomputed["off"][0]
 
 
 def test_cluster_equals_study(room):
