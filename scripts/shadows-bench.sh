@@ -1,6 +1,6 @@
 #!/bin/sh
 # Soft shadows from depth images against Embree shadow rays, both in one run (interleaved
-# repetitions, medians; bench/shadows_crossover_bench.cpp): city and grass from 50k to 10M
+# repetitions, medians; bench/shadows_crossover_bench.cpp): city and grass from 50k to 20M
 # triangles at the demo's settings. Prints per scene the depth-image method's steps, step 3
 # as it was (whole-field maps of the unmerged reconstruction), the Embree BVH build and
 # rays, the ratios (> 1: the depth-image method is faster) in wall-clock and in process-CPU

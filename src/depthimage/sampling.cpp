@@ -174,6 +174,10 @@ struct NonRedundantTest {
   // A triangle that no earlier image holds cannot be pixel-redundant: the rasterizer
   // then skips the test for its fragments (no run arrays).
   bool keeps_all(uint32_t triangle) const { return held && held[triangle] == 0; }
+  // The rasterizer fetches held[] ahead of keeps_all (a scattered byte per triangle).
+  void prefetch(uint32_t triangle) const {
+    if (held) __builtin_prefetch(held + triangle);
+  }
   // The rasterizer's run form (one triangle, one row): the same answers, with the
   // presence mask read once per run and four fragments at a time, each four tested
   // against every earlier image holding the triangle before the next four (pixel

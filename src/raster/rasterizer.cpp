@@ -373,10 +373,29 @@ void build_chunk(const Frame& frame, const ClipSpace& cs, bool cull_back, uint64
                                      [](uint64_t pos, const DrawRun& run) { return pos < run.start; }) -
                     runs.begin()) -
              1;
+  // An id list (a sorted draw order) jumps around the scene's triangles and vertices, and
+  // at millions of triangles each jump misses the caches: fetch the index triple
+  // 2·kAhead positions ahead and that triangle's clip vertices kAhead ahead (hints only:
+  // the same arithmetic, the same bits). Without a list the accesses are sequential.
+  constexpr uint64_t kAhead = 16;
+  const uint64_t list_size = frame.id_list ? runs.back().start + runs.back().count : 0;
   for (uint64_t pos = begin; pos < end; ++pos) {
     while (pos >= runs[r].start + runs[r].count) ++r;
     const uint32_t item = runs[r].first + uint32_t(pos - runs[r].start);
     const uint32_t triangle = frame.id_list ? frame.id_list[item] : item;
+    if (frame.id_list) {
+      if (pos + 2 * kAhead < list_size) {
+        const uint32_t far = frame.id_list[pos + 2 * kAhead];
+        __builtin_prefetch(&scene.triangles[far]);
+        if (!scene.objects.empty()) __builtin_prefetch(&scene.triangle_object[far]);
+      }
+      if (pos + kAhead < list_size) {
+        const uvec3 ahead = scene.triangles[frame.id_list[pos + kAhead]];
+        __builtin_prefetch(&frame.vertices[ahead.x]);
+        __builtin_prefetch(&frame.vertices[ahead.y]);
+        __builtin_prefetch(&frame.vertices[ahead.z]);
+      }
+    }
     if (frame.id_list && !scene.objects.empty() && frame.object_visible[scene.triangle_object[triangle]] != 1)
       continue;
     ++chunk.submitted;

@@ -126,6 +126,8 @@ std::vector<Bounds3> raster_object_bounds(const Scene& scene);
 // the same fragments in the same per-pixel order, so it must answer as the per-fragment
 // test would. And it may have keeps_all(uint32_t triangle) → bool: where true, it would
 // keep every fragment of that triangle, and the rasterizer keeps them without calling it.
+// And it may have prefetch(uint32_t triangle): a hint that the rasterizer will soon test
+// that triangle's fragments (fetch per-triangle data); it must not change any answer.
 // Throws InputError for an invalid camera (validate_camera).
 template <typename FragmentTest>
 RasterStats rasterize(const Scene& scene, const Camera& camera, const RasterOptions& options,

@@ -258,15 +258,33 @@ inline void raster_setup(const Setup& s, const Tile& tile, TileBuffer& buf, Test
   }
 }
 
-// All binned setups of one tile, chunk by chunk: draw order.
+// A fragment test that reads per-triangle data it can fetch ahead: prefetch(triangle) is
+// a hint only (it must not change what the test answers).
+template <typename Test>
+concept PrefetchingTest = requires(Test& test, uint32_t triangle) { test.prefetch(triangle); };
+
+// All binned setups of one tile, chunk by chunk: draw order. A tile reads a sparse subset
+// of each chunk's setups, and with millions of small triangles every one is a cache miss:
+// the setup kAhead bins ahead is fetched early, and the per-triangle data of the test for
+// the one kAhead/2 ahead (hints only, the same bits).
 template <bool kDepthTest, bool kUV, typename Test>
 void raster_tile(Frame& frame, const Tile& tile, TileBuffer& buf, Test& test) {
+  constexpr uint32_t kAhead = 8;
   const size_t t = size_t(tile.y0 / kTileSize) * size_t(frame.tiles_x) + size_t(tile.x0 / kTileSize);
   TileCounts counts;
   for (size_t c = 0; c < frame.chunk_count; ++c) {
     const Chunk& chunk = frame.chunks[c];
-    for (uint32_t k = chunk.offsets[t]; k < chunk.offsets[t + 1]; ++k)
+    const uint32_t end = chunk.offsets[t + 1];
+    for (uint32_t k = chunk.offsets[t]; k < end; ++k) {
+      if (k + kAhead < end) {
+        const char* ahead = reinterpret_cast<const char*>(&chunk.setups[chunk.binned[k + kAhead]]);
+        __builtin_prefetch(ahead);
+        __builtin_prefetch(ahead + sizeof(Setup) - 1);
+      }
+      if constexpr (PrefetchingTest<Test>)
+        if (k + kAhead / 2 < end) test.prefetch(chunk.setups[chunk.binned[k + kAhead / 2]].triangle);
       raster_setup<kDepthTest, kUV>(chunk.setups[chunk.binned[k]], tile, buf, test, counts);
+    }
   }
   frame.tile_counts[t] = counts;
 }
