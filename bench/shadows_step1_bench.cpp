@@ -28,9 +28,8 @@ void BM_ShadowsStep1(benchmark::State& state) {
   const Scene scene = make_grass_scene(blades);
   const Camera view = pick_camera(scene, CameraChoice{}, 256, 256);
   const AreaLight light = shadow_light(scene, 1.0f);
-  const std::vector<vec3> samples = light_samples(light, 8);
   const Receivers receivers = render_receivers(scene, view);
-  std::vector<vec3> eyes = samples;
+  std::vector<vec3> eyes = light_samples(light, 8).points;
   for (const vec3& c : light_corners(light)) eyes.push_back(c);
   const LightCameras cams = fit_light_cameras(scene, light, receivers, eyes);
   OccluderOptions oo;
