@@ -15,6 +15,15 @@ namespace {
 // behaves like a direction in the match distance, finite for the warp's depth test.
 constexpr float kEscapeDistanceScale = 100.0f;
 
+// Traces the samples listed in `todo` into `radiance`; returns how many rays it traced.
+uint64_t trace_listed(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
+                      const std::vector<uint32_t>& todo, std::vector<vec3>& radiance) {
+  uint64_t traced_rays = 0;
+  for (uint32_t i : todo) traced_rays += frame.first_ray[i + 1] - frame.first_ray[i];
+  trace_reflection_samples(scene, rays, frame, todo, radiance);
+  return traced_rays;
+}
+
 // Traces the flagged samples into r.radiance (listed in `todo`, reused); returns how many
 // rays it traced. `observed` (may be null) receives the kReuseKept samples with their
 // reuse values.
@@ -22,15 +31,12 @@ uint64_t recompute(const Scene& scene, const RayScene& rays, const ReflectionFra
                    std::vector<uint32_t>& todo, std::vector<std::pair<uint32_t, vec3>>* observed = nullptr) {
   todo.clear();
   if (observed) observed->clear();
-  uint64_t traced_rays = 0;
   for (size_t i = 0; i < r.flag.size(); ++i)
     if (r.flag[i] != kReuseOk) {
       todo.push_back(uint32_t(i));
-      traced_rays += frame.first_ray[i + 1] - frame.first_ray[i];
       if (observed && (r.flag[i] & kReuseKept)) observed->emplace_back(uint32_t(i), r.radiance[i]);
     }
-  trace_reflection_samples(scene, rays, frame, todo, r.radiance);
-  return traced_rays;
+  return trace_listed(scene, rays, frame, todo, r.radiance);
 }
 
 // The display error (0–255, any channel) of the reuse value `reused` of sample i where the
@@ -92,11 +98,8 @@ uint64_t feed_back(const Scene& scene, const RayScene& rays, const ReflectionFra
     }
     if (next.empty()) break;
     state.todo.clear();
-    for (const auto& [j, reused] : next) {
-      state.todo.push_back(j);
-      traced_rays += frame.first_ray[j + 1] - frame.first_ray[j];
-    }
-    trace_reflection_samples(scene, rays, frame, state.todo, r.radiance);
+    for (const auto& [j, reused] : next) state.todo.push_back(j);
+    traced_rays += trace_listed(scene, rays, frame, state.todo, r.radiance);
     added += next.size();
     ++st.refine_rounds;
     std::swap(observed, next);
