@@ -9,29 +9,12 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "proxima/core/parallel.h"
-#include "proxima/scene/procedural.h"
+#include "clutter_scene.h"
 
 namespace proxima {
 namespace {
 
-// Spheres of many tiny triangles, a torus and a ground plane wider than every view, below
-// an eye plane at y = 4 looking down.
-Scene clutter() {
-  Scene s;
-  const uint32_t mat = add_material(s, Material{});
-  for (int i = 0; i < 5; ++i) {
-    Mesh m = make_sphere(0.3f + 0.1f * float(i), 96, 48);
-    transform_mesh(m, glm::translate(mat4(1.0f), vec3(float(i) * 0.5f - 1.0f, 0.2f * float(i), -float(i) * 0.4f)));
-    add_object(s, m, "sphere", mat);
-  }
-  Mesh torus = make_torus(1.0f, 0.2f, 64, 32);
-  transform_mesh(torus, glm::rotate(mat4(1.0f), 0.7f, vec3(1, 0, 0)));
-  add_object(s, torus, "torus", mat);
-  Mesh ground = make_plane(200.0f, 200.0f, 40, 40);
-  transform_mesh(ground, glm::translate(mat4(1.0f), vec3(0, -0.8f, 0)));
-  add_object(s, ground, "ground", mat);
-  return s;
-}
+using raster_test::clutter;
 
 // Eyes on a 3×3 grid in the plane y = 4, 0.6 m apart, looking down (−y), images of
 // 180 × 150 texels whose principal points move with the eye; pixel scale `to_pixel`.
