@@ -5,8 +5,7 @@
 // grass from 50k to 20M triangles. Per repetition, interleaved: the depth-image method
 // (step 1 reference images, step 2 reconstruction with merged planar runs, step 3 with
 // fitted maps drawn one per task by the depth-only rasterizer, only the triangles over
-// texels a receiver reads), step 3 with one shared projection for all maps instead
-// (shared_projection), step 3 as it was (whole-field 1024² maps of the unmerged
+// texels a receiver reads), step 3 as it was (whole-field 1024² maps of the unmerged
 // reconstruction, one after another through the tiled rasterizer),
 // the Embree BVH build and the shadow rays. Counters are medians over the repetitions;
 // visibility errors (0–255) are against the rays. Arguments: grass blades (12 triangles
@@ -40,7 +39,7 @@ double max_rss_mb() {
 // the CPU times are the steadier figures (another process's load does not count).
 struct Times {
   std::vector<double> reference, reconstruct, shadow, shadow_today, bvh, rays;
-  std::vector<double> steps12_cpu, shadow_cpu, shadow_today_cpu, shadow_shared_cpu, bvh_cpu, rays_cpu;
+  std::vector<double> steps12_cpu, shadow_cpu, shadow_today_cpu, bvh_cpu, rays_cpu;
 };
 
 void BM_SoftShadowsVsRays(benchmark::State& state) {
@@ -60,13 +59,12 @@ void BM_SoftShadowsVsRays(benchmark::State& state) {
   OccluderOptions unmerged = oo;
   unmerged.merge_planar_runs = false;
   const Occluders occ_today = build_occluders(scene, nullptr, light, cams, ShadowSampling::Nrr, unmerged);
-  ShadowMapOptions fitted, today, shared;
+  ShadowMapOptions fitted, today;
   today.fit_receivers = false;
   today.per_map_tasks = false;
-  shared.shared_projection = true;
   Times t;
-  LightVisibility v_fitted, v_today, v_shared, v_rays;
-  ShadowMapStats st_fitted, st_today, st_shared;
+  LightVisibility v_fitted, v_today, v_rays;
+  ShadowMapStats st_fitted, st_today;
   size_t occluder_triangles = 0, occluder_vertices = 0;
   for (auto _ : state) {
     t = Times{};
@@ -78,19 +76,15 @@ void BM_SoftShadowsVsRays(benchmark::State& state) {
       occluder_vertices = occ.scene.positions.size();
       t.reference.push_back(occ.reference_ms);
       t.reconstruct.push_back(occ.reconstruct_ms);
-      // Rotate which step-3 variant goes first.
-      for (int k = 0; k < 3; ++k) {
+      // Alternate which step-3 variant goes first.
+      for (int k = 0; k < 2; ++k) {
         cpu = process_cpu_ms();
-        const int variant = (k + r) % 3;
-        if (variant == 0) {
+        if ((k == 0) == (r % 2 == 0)) {
           v_fitted = shadow_map_visibility(occ.scene, receivers, samples, cams, fitted, nullptr, &st_fitted);
           t.shadow_cpu.push_back(process_cpu_ms() - cpu);
-        } else if (variant == 1) {
+        } else {
           v_today = shadow_map_visibility(occ_today.scene, receivers, samples, cams, today, nullptr, &st_today);
           t.shadow_today_cpu.push_back(process_cpu_ms() - cpu);
-        } else {
-          v_shared = shadow_map_visibility(occ.scene, receivers, samples, cams, shared, nullptr, &st_shared);
-          t.shadow_shared_cpu.push_back(process_cpu_ms() - cpu);
         }
       }
       t.shadow.push_back(st_fitted.ms);
@@ -131,11 +125,6 @@ void BM_SoftShadowsVsRays(benchmark::State& state) {
   c["shadow_cpu_ms"] = median(t.shadow_cpu);
   c["shadow_today_cpu_ms"] = median(t.shadow_today_cpu);
   c["shadow_speedup_cpu"] = median(t.shadow_today_cpu) / median(t.shadow_cpu);
-  c["shadow_shared_cpu_ms"] = median(t.shadow_shared_cpu);
-  c["shadow_shared_speedup_cpu"] = median(t.shadow_today_cpu) / median(t.shadow_shared_cpu);
-  c["texels_shared"] = double(st_shared.texels);
-  c["triangles_drawn_shared"] = double(st_shared.triangles_drawn);
-  c["vis_error_rays_shared"] = compare_visibility(v_shared, v_rays, receivers).visibility_mean;
   c["bvh_cpu_ms"] = median(t.bvh_cpu);
   c["rays_cpu_ms"] = median(t.rays_cpu);
   c["ratio_static_cpu"] = median(t.rays_cpu) / depth_cpu;

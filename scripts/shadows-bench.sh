@@ -2,7 +2,7 @@
 # Soft shadows from depth images against Embree shadow rays, both in one run (interleaved
 # repetitions, medians; bench/shadows_crossover_bench.cpp): city and grass from 50k to 20M
 # triangles at the demo's settings. Prints per scene the depth-image method's steps, step 3
-# with one shared projection for all maps, step 3 as it was (whole-field maps of the unmerged reconstruction), the Embree BVH build and
+# as it was (whole-field maps of the unmerged reconstruction), the Embree BVH build and
 # rays, the ratios (> 1: the depth-image method is faster) in wall-clock and in process-CPU
 # time (steadier on a shared machine), visibility errors against the rays (0–255), peak
 # memory, and the load average before and after.
@@ -40,13 +40,8 @@ table("Wall-clock ms (medians):", [
     ("max RSS MB", "{max_rss_mb:.0f}")])
 table("Process-CPU ms (medians):", [
     ("steps 1+2", "{steps12_cpu_ms:.0f}"), ("step 3", "{shadow_cpu_ms:.0f}"), ("step 3 today", "{shadow_today_cpu_ms:.0f}"),
-    ("speed-up", "{shadow_speedup_cpu:.2f}x"),
-    ("step 3 shared projection", "{shadow_shared_cpu_ms:.0f} ({shadow_shared_speedup_cpu:.2f}x)"),
-    ("depth-image total", "{depth_image_cpu_ms:.0f}"),
+    ("speed-up", "{shadow_speedup_cpu:.2f}x"), ("depth-image total", "{depth_image_cpu_ms:.0f}"),
     ("Embree BVH", "{bvh_cpu_ms:.0f}"), ("Embree rays", "{rays_cpu_ms:.0f}"), ("ratio static", "{ratio_static_cpu:.2f}"),
-    ("ratio with BVH", "{ratio_dynamic_cpu:.2f}"),
-    ("step 3 texels (shared; today)", "{texels:,.0f} ({texels_shared:,.0f}; {texels_today:,.0f})"),
-    ("triangles drawn (shared; today)",
-     "{triangles_drawn:,.0f} ({triangles_drawn_shared:,.0f}; {triangles_drawn_today:,.0f})"),
-    ("vis err (shared)", "{vis_error_rays:.2f} ({vis_error_rays_shared:.2f})")])
+    ("ratio with BVH", "{ratio_dynamic_cpu:.2f}"), ("step 3 texels (today)", "{texels:,.0f} ({texels_today:,.0f})"),
+    ("triangles drawn (today)", "{triangles_drawn:,.0f} ({triangles_drawn_today:,.0f})")])
 PY

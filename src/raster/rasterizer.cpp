@@ -14,10 +14,8 @@
 // the chunks in order, so every pixel sees its fragments in draw order.
 #include "proxima/raster/rasterizer.h"
 #include "proxima/raster/depth_raster.h"
-#include "proxima/raster/sheared_depth_raster.h"
 
 #include <algorithm>
-#include <array>
 #include <cassert>
 #include <cmath>
 #include <mutex>
@@ -337,9 +335,8 @@ bool any_texel(const TexelMask& mask, const PixelBox& box) {
 // (same bits), but without building a Setup, with the row scan inlined, and with the 1/W
 // plane (double, one division) computed only once a pixel center is covered — a triangle
 // of about one texel often covers none. Returns whether emit_setup would emit a setup.
-// Always inlined: its callers' triangle loops are its hot path.
-[[gnu::always_inline]] inline bool depth_triangle(SetupVertex a, SetupVertex b, SetupVertex c, bool cull_back,
-                                                 int width, int height, float* inv_depth) {
+bool depth_triangle(SetupVertex a, SetupVertex b, SetupVertex c, bool cull_back, int width, int height,
+                    float* inv_depth) {
   Setup s;
   PixelBox box;
   if (!orient_and_bound(a, b, c, cull_back, width, height, s, box)) return false;
@@ -772,47 +769,35 @@ void TexelMask::reset(int width, int height) {
   bits.assign(size_t(words_per_row) * size_t(height), 0);
 }
 
-namespace {
-
-void validate_texel_mask(const TexelMask& mask, int width, int height) {
-  if (mask.words_per_row != (width + 63) / 64 || mask.bits.size() != size_t(mask.words_per_row) * size_t(height))
-    fail_input("texel mask: size differs from the image's");
+RasterStats rasterize_depth_serial(const Scene& scene, const Camera& camera, std::span<const Bounds3> bounds,
+                                   CullMode cull, ImageF& depth, DepthRasterScratch& scratch) {
+  return rasterize_depth_serial(scene, camera, bounds, cull, nullptr, depth, scratch);
 }
 
-// rasterize_depth_serial for a world → clip transform `cs` into `image`, w × h values of
-// 1/W set to 0 by the caller, each pixel keeping its greatest 1/W; vertex(i) gives scene
-// vertex i in clip space (clip_vertex(cs, position) or an equivalent), inv_w(i, v) its 1/W
-// as 1.0f / v.W gives it. kPrepass: each drawn object's vertices once into the scratch
-// before its triangles; without it each triangle asks for its three (vertex() cheaper than
-// a store and a load).
-//
-// With `needed`, an unclipped triangle whose pixel box holds no needed texel is culled
-// before its set-up: the needed texels get the depth they would get without it.
-template <bool kPrepass, class VertexStage, class InvW>
-RasterStats depth_serial(const Scene& scene, const raster_detail::ClipSpace& cs, int w, int h,
-                         std::span<const Bounds3> bounds, CullMode cull, float* image, DepthRasterScratch& scratch,
-                         const TexelMask* needed, VertexStage vertex, InvW inv_w) {
+RasterStats rasterize_depth_serial(const Scene& scene, const Camera& camera, std::span<const Bounds3> bounds,
+                                   CullMode cull, const TexelMask* needed, ImageF& depth, DepthRasterScratch& scratch) {
   using namespace raster_detail;
+  validate_camera(camera, "rasterizer camera");
+  if (needed && (needed->words_per_row != (camera.width + 63) / 64 ||
+                 needed->bits.size() != size_t(needed->words_per_row) * size_t(camera.height)))
+    fail_input("texel mask: size differs from the image's");
   assert(bounds.empty() || bounds.size() == scene.objects.size());
+  const int w = camera.width, h = camera.height;
+  ensure_image(depth, w, h, 1);
+  std::fill(depth.data().begin(), depth.data().end(), 0.0f);  // 1/W; 1/0 = +inf: empty
+  const ClipSpace cs = make_clip_space(camera);
   const bool cull_back = cull == CullMode::Back;
-  if (kPrepass) scratch.vertices.resize(scene.positions.size());
+  scratch.vertices.resize(scene.positions.size());
   RasterStats stats;
+  float* image = depth.data().data();
   // One object's triangles (a scene without objects is one unculled object).
   auto draw = [&](uint32_t first_vertex, uint32_t vertex_count, uint32_t first_triangle, uint32_t triangle_count) {
-    if (kPrepass)
-      for (uint32_t i = first_vertex; i < first_vertex + vertex_count; ++i) scratch.vertices[i] = vertex(i);
+    for (uint32_t i = first_vertex; i < first_vertex + vertex_count; ++i)
+      scratch.vertices[i] = clip_vertex(cs, scene.positions[i]);
     stats.triangles_submitted += triangle_count;
     for (uint32_t t = first_triangle; t < first_triangle + triangle_count; ++t) {
       const uvec3 idx = scene.triangles[t];
-      ClipVertex c0, c1, c2;
-      if (!kPrepass) {
-        c0 = vertex(idx.x);
-        c1 = vertex(idx.y);
-        c2 = vertex(idx.z);
-      }
-      const ClipVertex& v0 = kPrepass ? scratch.vertices[idx.x] : c0;
-      const ClipVertex& v1 = kPrepass ? scratch.vertices[idx.y] : c1;
-      const ClipVertex& v2 = kPrepass ? scratch.vertices[idx.z] : c2;
+      const ClipVertex &v0 = scratch.vertices[idx.x], &v1 = scratch.vertices[idx.y], &v2 = scratch.vertices[idx.z];
       if (!((v0.code | v1.code | v2.code) & (kClipMask | kNotFinite))) {
         bool rejected = v0.code & v1.code & v2.code & kRejectMask;
         if (needed && !rejected) {
@@ -820,9 +805,9 @@ RasterStats depth_serial(const Scene& scene, const raster_detail::ClipSpace& cs,
                                          {v2.fx, v2.fy, 0.0f, 0.0f, 0.0f}, w, h);
           rejected = box.empty() || !any_texel(*needed, box);
         }
-        const bool drawn = !rejected && depth_triangle({v0.fx, v0.fy, inv_w(idx.x, v0), 0.0f, 0.0f},
-                                                       {v1.fx, v1.fy, inv_w(idx.y, v1), 0.0f, 0.0f},
-                                                       {v2.fx, v2.fy, inv_w(idx.z, v2), 0.0f, 0.0f}, cull_back, w, h, image);
+        const bool drawn = !rejected && depth_triangle({v0.fx, v0.fy, 1.0f / v0.W, 0.0f, 0.0f},
+                                                       {v1.fx, v1.fy, 1.0f / v1.W, 0.0f, 0.0f},
+                                                       {v2.fx, v2.fy, 1.0f / v2.W, 0.0f, 0.0f}, cull_back, w, h, image);
         stats.triangles_culled += !drawn;
         stats.triangles_rasterized += drawn;
         continue;
@@ -848,175 +833,7 @@ RasterStats depth_serial(const Scene& scene, const raster_detail::ClipSpace& cs,
     ++stats.objects_drawn;
     draw(obj.first_vertex, obj.vertex_count, obj.first_triangle, obj.triangle_count);
   }
-  return stats;
-}
-
-// A w × h depth image for depth_serial: `depth` resized and set to 1/W = 0 (the 1/W of
-// +inf, empty) before, each 1/W turned into W after.
-template <class Draw>
-RasterStats depth_image(ImageF& depth, int w, int h, Draw draw) {
-  raster_detail::ensure_image(depth, w, h, 1);
-  std::fill(depth.data().begin(), depth.data().end(), 0.0f);
-  const RasterStats stats = draw(depth.data().data());
   for (float& d : depth.data()) d = 1.0f / d;
-  return stats;
-}
-
-}  // namespace
-
-RasterStats rasterize_depth_serial(const Scene& scene, const Camera& camera, std::span<const Bounds3> bounds,
-                                   CullMode cull, ImageF& depth, DepthRasterScratch& scratch) {
-  return rasterize_depth_serial(scene, camera, bounds, cull, nullptr, depth, scratch);
-}
-
-RasterStats rasterize_depth_serial(const Scene& scene, const Camera& camera, std::span<const Bounds3> bounds,
-                                   CullMode cull, const TexelMask* needed, ImageF& depth, DepthRasterScratch& scratch) {
-  validate_camera(camera, "rasterizer camera");
-  if (needed) validate_texel_mask(*needed, camera.width, camera.height);
-  const raster_detail::ClipSpace cs = raster_detail::make_clip_space(camera);
-  return depth_image(depth, camera.width, camera.height, [&](float* image) {
-    return depth_serial<true>(scene, cs, camera.width, camera.height, bounds, cull, image, scratch, needed,
-                              [&](uint32_t i) { return raster_detail::clip_vertex(cs, scene.positions[i]); },
-                              [](uint32_t, const raster_detail::ClipVertex& c) { return 1.0f / c.W; });
-  });
-}
-
-namespace {
-
-// The shared camera's world → camera rows (double, from the float view matrix as
-// make_clip_space takes them).
-std::array<glm::dvec4, 3> sheared_view_rows(const ShearedViews& v) {
-  Camera shared;
-  shared.position = v.origin;
-  shared.orientation = v.orientation;
-  const glm::dmat4 view(view_matrix(shared));
-  auto row = [&](int r) { return glm::dvec4(view[0][r], view[1][r], view[2][r], view[3][r]); };
-  return {row(0), row(1), row(2)};
-}
-
-// to_pixel · offset of view k, the shift of its pixel positions per unit of 1/W.
-glm::dvec2 sheared_shift(const ShearedViews& v, size_t k) {
-  return glm::dmat2(v.to_pixel) * glm::dvec2(v.views[k].offset);
-}
-
-// View k's world → clip transform: (X, Y) = to_pixel·(c.x, c.y) − shift + principal·W,
-// W = −c.z, rows in double then float as make_clip_space's.
-raster_detail::ClipSpace sheared_clip_space(const ShearedViews& v, size_t k) {
-  const std::array<glm::dvec4, 3> r = sheared_view_rows(v);
-  const glm::dmat2 a(v.to_pixel);
-  const glm::dvec2 shift = sheared_shift(v, k), principal(v.views[k].principal);
-  const glm::dvec4 w = -r[2], one(0.0, 0.0, 0.0, 1.0);
-  raster_detail::ClipSpace cs;
-  cs.row_x = vec4(a[0][0] * r[0] + a[1][0] * r[1] - shift.x * one + principal.x * w);
-  cs.row_y = vec4(a[0][1] * r[0] + a[1][1] * r[1] - shift.y * one + principal.y * w);
-  cs.row_w = vec4(w);
-  cs.width = float(v.views[k].width);
-  cs.height = float(v.views[k].height);
-  cs.near = v.near;
-  cs.far = v.far;
-  return cs;
-}
-
-void validate_sheared_view(const ShearedViews& v, size_t k) {
-  if (k >= v.views.size()) fail_input("sheared view: index out of range");
-  const ShearedView& s = v.views[k];
-  if (s.width < 1 || s.height < 1 || s.width > kMaxImageSide || s.height > kMaxImageSide)
-    fail_input("sheared view: image size out of range");
-  const float det = glm::determinant(v.to_pixel);
-  if (!(det != 0.0f) || !std::isfinite(det) || !(v.near > 0.0f) || !(v.far > v.near) || !std::isfinite(v.far) ||
-      !std::isfinite(s.offset.x) || !std::isfinite(s.offset.y) || !std::isfinite(s.principal.x) ||
-      !std::isfinite(s.principal.y))
-    fail_input("sheared view: invalid pixel scale, clip distances, offset or principal point");
-}
-
-}  // namespace
-
-vec3 sheared_eye(const ShearedViews& v, size_t k) {
-  return v.origin + v.orientation * vec3(v.views[k].offset, 0.0f);
-}
-
-std::optional<Projection> sheared_project(const ShearedViews& v, size_t k, vec3 world) {
-  const vec3 c = glm::conjugate(v.orientation) * (world - v.origin);
-  const float depth = -c.z;
-  if (!(depth > 0.0f)) return std::nullopt;
-  const ShearedView& s = v.views[k];
-  return Projection{s.principal + v.to_pixel * ((vec2(c.x, c.y) - s.offset) / depth), depth};
-}
-
-RasterStats rasterize_sheared_view(const Scene& scene, const ShearedViews& v, size_t k,
-                                   std::span<const Bounds3> bounds, CullMode cull, ImageF& depth,
-                                   DepthRasterScratch& scratch) {
-  validate_sheared_view(v, k);
-  const raster_detail::ClipSpace cs = sheared_clip_space(v, k);
-  const int w = v.views[k].width, h = v.views[k].height;
-  return depth_image(depth, w, h, [&](float* image) {
-    return depth_serial<true>(scene, cs, w, h, bounds, cull, image, scratch, nullptr,
-                        [&](uint32_t i) { return raster_detail::clip_vertex(cs, scene.positions[i]); },
-                        [](uint32_t, const raster_detail::ClipVertex& c) { return 1.0f / c.W; });
-  });
-}
-
-ShearedDepthRaster::ShearedDepthRaster(const Scene& scene, const ShearedViews& views, std::span<const Bounds3> bounds)
-    : scene_(scene), views_(views), bounds_(bounds), vertices_(scene.positions.size()) {
-  using namespace raster_detail;
-  const std::array<glm::dvec4, 3> r = sheared_view_rows(views);
-  const glm::dmat2 a(views.to_pixel);
-  parallel_for(vertices_.size(), 16384, [&](size_t i0, size_t i1) {
-    for (size_t i = i0; i < i1; ++i) {
-      const glm::dvec4 p(glm::dvec3(scene.positions[i]), 1.0);
-      const double W = -glm::dot(r[2], p), inv = 1.0 / W;
-      const glm::dvec2 t = a * glm::dvec2(glm::dot(r[0], p) * inv, glm::dot(r[1], p) * inv);
-      Vertex& out = vertices_[i];
-      out.x = t.x;
-      out.y = t.y;
-      out.g = inv;
-      out.W = float(W);
-      out.iw = 1.0f / out.W;
-      const bool finite = std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(W);
-      out.code = !finite ? kNotFinite : (W < double(views.near) ? kOutNear : 0u) | (W > double(views.far) ? kOutFar : 0u);
-    }
-  });
-}
-
-RasterStats ShearedDepthRaster::draw_inverse(size_t k, CullMode cull, std::vector<float>& inv_depth,
-                                             DepthRasterScratch& scratch, const TexelMask* needed) const {
-  using namespace raster_detail;
-  validate_sheared_view(views_, k);
-  if (needed) validate_texel_mask(*needed, views_.views[k].width, views_.views[k].height);
-  const ShearedView& view = views_.views[k];
-  const ClipSpace cs = sheared_clip_space(views_, k);
-  const glm::dvec2 shift = sheared_shift(views_, k);
-  const double px = view.principal.x, py = view.principal.y;
-  const double width = view.width, height = view.height, guard = kGuardBandPx;
-  inv_depth.assign(size_t(view.width) * size_t(view.height), 0.0f);
-  return depth_serial<false>(scene_, cs, view.width, view.height, bounds_, cull, inv_depth.data(), scratch, needed,
-                      [&](uint32_t i) {
-    const Vertex& s = vertices_[i];
-    // Behind the near plane, beyond the far plane or not finite: this view's own transform
-    // for the clipper.
-    if (s.code) return clip_vertex(cs, scene_.positions[i]);
-    const double x = s.x - s.g * shift.x + px, y = s.y - s.g * shift.y + py;
-    ClipVertex c;
-    c.X = float(x * double(s.W));
-    c.Y = float(y * double(s.W));
-    c.W = s.W;
-    c.code = (x < 0.0 ? kOutLeft : 0u) | (x > width ? kOutRight : 0u) | (y < 0.0 ? kOutTop : 0u) |
-             (y > height ? kOutBottom : 0u) | (x < -guard ? kGuardLeft : 0u) | (x > width + guard ? kGuardRight : 0u) |
-             (y < -guard ? kGuardTop : 0u) | (y > height + guard ? kGuardBottom : 0u);
-    c.fx = c.fy = 0;
-    if (!(c.code & kClipMask)) {
-      c.fx = int32_t(std::lrint(x * kSubpixel));
-      c.fy = int32_t(std::lrint(y * kSubpixel));
-    }
-    return c;
-  }, [&](uint32_t i, const ClipVertex&) { return vertices_[i].iw; });
-}
-
-RasterStats ShearedDepthRaster::draw(size_t k, CullMode cull, ImageF& depth, DepthRasterScratch& scratch) const {
-  std::vector<float> inv;
-  const RasterStats stats = draw_inverse(k, cull, inv, scratch);
-  depth = ImageF(views_.views[k].width, views_.views[k].height, 1);
-  for (size_t i = 0; i < inv.size(); ++i) depth.data()[i] = 1.0f / inv[i];
   return stats;
 }
 

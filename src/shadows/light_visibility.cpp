@@ -17,7 +17,6 @@
 #include "proxima/depthimage/depth_image.h"
 #include "proxima/raster/depth_raster.h"
 #include "proxima/raster/rasterizer.h"
-#include "proxima/raster/sheared_depth_raster.h"
 
 namespace proxima {
 
@@ -88,84 +87,6 @@ Camera fitted_shadow_map_camera(const LightCameras& cams, vec3 eye, std::span<co
   return look_at(eye, eye + dir, up, vfov, w, h, cams.near, far);
 }
 
-std::optional<ShearedViews> fitted_sheared_views(const AreaLight& light, const LightCameras& cams,
-                                                 std::span<const vec3> samples, std::span<const vec3> points,
-                                                 float focal_px, float* map_focal_px) {
-  ShearedViews v;
-  if (map_focal_px) *map_focal_px = focal_px;
-  v.origin = light.point(0.5f, 0.5f);
-  v.orientation = look_at(v.origin, v.origin + light.normal(), glm::normalize(light.edge_v), 90.0f, 16, 16).orientation;
-  const quat to_view = glm::conjugate(v.orientation);
-  const float in_plane = 1e-4f * glm::length(light.edge_u + light.edge_v);
-  std::vector<vec2> offsets;
-  for (const vec3& s : samples) {
-    const vec3 c = to_view * (s - v.origin);
-    if (!(std::abs(c.z) <= in_plane)) return std::nullopt;
-    offsets.push_back(vec2(c.x, c.y));
-  }
-  v.near = cams.near;
-  // The pixel scale: the texel grid of the fitted map from the light's centre where its
-  // axis meets the image plane, A = ∂(its pixel)/∂(c.x/W, c.y/W) there. With M the rotation
-  // from this frame to its, its pixel is f·(q.x, −q.y)/(−q.z), q = M·(t, −1); on its axis
-  // q = (0, 0, −|(t, −1)|).
-  const Camera centre = fitted_shadow_map_camera(cams, v.origin, points, focal_px);
-  const glm::dmat3 m(glm::mat3_cast(glm::conjugate(centre.orientation) * v.orientation));
-  const glm::dvec3 axis = glm::dmat3(glm::mat3_cast(to_view)) * glm::dvec3(camera_forward(centre));
-  glm::dmat2 a(double(focal_px), 0.0, 0.0, -double(focal_px));
-  if (axis.z < -1e-3) {
-    const double f = double(focal_px) * -axis.z;  // focal / |(t, −1)|
-    a = glm::dmat2(f * m[0][0], -f * m[0][1], f * m[1][0], -f * m[1][1]);
-  }
-  // The points' pixel positions before each view's shift, A·(c.x, c.y)/W, and 1/W; a point
-  // at or behind the near plane or wider than the light cameras' widest field is not fitted.
-  const float max_tan = std::tan(0.5f * glm::radians(kMaxShearedFieldDeg));
-  std::vector<glm::dvec3> t;
-  t.reserve(points.size());
-  float farthest = 0.0f;
-  for (const vec3& p : points) {
-    const vec3 c = to_view * (p - v.origin);
-    const float W = -c.z;
-    if (!(W > v.near)) continue;
-    const vec2 q(c.x / W, c.y / W);
-    if (!(std::max(std::abs(q.x), std::abs(q.y)) <= max_tan)) continue;
-    t.push_back(glm::dvec3(a * glm::dvec2(q), 1.0 / double(W)));
-    farthest = std::max(farthest, W);
-  }
-  v.far = std::max(v.near * 2.0f, farthest * 1.001f + v.near);
-  v.to_pixel = glm::mat2(a);
-  v.views.resize(offsets.size());
-  if (t.empty()) return v;  // 1×1 maps: every point is outside
-  // Each view's rectangle of the points in pixels before its principal point.
-  std::vector<glm::dvec2> lo(offsets.size(), glm::dvec2(kInf)), hi(offsets.size(), glm::dvec2(-kInf));
-  parallel_for(offsets.size(), 1, [&](size_t k0, size_t k1) {
-    for (size_t k = k0; k < k1; ++k) {
-      const glm::dvec2 shift = a * glm::dvec2(offsets[k]);
-      for (const glm::dvec3& q : t) {
-        const glm::dvec2 p = glm::dvec2(q) - q.z * shift;
-        lo[k] = glm::min(lo[k], p);
-        hi[k] = glm::max(hi[k], p);
-      }
-    }
-  });
-  // One scale for all views (their positions share A·(c.x, c.y)/W); a view wider than the
-  // cap makes every map coarser.
-  double widest = 0.0;
-  for (size_t k = 0; k < offsets.size(); ++k) widest = std::max({widest, hi[k].x - lo[k].x, hi[k].y - lo[k].y});
-  double scale = 1.0;
-  if (widest + 3.0 > double(kMaxFittedMapSide)) scale = (double(kMaxFittedMapSide) - 3.0) / widest;
-  v.to_pixel = glm::mat2(scale * a);
-  if (map_focal_px) *map_focal_px = float(scale * double(focal_px));
-  // One texel of margin on each side.
-  for (size_t k = 0; k < offsets.size(); ++k) {
-    ShearedView& view = v.views[k];
-    view.offset = offsets[k];
-    view.principal = vec2(1.0 - scale * lo[k]);
-    view.width = std::min(kMaxFittedMapSide, int(std::ceil(scale * (hi[k].x - lo[k].x))) + 2);
-    view.height = std::min(kMaxFittedMapSide, int(std::ceil(scale * (hi[k].y - lo[k].y))) + 2);
-  }
-  return v;
-}
-
 namespace {
 
 // Median distance between neighbouring receivers (right and lower neighbours) in the
@@ -229,57 +150,49 @@ std::vector<ReceiverPoint> receiver_list(const Receivers& r, const AreaLight& li
   return list;
 }
 
-// The receivers [i0, i1) against a width × height shadow map with depth depth_at(x, y) at
-// light sample `s`, receiver i seen at project(i) (pixel and depth, or nullopt behind the
-// map's eye) in a map of focal length `focal`: lit[i] = 1 where the sample lights receiver
-// i. Returns the receivers (facing s) that fell outside the map, taken as lit.
-template <class Project, class DepthAt>
-uint32_t test_receivers(const std::vector<ReceiverPoint>& list, size_t i0, size_t i1, vec3 s, Project project,
-                        float focal, int width, int height, DepthAt depth_at, const ShadowMapOptions& o,
-                        uint8_t* lit) {
+// Cosine between receiver r's normal and the direction to light sample `s`; the sample
+// cannot light it unless > 0.
+float cos_to_sample(const ReceiverPoint& r, vec3 s) {
+  const vec3 l = s - r.p;
+  return glm::dot(r.n, l) / glm::length(l);
+}
+
+// The receivers [i0, i1) against the shadow map `depth` of `cam` at light sample `s`:
+// lit[i] = 1 where the sample lights receiver i. Returns the receivers (facing s) that
+// fell outside the map, taken as lit.
+uint32_t test_receivers(const std::vector<ReceiverPoint>& list, size_t i0, size_t i1, vec3 s, const Camera& cam,
+                        const ImageF& depth, const ShadowMapOptions& o, uint8_t* lit) {
+  const CameraProjection proj(cam);
   uint32_t outside = 0;
   for (size_t i = i0; i < i1; ++i) {
-    const vec3 p = list[i].p, n = list[i].n;
-    const vec3 l = s - p;
-    const float cos_theta = glm::dot(n, l) / glm::length(l);
+    const float cos_theta = cos_to_sample(list[i], s);
     lit[i] = 0;
     if (!(cos_theta > 0.0f)) continue;  // below the receiver's tangent plane
-    const std::optional<Projection> q = project(i);
+    const auto q = proj(list[i].p);
     int px, py;
-    if (!q || !pixel_in(width, height, q->pixel, px, py)) {
+    if (!q || !pixel_in(cam, q->pixel, px, py)) {
       lit[i] = 1;  // outside the map: nothing known to block it
       ++outside;
       continue;
     }
     const float tan_theta = std::min(kMaxBiasSlope, std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta)) / cos_theta);
-    const float texel = q->depth / focal;
+    const float texel = q->depth / proj.focal;
     const float bias = texel * (o.constant_bias + o.slope_bias * tan_theta);
-    lit[i] = q->depth - bias <= depth_at(px, py);
+    lit[i] = q->depth - bias <= depth.at(px, py);
   }
   return outside;
 }
 
-// test_receivers through a Camera.
-uint32_t test_receivers(const std::vector<ReceiverPoint>& list, size_t i0, size_t i1, vec3 s, const Camera& cam,
-                        const ImageF& depth, const ShadowMapOptions& o, uint8_t* lit) {
+// The texels of the shadow map of `cam` at light sample `s` that test_receivers reads:
+// those of the receivers facing `s` (the same test and projection).
+void read_texels(const std::vector<ReceiverPoint>& list, vec3 s, const Camera& cam, TexelMask& mask) {
   const CameraProjection proj(cam);
-  return test_receivers(
-      list, i0, i1, s, [&](size_t i) { return proj(list[i].p); }, proj.focal, depth.width(), depth.height(),
-      [&](int x, int y) { return depth.at(x, y); }, o, lit);
-}
-
-// The texels of a width × height map that test_receivers reads: those of the receivers
-// facing `s` (the same test), receiver i at project(i).
-template <class Project>
-void read_texels(const std::vector<ReceiverPoint>& list, vec3 s, Project project, int width, int height,
-                 TexelMask& mask) {
-  mask.reset(width, height);
-  for (size_t i = 0; i < list.size(); ++i) {
-    const vec3 l = s - list[i].p;
-    if (!(glm::dot(list[i].n, l) / glm::length(l) > 0.0f)) continue;
-    const std::optional<Projection> q = project(i);
+  mask.reset(cam.width, cam.height);
+  for (const ReceiverPoint& r : list) {
+    if (!(cos_to_sample(r, s) > 0.0f)) continue;
+    const auto q = proj(r.p);
     int px, py;
-    if (q && pixel_in(width, height, q->pixel, px, py)) mask.set(px, py);
+    if (q && pixel_in(cam, q->pixel, px, py)) mask.set(px, py);
   }
 }
 
@@ -299,16 +212,15 @@ LightVisibility shadow_map_visibility(const Scene& occluders, const Receivers& r
   const size_t count = list.size(), n = samples.size();
 
   Stopwatch fit;
-  std::vector<vec3> points;
-  if (options.fit_receivers)
-    for (const ReceiverPoint& r : list) points.push_back(r.p);
-  std::optional<ShearedViews> sheared;
-  if (options.fit_receivers && options.per_map_tasks && options.shared_projection)
-    sheared = fitted_sheared_views(light_samples.light, cams, samples, points, st.focal_px, &st.focal_px);
-  std::vector<Camera> map_cams(sheared ? 0 : n);
-  for (size_t k = 0; k < map_cams.size(); ++k)
-    map_cams[k] = options.fit_receivers ? fitted_shadow_map_camera(cams, samples[k], points, st.focal_px)
-                                        : light_camera(cams, samples[k], options.resolution);
+  std::vector<Camera> map_cams(n);
+  {
+    std::vector<vec3> points;
+    if (options.fit_receivers)
+      for (const ReceiverPoint& r : list) points.push_back(r.p);
+    for (size_t k = 0; k < n; ++k)
+      map_cams[k] = options.fit_receivers ? fitted_shadow_map_camera(cams, samples[k], points, st.focal_px)
+                                          : light_camera(cams, samples[k], options.resolution);
+  }
   st.fit_ms = fit.elapsed_ms();
 
   // lit[k·count + i]: sample k lights receiver i. Per sample: triangles set up, receivers
@@ -316,57 +228,15 @@ LightVisibility shadow_map_visibility(const Scene& occluders, const Receivers& r
   std::vector<uint8_t> lit(n * count);
   std::vector<uint64_t> drawn(n, 0), outside(n, 0);
   std::vector<double> raster_ms(n, 0.0), test_ms(n, 0.0);
-  if (sheared) {
-    const ShearedViews& views = *sheared;
-    Stopwatch transform;
-    const ShearedDepthRaster raster(occluders, views, bounds);
-    // The receivers' pixel positions before each view's shift and principal point,
-    // A·(c.x, c.y)/W, with 1/W and W (all 0 behind the light's centre).
-    const quat to_view = glm::conjugate(views.orientation);
-    std::vector<vec4> at(count);
-    for (size_t i = 0; i < count; ++i) {
-      const vec3 c = to_view * (list[i].p - views.origin);
-      const float W = -c.z;
-      at[i] = W > 0.0f ? vec4(views.to_pixel * (vec2(c.x, c.y) / W), 1.0f / W, W) : vec4(0.0f);
-    }
-    st.raster_ms += transform.elapsed_ms();
-    parallel_for(n, 1, [&](size_t k0, size_t k1) {
-      DepthRasterScratch scratch;
-      std::vector<float> inv_depth;
-      TexelMask read;
-      for (size_t k = k0; k < k1; ++k) {
-        const ShearedView& view = views.views[k];
-        const vec2 shift = views.to_pixel * view.offset;
-        auto project = [&](size_t i) -> std::optional<Projection> {
-          const vec4 q = at[i];
-          if (!(q.w > 0.0f)) return std::nullopt;
-          return Projection{view.principal + vec2(q.x, q.y) - q.z * shift, q.w};
-        };
-        Stopwatch draw;
-        if (options.read_texels_only) read_texels(list, samples[k], project, view.width, view.height, read);
-        drawn[k] = raster.draw_inverse(k, CullMode::None, inv_depth, scratch, options.read_texels_only ? &read : nullptr)
-                       .triangles_rasterized;
-        raster_ms[k] = draw.elapsed_ms();
-        Stopwatch test;
-        auto depth_at = [&](int x, int y) { return 1.0f / inv_depth[size_t(y) * size_t(view.width) + size_t(x)]; };
-        outside[k] = test_receivers(list, 0, count, samples[k], project, st.focal_px, view.width, view.height,
-                                    depth_at, options, &lit[k * count]);
-        test_ms[k] = test.elapsed_ms();
-      }
-    });
-  } else if (options.per_map_tasks) {
+  if (options.per_map_tasks) {
     parallel_for(n, 1, [&](size_t k0, size_t k1) {
       DepthRasterScratch scratch;
       ImageF depth;
       TexelMask read;
       for (size_t k = k0; k < k1; ++k) {
         Stopwatch draw;
-        const Camera& cam = map_cams[k];
-        if (options.read_texels_only) {
-          const CameraProjection proj(cam);
-          read_texels(list, samples[k], [&](size_t i) { return proj(list[i].p); }, cam.width, cam.height, read);
-        }
-        drawn[k] = rasterize_depth_serial(occluders, cam, bounds, CullMode::None,
+        if (options.read_texels_only) read_texels(list, samples[k], map_cams[k], read);
+        drawn[k] = rasterize_depth_serial(occluders, map_cams[k], bounds, CullMode::None,
                                           options.read_texels_only ? &read : nullptr, depth, scratch)
                        .triangles_rasterized;
         raster_ms[k] = draw.elapsed_ms();
@@ -403,8 +273,7 @@ LightVisibility shadow_map_visibility(const Scene& occluders, const Receivers& r
         if (lit[k * count + i]) set_bit(v, list[i].pixel % w, list[i].pixel / w, int(k));
   });
   for (size_t k = 0; k < n; ++k) {
-    st.texels += sheared ? uint64_t(sheared->views[k].width) * uint64_t(sheared->views[k].height)
-                         : uint64_t(map_cams[k].width) * uint64_t(map_cams[k].height);
+    st.texels += uint64_t(map_cams[k].width) * uint64_t(map_cams[k].height);
     st.triangles_drawn += drawn[k];
     if (options.fit_receivers) st.receivers_outside += outside[k];
     st.raster_ms += raster_ms[k];

@@ -7,7 +7,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "proxima/core/error.h"
-#include "proxima/core/image_rgb.h"
 #include "proxima/core/parallel.h"
 #include "proxima/scene/procedural.h"
 #include "proxima/shadows/light_visibility.h"
@@ -281,125 +280,25 @@ TEST(SoftShadows, PerMapTasksAnswerAsTheTiledRasterizer) {
     }
 }
 
-// The shared-projection maps hold every receiver one texel inside, at the requested texel
-// density along the light's normal, with the far plane behind the farthest receiver; the
-// views are the light samples.
-TEST(SoftShadows, SharedProjectionMapsHoldEveryReceiver) {
-  LightSetup s(0.5f, 3, 48);
-  std::vector<vec3> points;
-  for (int y = 0; y < 48; ++y)
-    for (int x = 0; x < 48; ++x)
-      if (s.receivers.mask.at(x, y)) points.push_back(rgb_at(s.receivers.position, x, y));
-  ASSERT_GT(points.size(), 1000u);
-  const float focal = 200.0f;
-  float map_focal = 0.0f;
-  const std::optional<ShearedViews> v =
-      fitted_sheared_views(s.light, s.cams, s.samples.points, points, focal, &map_focal);
-  ASSERT_TRUE(v.has_value());
-  EXPECT_FLOAT_EQ(map_focal, focal);
-  // On the axis of the fitted map from the light's centre the texels are its texels: A maps
-  // that axis' neighbourhood as the fitted camera does (area f² per unit solid angle there).
-  const Camera centre = fitted_shadow_map_camera(s.cams, s.light.point(0.5f, 0.5f), points, focal);
-  const vec3 axis = glm::conjugate(v->orientation) * camera_forward(centre);
-  EXPECT_NEAR(std::abs(glm::determinant(v->to_pixel)), focal * focal * std::pow(-axis.z, 3.0f), 1e-3f * focal * focal);
-  ASSERT_EQ(v->views.size(), s.samples.points.size());
-  EXPECT_NEAR(glm::dot(v->orientation * vec3(0, 0, -1), s.light.normal()), 1.0f, 1e-6f);
-  for (size_t k = 0; k < v->views.size(); ++k) {
-    EXPECT_LT(glm::length(sheared_eye(*v, k) - s.samples.points[k]), 1e-5f);
-    EXPECT_LE(v->views[k].width, kMaxFittedMapSide);
-    for (const vec3& p : points) {
-      const auto q = sheared_project(*v, k, p);
-      ASSERT_TRUE(q.has_value());
-      EXPECT_GE(q->pixel.x, 0.999f);
-      EXPECT_GE(q->pixel.y, 0.999f);
-      EXPECT_LE(q->pixel.x, float(v->views[k].width) - 0.999f);
-      EXPECT_LE(q->pixel.y, float(v->views[k].height) - 0.999f);
-      EXPECT_LT(q->depth, v->far);
-    }
-  }
-  // Samples off the light's plane cannot share a projection.
-  std::vector<vec3> off = s.samples.points;
-  off[1] += 0.01f * s.light.normal();
-  EXPECT_FALSE(fitted_sheared_views(s.light, s.cams, off, points, focal).has_value());
-}
-
-// One projection for all maps moves each map's texel grid (the maps share the image plane
-// parallel to the light instead of each facing its receivers): the answers stay as close to
-// the rays as the per-sample maps', for light sizes and map densities where the box's
-// shadow edges alias differently on either grid — so their sum over the settings, not each
-// setting, is compared (measured 7.05 against 6.42 of 255) — and no receiver falls outside
-// its map.
-TEST(SoftShadows, SharedProjectionAnswersAsPerSampleMaps) {
-  double sum_per_sample = 0.0, sum_shared = 0.0;
-  for (float size : {0.2f, 0.3f, 0.5f})
-    for (int res : {128, 256, 512, 1024}) {
-      LightSetup s(size, 4, 128);
-      const RayScene rays(s.scene);
-      const LightVisibility exact = ray_visibility(rays, s.scene, s.receivers, s.samples);
-      ShadowMapOptions per_sample, shared;
-      per_sample.resolution = shared.resolution = res;
-      shared.shared_projection = true;
-      ShadowMapStats st;
-      const LightVisibility a = shadow_map_visibility(s.scene, s.receivers, s.samples, s.cams, per_sample);
-      const LightVisibility b = shadow_map_visibility(s.scene, s.receivers, s.samples, s.cams, shared, nullptr, &st);
-      const double err_a = compare_visibility(a, exact, s.receivers).visibility_mean;
-      const double err_b = compare_visibility(b, exact, s.receivers).visibility_mean;
-      EXPECT_LT(err_b, 4.0) << size << " " << res;  // the per-sample maps' bound above
-      EXPECT_EQ(st.receivers_outside, 0u);
-      sum_per_sample += err_a;
-      sum_shared += err_b;
-    }
-  EXPECT_LT(sum_shared, 1.25 * sum_per_sample);
-}
-
-// On a reconstruction (clipped and sliver triangles) too, and the same bits for any thread
-// count.
-TEST(SoftShadows, SharedProjectionOnAReconstruction) {
-  LightSetup s(0.3f, 4, 64);
-  const RayScene rays(s.scene);
-  const LightVisibility exact = ray_visibility(rays, s.scene, s.receivers, s.samples);
-  OccluderOptions oo;
-  oo.resolution = 128;
-  const Occluders occ = build_occluders(s.scene, nullptr, s.light, s.cams, ShadowSampling::Nrr, oo);
-  ShadowMapOptions o;
-  o.resolution = 256;
-  o.shared_projection = true;
-  LightVisibility one, two;
-  ShadowMapStats st;
-  {
-    ThreadLimit limit(1);
-    one = shadow_map_visibility(occ.scene, s.receivers, s.samples, s.cams, o, nullptr, &st);
-  }
-  {
-    ThreadLimit limit(2);
-    two = shadow_map_visibility(occ.scene, s.receivers, s.samples, s.cams, o);
-  }
-  EXPECT_EQ(one.bits, two.bits);
-  EXPECT_EQ(st.receivers_outside, 0u);
-  EXPECT_GT(st.triangles_drawn, 0u);
-  EXPECT_LT(compare_visibility(one, exact, s.receivers).visibility_mean, 4.0);
-}
-
-// Culling the triangles that cover no texel a receiver reads keeps every answer, with one
-// camera per sample and with the shared projection, and sets up fewer triangles.
+// Culling the triangles that cover no texel a receiver reads keeps every answer, on the
+// geometry and on a reconstruction (clipped and sliver triangles), and sets up fewer
+// triangles in maps of the same size.
 TEST(SoftShadows, ReadTexelsOnlyKeepsTheAnswers) {
   LightSetup s(0.5f, 4, 64);
   OccluderOptions oo;
   oo.resolution = 128;
   const Occluders occ = build_occluders(s.scene, nullptr, s.light, s.cams, ShadowSampling::Nrr, oo);
-  for (const Scene* scene : {static_cast<const Scene*>(&s.scene), &occ.scene})
-    for (bool shared : {false, true}) {
-      ShadowMapOptions all, read;
-      all.resolution = read.resolution = 256;
-      all.shared_projection = read.shared_projection = shared;
-      all.read_texels_only = false;
-      ShadowMapStats st_all, st_read;
-      const LightVisibility a = shadow_map_visibility(*scene, s.receivers, s.samples, s.cams, all, nullptr, &st_all);
-      const LightVisibility b = shadow_map_visibility(*scene, s.receivers, s.samples, s.cams, read, nullptr, &st_read);
-      EXPECT_EQ(a.bits, b.bits) << shared;
-      EXPECT_LT(st_read.triangles_drawn, st_all.triangles_drawn) << shared;
-      EXPECT_EQ(st_read.texels, st_all.texels) << shared;
-    }
+  for (const Scene* scene : {static_cast<const Scene*>(&s.scene), &occ.scene}) {
+    ShadowMapOptions all, read;
+    all.resolution = read.resolution = 256;
+    all.read_texels_only = false;
+    ShadowMapStats st_all, st_read;
+    const LightVisibility a = shadow_map_visibility(*scene, s.receivers, s.samples, s.cams, all, nullptr, &st_all);
+    const LightVisibility b = shadow_map_visibility(*scene, s.receivers, s.samples, s.cams, read, nullptr, &st_read);
+    EXPECT_EQ(a.bits, b.bits);
+    EXPECT_LT(st_read.triangles_drawn, st_all.triangles_drawn);
+    EXPECT_EQ(st_read.texels, st_all.texels);
+  }
 }
 
 TEST(SoftShadows, ParsesSamplingNames) {

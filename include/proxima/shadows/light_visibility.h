@@ -3,11 +3,9 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
 #include <span>
 #include <vector>
 
-#include "proxima/raster/sheared_depth_raster.h"
 #include "proxima/scene/scene.h"
 #include "proxima/shadows/light_setup.h"
 #include "proxima/trace/ray_scene.h"
@@ -48,13 +46,6 @@ struct LightVisibility {
 // rasterizer (raster/depth_raster.h) and its receivers tested by the same thread, the maps
 // in parallel; without it the maps go one after another, each through the tiled
 // rasterizer (parallel over its tiles). The maps are bit-identical either way.
-// shared_projection (with fit_receivers and per_map_tasks, when the samples lie in the
-// light's plane): every map shares the image plane parallel to the light, off-centre from
-// its sample (raster/sheared_depth_raster.h), so a vertex is transformed once for all maps
-// and each map only shifts it; each map is cropped to its receivers as above
-// (fitted_sheared_views). Off by default: it moves the texel grids (other bits, the same
-// error against exact rays) and its maps need more texels than maps turned to their
-// receivers, which costs what the shared transform saves (docs/shadows.md).
 // read_texels_only (with per_map_tasks): a triangle whose pixel box holds none of the
 // texels the receivers read is culled before its set-up (TexelMask, raster/depth_raster.h);
 // the texels read get the same depth, so the answers are the same bits.
@@ -65,7 +56,6 @@ struct ShadowMapOptions {
   bool fit_receivers = true;
   float footprint_texels = 0.0f;
   bool per_map_tasks = true;
-  bool shared_projection = false;
   bool read_texels_only = true;
 };
 inline constexpr float kMaxBiasSlope = 10.0f;
@@ -100,21 +90,6 @@ LightVisibility shadow_map_visibility(const Scene& occluders, const Receivers& r
 // light-camera field at the same focal length when a point is not in front of the light
 // camera's near plane.
 Camera fitted_shadow_map_camera(const LightCameras& cams, vec3 eye, std::span<const vec3> points, float focal_px);
-
-// The shared-projection maps (shared_projection above) of the light samples `samples` for
-// `points`: the image plane of a camera at the light's centre looking along its normal (up
-// = edge_v), its pixel scale the texel grid that the fitted map from the light's centre
-// (fitted_shadow_map_camera, focal length `focal_px`) has on its axis — so the texels and
-// triangles look as in that map, not stretched by the plane's obliquity; view k the eye
-// samples[k] with its image cropped to the points' projection plus one texel, near as
-// `cams`, far just behind the farthest point. A view wider than kMaxFittedMapSide makes
-// every map coarser (map_focal_px, if given, gets the focal length that remains). A point
-// at or behind the near plane or farther off the normal than kMaxShearedFieldDeg / 2 is not
-// fitted. nullopt when a sample is not in the light's plane.
-inline constexpr float kMaxShearedFieldDeg = 160.0f;
-std::optional<ShearedViews> fitted_sheared_views(const AreaLight& light, const LightCameras& cams,
-                                                 std::span<const vec3> samples, std::span<const vec3> points,
-                                                 float focal_px, float* map_focal_px = nullptr);
 
 // Exact visibility: an Embree shadow ray from each receiver (offset ε = 1e-4 × scene
 // diagonal along its normal) to each light sample (stopping ε short).
