@@ -4,9 +4,9 @@
 // images 512² with the hybrid reconstruction, shadow-map density of 1024²) on city and on
 // grass from 50k to 20M triangles. Per repetition, interleaved: the depth-image method
 // (step 1 reference images, step 2 reconstruction with merged planar runs, step 3 with
-// fitted maps drawn one per task by the depth-only rasterizer), step 3 as it was
-// (whole-field 1024² maps of the unmerged reconstruction, one after another through the
-// tiled rasterizer),
+// fitted maps drawn one per task by the depth-only rasterizer, only the triangles over
+// texels a receiver reads), step 3 as it was (whole-field 1024² maps of the unmerged
+// reconstruction, one after another through the tiled rasterizer),
 // the Embree BVH build and the shadow rays. Counters are medians over the repetitions;
 // visibility errors (0–255) are against the rays. Arguments: grass blades (12 triangles
 // each; 0 = city), repetitions, threads.
@@ -65,7 +65,7 @@ void BM_SoftShadowsVsRays(benchmark::State& state) {
   Times t;
   LightVisibility v_fitted, v_today, v_rays;
   ShadowMapStats st_fitted, st_today;
-  size_t occluder_triangles = 0;
+  size_t occluder_triangles = 0, occluder_vertices = 0;
   for (auto _ : state) {
     t = Times{};
     for (int r = 0; r < reps; ++r) {
@@ -73,6 +73,7 @@ void BM_SoftShadowsVsRays(benchmark::State& state) {
       const Occluders occ = build_occluders(scene, nullptr, light, cams, ShadowSampling::Nrr, oo);
       t.steps12_cpu.push_back(process_cpu_ms() - cpu);
       occluder_triangles = occ.scene.triangles.size();
+      occluder_vertices = occ.scene.positions.size();
       t.reference.push_back(occ.reference_ms);
       t.reconstruct.push_back(occ.reconstruct_ms);
       // Alternate which step-3 variant goes first.
@@ -106,6 +107,7 @@ void BM_SoftShadowsVsRays(benchmark::State& state) {
   c["triangles"] = double(scene.triangles.size());
   c["occluder_triangles"] = double(occluder_triangles);
   c["occluder_triangles_today"] = double(occ_today.scene.triangles.size());
+  c["occluder_vertices"] = double(occluder_vertices);
   c["receivers"] = double(receivers.count);
   c["reference_ms"] = reference;
   c["reconstruct_ms"] = reconstruct;

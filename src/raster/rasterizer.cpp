@@ -314,6 +314,22 @@ void depth_setup(const Setup& s, float* inv_depth, int width) {
   }
 }
 
+// Whether `mask` holds a texel of `box` (not empty).
+bool any_texel(const TexelMask& mask, const PixelBox& box) {
+  const int first = box.x0 >> 6, last = box.x1 >> 6;
+  const uint64_t head = ~uint64_t(0) << (box.x0 & 63), tail = ~uint64_t(0) >> (63 - (box.x1 & 63));
+  for (int y = box.y0; y <= box.y1; ++y) {
+    const uint64_t* row = mask.bits.data() + size_t(y) * size_t(mask.words_per_row);
+    for (int i = first; i <= last; ++i) {
+      uint64_t word = row[i];
+      if (i == first) word &= head;
+      if (i == last) word &= tail;
+      if (word) return true;
+    }
+  }
+  return false;
+}
+
 // An unclipped triangle straight into the depth-only image, keeping each pixel's greatest
 // 1/W: the setup of emit_setup and the fragments of depth_setup with the same arithmetic
 // (same bits), but without building a Setup, with the row scan inlined, and with the 1/W
@@ -748,10 +764,23 @@ RasterImages rasterize(const Scene& scene, const Camera& camera, const RasterOpt
 
 namespace proxima {
 
+void TexelMask::reset(int width, int height) {
+  words_per_row = (width + 63) / 64;
+  bits.assign(size_t(words_per_row) * size_t(height), 0);
+}
+
 RasterStats rasterize_depth_serial(const Scene& scene, const Camera& camera, std::span<const Bounds3> bounds,
                                    CullMode cull, ImageF& depth, DepthRasterScratch& scratch) {
+  return rasterize_depth_serial(scene, camera, bounds, cull, nullptr, depth, scratch);
+}
+
+RasterStats rasterize_depth_serial(const Scene& scene, const Camera& camera, std::span<const Bounds3> bounds,
+                                   CullMode cull, const TexelMask* needed, ImageF& depth, DepthRasterScratch& scratch) {
   using namespace raster_detail;
   validate_camera(camera, "rasterizer camera");
+  if (needed && (needed->words_per_row != (camera.width + 63) / 64 ||
+                 needed->bits.size() != size_t(needed->words_per_row) * size_t(camera.height)))
+    fail_input("texel mask: size differs from the image's");
   assert(bounds.empty() || bounds.size() == scene.objects.size());
   const int w = camera.width, h = camera.height;
   ensure_image(depth, w, h, 1);
@@ -770,7 +799,12 @@ RasterStats rasterize_depth_serial(const Scene& scene, const Camera& camera, std
       const uvec3 idx = scene.triangles[t];
       const ClipVertex &v0 = scratch.vertices[idx.x], &v1 = scratch.vertices[idx.y], &v2 = scratch.vertices[idx.z];
       if (!((v0.code | v1.code | v2.code) & (kClipMask | kNotFinite))) {
-        const bool rejected = v0.code & v1.code & v2.code & kRejectMask;
+        bool rejected = v0.code & v1.code & v2.code & kRejectMask;
+        if (needed && !rejected) {
+          const PixelBox box = pixel_box({v0.fx, v0.fy, 0.0f, 0.0f, 0.0f}, {v1.fx, v1.fy, 0.0f, 0.0f, 0.0f},
+                                         {v2.fx, v2.fy, 0.0f, 0.0f, 0.0f}, w, h);
+          rejected = box.empty() || !any_texel(*needed, box);
+        }
         const bool drawn = !rejected && depth_triangle({v0.fx, v0.fy, 1.0f / v0.W, 0.0f, 0.0f},
                                                        {v1.fx, v1.fy, 1.0f / v1.W, 0.0f, 0.0f},
                                                        {v2.fx, v2.fy, 1.0f / v2.W, 0.0f, 0.0f}, cull_back, w, h, image);

@@ -150,6 +150,13 @@ std::vector<ReceiverPoint> receiver_list(const Receivers& r, const AreaLight& li
   return list;
 }
 
+// Cosine between receiver r's normal and the direction to light sample `s`; the sample
+// cannot light it unless > 0.
+float cos_to_sample(const ReceiverPoint& r, vec3 s) {
+  const vec3 l = s - r.p;
+  return glm::dot(r.n, l) / glm::length(l);
+}
+
 // The receivers [i0, i1) against the shadow map `depth` of `cam` at light sample `s`:
 // lit[i] = 1 where the sample lights receiver i. Returns the receivers (facing s) that
 // fell outside the map, taken as lit.
@@ -158,12 +165,10 @@ uint32_t test_receivers(const std::vector<ReceiverPoint>& list, size_t i0, size_
   const CameraProjection proj(cam);
   uint32_t outside = 0;
   for (size_t i = i0; i < i1; ++i) {
-    const vec3 p = list[i].p, n = list[i].n;
-    const vec3 l = s - p;
-    const float cos_theta = glm::dot(n, l) / glm::length(l);
+    const float cos_theta = cos_to_sample(list[i], s);
     lit[i] = 0;
     if (!(cos_theta > 0.0f)) continue;  // below the receiver's tangent plane
-    const auto q = proj(p);
+    const auto q = proj(list[i].p);
     int px, py;
     if (!q || !pixel_in(cam, q->pixel, px, py)) {
       lit[i] = 1;  // outside the map: nothing known to block it
@@ -176,6 +181,19 @@ uint32_t test_receivers(const std::vector<ReceiverPoint>& list, size_t i0, size_
     lit[i] = q->depth - bias <= depth.at(px, py);
   }
   return outside;
+}
+
+// The texels of the shadow map of `cam` at light sample `s` that test_receivers reads:
+// those of the receivers facing `s` (the same test and projection).
+void read_texels(const std::vector<ReceiverPoint>& list, vec3 s, const Camera& cam, TexelMask& mask) {
+  const CameraProjection proj(cam);
+  mask.reset(cam.width, cam.height);
+  for (const ReceiverPoint& r : list) {
+    if (!(cos_to_sample(r, s) > 0.0f)) continue;
+    const auto q = proj(r.p);
+    int px, py;
+    if (q && pixel_in(cam, q->pixel, px, py)) mask.set(px, py);
+  }
 }
 
 }  // namespace
@@ -214,9 +232,12 @@ LightVisibility shadow_map_visibility(const Scene& occluders, const Receivers& r
     parallel_for(n, 1, [&](size_t k0, size_t k1) {
       DepthRasterScratch scratch;
       ImageF depth;
+      TexelMask read;
       for (size_t k = k0; k < k1; ++k) {
         Stopwatch draw;
-        drawn[k] = rasterize_depth_serial(occluders, map_cams[k], bounds, CullMode::None, depth, scratch)
+        if (options.read_texels_only) read_texels(list, samples[k], map_cams[k], read);
+        drawn[k] = rasterize_depth_serial(occluders, map_cams[k], bounds, CullMode::None,
+                                          options.read_texels_only ? &read : nullptr, depth, scratch)
                        .triangles_rasterized;
         raster_ms[k] = draw.elapsed_ms();
         Stopwatch test;

@@ -1,11 +1,15 @@
 // Depth-only rasterization on the calling thread: bit-identical depth to the tiled
-// rasterizer (near/far clipping, guard band, culling, tiny triangles), and its counts.
+// rasterizer (near/far clipping, guard band, culling, tiny triangles), and its counts; with a
+// mask of the texels needed, the same depth there.
 #include "proxima/raster/depth_raster.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "proxima/core/error.h"
 #include "proxima/scene/procedural.h"
 
 namespace proxima {
@@ -57,6 +61,42 @@ TEST(DepthRaster, BitIdenticalToTheTiledRasterizer) {
         EXPECT_GT(st.triangles_rasterized, 10000u);
       }
     }
+}
+
+// With a mask of needed texels (a scattered set, as receivers read a shadow map), those
+// texels get the depth drawn without it and fewer triangles are set up; a mask of another
+// size is bad input.
+TEST(DepthRaster, NeededTexelsGetTheSameDepth) {
+  const Scene scene = clutter();
+  const std::vector<Bounds3> bounds = raster_object_bounds(scene);
+  const Camera camera = look_at(vec3(0.3f, 0.5f, 3.0f), vec3(0), vec3(0, 1, 0), 60.0f, 211, 157, 0.05f, 6.0f);
+  TexelMask needed;
+  needed.reset(camera.width, camera.height);
+  size_t count = 0;
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x)
+      if ((x * 7 + y * 13) % 29 == 0) {
+        needed.set(x, y);
+        ++count;
+      }
+  DepthRasterScratch scratch;
+  ImageF all, some;
+  const RasterStats st_all = rasterize_depth_serial(scene, camera, bounds, CullMode::None, all, scratch);
+  const RasterStats st_some = rasterize_depth_serial(scene, camera, bounds, CullMode::None, &needed, some, scratch);
+  size_t same = 0, covered = 0;
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x)
+      if ((x * 7 + y * 13) % 29 == 0) {
+        same += std::memcmp(&all.at(x, y), &some.at(x, y), sizeof(float)) == 0;
+        covered += !std::isinf(all.at(x, y));
+      }
+  EXPECT_EQ(same, count);
+  EXPECT_GT(covered, count / 2);
+  EXPECT_LT(st_some.triangles_rasterized, st_all.triangles_rasterized / 2);
+  EXPECT_EQ(st_some.triangles_clipped, st_all.triangles_clipped);
+  TexelMask wrong;
+  wrong.reset(camera.width + 64, camera.height);
+  EXPECT_THROW(rasterize_depth_serial(scene, camera, bounds, CullMode::None, &wrong, some, scratch), InputError);
 }
 
 }  // namespace

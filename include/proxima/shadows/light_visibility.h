@@ -46,6 +46,9 @@ struct LightVisibility {
 // rasterizer (raster/depth_raster.h) and its receivers tested by the same thread, the maps
 // in parallel; without it the maps go one after another, each through the tiled
 // rasterizer (parallel over its tiles). The maps are bit-identical either way.
+// read_texels_only (with per_map_tasks): a triangle whose pixel box holds none of the
+// texels the receivers read is culled before its set-up (TexelMask, raster/depth_raster.h);
+// the texels read get the same depth, so the answers are the same bits.
 struct ShadowMapOptions {
   int resolution = 1024;
   float constant_bias = 1.5f;
@@ -53,6 +56,7 @@ struct ShadowMapOptions {
   bool fit_receivers = true;
   float footprint_texels = 0.0f;
   bool per_map_tasks = true;
+  bool read_texels_only = true;
 };
 inline constexpr float kMaxBiasSlope = 10.0f;
 // Largest side of a fitted map; a wider one gets coarser texels.
