@@ -109,7 +109,7 @@ struct PixelBox {
   int x0, y0, x1, y1;
   bool empty() const { return x0 > x1 || y0 > y1; }
 };
-PixelBox pixel_box(const SetupVertex& a, const SetupVertex& b, const SetupVertex& c, int width, int height) {
+[[gnu::always_inline]] inline PixelBox pixel_box(const SetupVertex& a, const SetupVertex& b, const SetupVertex& c, int width, int height) {
   const int32_t min_x = std::min({a.x, b.x, c.x}), max_x = std::max({a.x, b.x, c.x});
   const int32_t min_y = std::min({a.y, b.y, c.y}), max_y = std::max({a.y, b.y, c.y});
   return {std::max((min_x - kSubpixel / 2 + kSubpixel - 1) >> kSubpixelBits, 0),
