@@ -646,7 +646,9 @@ TEST(TemporalReflections, FeedbackTracesWhereReuseWasSeenToErr) {
         EXPECT_EQ(st.refined, refined) << f;
         EXPECT_EQ(st.learned, learned) << f;
         EXPECT_EQ(st.traced_rays, traced_rays) << f;
-        if (f == 1) EXPECT_EQ(st.learned, 0u);  // no earlier frame of the cycle marked anything
+        if (f == 1) {
+          EXPECT_EQ(st.learned, 0u);  // no earlier frame of the cycle marked anything
+        }
         const ImageU8 all = mask_of(frame, std::vector<uint8_t>(frame.sample_count(), 1));
         out.mae += compare_images(compose_reflections(frame, r), compose_reflections(frame, truth.radiance), &all)
                        .mae_avg;
@@ -656,9 +658,9 @@ TEST(TemporalReflections, FeedbackTracesWhereReuseWasSeenToErr) {
     }
     return out;
   };
-  auto total = [](const Run& run, uint64_t TemporalFrameStats::*field) {
+  auto total = [](const Run& r, uint64_t TemporalFrameStats::*field) {
     uint64_t n = 0;
-    for (const TemporalFrameStats& st : run.stats) n += st.*field;
+    for (const TemporalFrameStats& st : r.stats) n += st.*field;
     return n;
   };
   const Run off = run(kInf, kInf, 1), refine = run(16.0f, kInf, 1), learn = run(kInf, 16.0f, 1),
