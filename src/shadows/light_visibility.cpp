@@ -9,6 +9,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
+#include <span>
 
 #include "proxima/core/camera_projection.h"
 #include "proxima/core/image_rgb.h"
@@ -150,50 +151,57 @@ std::vector<ReceiverPoint> receiver_list(const Receivers& r, const AreaLight& li
   return list;
 }
 
-// Cosine between receiver r's normal and the direction to light sample `s`; the sample
-// cannot light it unless > 0.
-float cos_to_sample(const ReceiverPoint& r, vec3 s) {
-  const vec3 l = s - r.p;
-  return glm::dot(r.n, l) / glm::length(l);
+// Where the shadow map of `cam` at light sample `s` answers for a receiver: nowhere when the
+// receiver faces away from `s` (the sample cannot light it), outside when it projects off
+// the map, else at texel (px, py) with its projected depth. The test and the texels a map
+// must hold (read_texels_only) both come from here, so they cannot disagree.
+struct MapLookup {
+  enum Kind : uint8_t { kFacingAway, kOutside, kTexel } kind = kFacingAway;
+  int px = 0, py = 0;
+  float depth = 0.0f, cos_theta = 0.0f;
+};
+
+void map_lookups(const std::vector<ReceiverPoint>& list, size_t i0, size_t i1, vec3 s, const Camera& cam,
+                 MapLookup* out) {
+  const CameraProjection proj(cam);
+  for (size_t i = i0; i < i1; ++i) {
+    MapLookup& m = out[i - i0];
+    m = MapLookup{};
+    const vec3 l = s - list[i].p;
+    m.cos_theta = glm::dot(list[i].n, l) / glm::length(l);
+    if (!(m.cos_theta > 0.0f)) continue;  // below the receiver's tangent plane
+    const auto q = proj(list[i].p);
+    m.kind = q && pixel_in(cam, q->pixel, m.px, m.py) ? MapLookup::kTexel : MapLookup::kOutside;
+    if (q) m.depth = q->depth;
+  }
 }
 
-// The receivers [i0, i1) against the shadow map `depth` of `cam` at light sample `s`:
-// lit[i] = 1 where the sample lights receiver i. Returns the receivers (facing s) that
-// fell outside the map, taken as lit.
-uint32_t test_receivers(const std::vector<ReceiverPoint>& list, size_t i0, size_t i1, vec3 s, const Camera& cam,
-                        const ImageF& depth, const ShadowMapOptions& o, uint8_t* lit) {
-  const CameraProjection proj(cam);
+// The texels the lookups read.
+void read_texels(std::span<const MapLookup> looks, const Camera& cam, TexelMask& mask) {
+  mask.reset(cam.width, cam.height);
+  for (const MapLookup& m : looks)
+    if (m.kind == MapLookup::kTexel) mask.set(m.px, m.py);
+}
+
+// The lookups against the shadow map `depth` of `cam`: lit[i] = 1 where the sample lights
+// receiver i. Returns the receivers (facing the sample) that fell outside the map, taken as
+// lit.
+uint32_t test_receivers(std::span<const MapLookup> looks, const Camera& cam, const ImageF& depth,
+                        const ShadowMapOptions& o, uint8_t* lit) {
+  const float focal = CameraProjection(cam).focal;
   uint32_t outside = 0;
-  for (size_t i = i0; i < i1; ++i) {
-    const float cos_theta = cos_to_sample(list[i], s);
-    lit[i] = 0;
-    if (!(cos_theta > 0.0f)) continue;  // below the receiver's tangent plane
-    const auto q = proj(list[i].p);
-    int px, py;
-    if (!q || !pixel_in(cam, q->pixel, px, py)) {
-      lit[i] = 1;  // outside the map: nothing known to block it
-      ++outside;
-      continue;
-    }
-    const float tan_theta = std::min(kMaxBiasSlope, std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta)) / cos_theta);
-    const float texel = q->depth / proj.focal;
+  for (size_t i = 0; i < looks.size(); ++i) {
+    const MapLookup& m = looks[i];
+    lit[i] = m.kind == MapLookup::kOutside;  // outside the map: nothing known to block it
+    outside += m.kind == MapLookup::kOutside;
+    if (m.kind != MapLookup::kTexel) continue;
+    const float c = m.cos_theta;
+    const float tan_theta = std::min(kMaxBiasSlope, std::sqrt(std::max(0.0f, 1.0f - c * c)) / c);
+    const float texel = m.depth / focal;
     const float bias = texel * (o.constant_bias + o.slope_bias * tan_theta);
-    lit[i] = q->depth - bias <= depth.at(px, py);
+    lit[i] = m.depth - bias <= depth.at(m.px, m.py);
   }
   return outside;
-}
-
-// The texels of the shadow map of `cam` at light sample `s` that test_receivers reads:
-// those of the receivers facing `s` (the same test and projection).
-void read_texels(const std::vector<ReceiverPoint>& list, vec3 s, const Camera& cam, TexelMask& mask) {
-  const CameraProjection proj(cam);
-  mask.reset(cam.width, cam.height);
-  for (const ReceiverPoint& r : list) {
-    if (!(cos_to_sample(r, s) > 0.0f)) continue;
-    const auto q = proj(r.p);
-    int px, py;
-    if (q && pixel_in(cam, q->pixel, px, py)) mask.set(px, py);
-  }
 }
 
 }  // namespace
@@ -233,16 +241,20 @@ LightVisibility shadow_map_visibility(const Scene& occluders, const Receivers& r
       DepthRasterScratch scratch;
       ImageF depth;
       TexelMask read;
+      std::vector<MapLookup> looks(count);
       for (size_t k = k0; k < k1; ++k) {
+        Stopwatch look;  // counted with the test, which it serves (and the mask)
+        map_lookups(list, 0, count, samples[k], map_cams[k], looks.data());
+        const double look_ms = look.elapsed_ms();
         Stopwatch draw;
-        if (options.read_texels_only) read_texels(list, samples[k], map_cams[k], read);
+        if (options.read_texels_only) read_texels(looks, map_cams[k], read);
         drawn[k] = rasterize_depth_serial(occluders, map_cams[k], bounds, CullMode::None,
                                           options.read_texels_only ? &read : nullptr, depth, scratch)
                        .triangles_rasterized;
         raster_ms[k] = draw.elapsed_ms();
         Stopwatch test;
-        outside[k] = test_receivers(list, 0, count, samples[k], map_cams[k], depth, options, &lit[k * count]);
-        test_ms[k] = test.elapsed_ms();
+        outside[k] = test_receivers(looks, map_cams[k], depth, options, &lit[k * count]);
+        test_ms[k] = look_ms + test.elapsed_ms();
       }
     });
   } else {
@@ -259,9 +271,12 @@ LightVisibility shadow_map_visibility(const Scene& occluders, const Receivers& r
       raster_ms[k] = draw.elapsed_ms();
       Stopwatch test;
       parallel_for(chunk_outside.size(), 1, [&](size_t c0, size_t c1) {
-        for (size_t c = c0; c < c1; ++c)
-          chunk_outside[c] = test_receivers(list, c * kGrain, std::min(count, (c + 1) * kGrain), samples[k],
-                                            map_cams[k], map.depth, options, &lit[k * count]);
+        MapLookup looks[kGrain];
+        for (size_t c = c0; c < c1; ++c) {
+          const size_t i0 = c * kGrain, i1 = std::min(count, i0 + kGrain);
+          map_lookups(list, i0, i1, samples[k], map_cams[k], looks);
+          chunk_outside[c] = test_receivers({looks, i1 - i0}, map_cams[k], map.depth, options, &lit[k * count + i0]);
+        }
       });
       for (uint32_t o : chunk_outside) outside[k] += o;
       test_ms[k] = test.elapsed_ms();
