@@ -99,14 +99,22 @@ namespace {
 struct ViewRays {
   explicit ViewRays(const Camera& c)
       : orientation(c.orientation), f(focal_length_px(c)), half_w(0.5f * float(c.width)),
-        half_h(0.5f * float(c.height)) {}
-  vec3 dir(int x, int y) const {
-    const vec2 pixel(float(x) + 0.5f, float(y) + 0.5f);
-    const vec3 d((pixel.x - half_w) / f, (half_h - pixel.y) / f, -1.0f);
-    return glm::normalize(orientation * d);
+        half_h(0.5f * float(c.height)) {
+    column.assign(round_up_lanes(size_t(c.width)), 0.0f);
+    for (int x = 0; x < c.width; ++x) column[size_t(x)] = (float(x) + 0.5f - half_w) / f;
   }
+  vec3 dir(int x, int y) const { return glm::normalize(orientation * vec3(column[size_t(x)], row(y), -1.0f)); }
+  float row(int y) const { return (half_h - (float(y) + 0.5f)) / f; }
+  // A row's directions are computed eight at a time: whole lane groups.
+  static size_t round_up_lanes(size_t n) { return (n + 7) / 8 * 8; }
   quat orientation;
   float f, half_w, half_h;
+  std::vector<float> column;  // per x: the camera-space x of dir(x, ·), padded with zeros
+};
+
+// The view directions of one row, per coordinate (padded to whole lane groups).
+struct RowDirs {
+  std::vector<float> x, y, z;
 };
 
 // The lights as shade_reflected_point evaluates them, with what it recomputes per sample
@@ -235,6 +243,33 @@ inline __attribute__((always_inline)) void direct_irradiance_lanes(const LightTa
   }
 }
 
+// ViewRays::dir of row y for every x, L::kWidth at a time: per lane glm's quaternion
+// rotation (v + ((uv·w) + uuv)·2, uv = q × v, uuv = q × uv) and normalize (v · (1 / √(v·v)))
+// in their order, so each lane gives dir's bits.
+template <class L>
+inline __attribute__((always_inline)) void view_dirs_lanes(const ViewRays& view, int y, RowDirs& out) {
+  using V = typename L::V;
+  const quat& q = view.orientation;
+  const V qx = L::set1(q.x), qy = L::set1(q.y), qz = L::set1(q.z), qw = L::set1(q.w);
+  const V dy = L::set1(view.row(y)), dz = L::set1(-1.0f), two = L::set1(2.0f), one = L::set1(1.0f);
+  for (size_t i = 0; i < view.column.size(); i += L::kWidth) {
+    const V dx = L::load(&view.column[i]);
+    const V ux = L::sub(L::mul(qy, dz), L::mul(dy, qz));
+    const V uy = L::sub(L::mul(qz, dx), L::mul(dz, qx));
+    const V uz = L::sub(L::mul(qx, dy), L::mul(dx, qy));
+    const V wx = L::sub(L::mul(qy, uz), L::mul(uy, qz));
+    const V wy = L::sub(L::mul(qz, ux), L::mul(uz, qx));
+    const V wz = L::sub(L::mul(qx, uy), L::mul(ux, qy));
+    const V rx = L::add(dx, L::mul(L::add(L::mul(ux, qw), wx), two));
+    const V ry = L::add(dy, L::mul(L::add(L::mul(uy, qw), wy), two));
+    const V rz = L::add(dz, L::mul(L::add(L::mul(uz, qw), wz), two));
+    const V inv = L::div(one, L::sqrt(L::dot(rx, ry, rz, rx, ry, rz)));
+    L::store(&out.x[i], L::mul(rx, inv));
+    L::store(&out.y[i], L::mul(ry, inv));
+    L::store(&out.z[i], L::mul(rz, inv));
+  }
+}
+
 #if PROXIMA_SHADE_AVX
 // Eight lanes where the CPU has AVX (runtime dispatch). target("avx") brings no fused
 // multiply-add, so the operations stay separate: the same bits as four lanes.
@@ -263,6 +298,10 @@ __attribute__((target("avx"), flatten)) void direct_irradiance_avx(const LightTa
   direct_irradiance_lanes<Lanes8>(lights, lit);
 }
 
+__attribute__((target("avx"), flatten)) void view_dirs_avx(const ViewRays& view, int y, RowDirs& out) {
+  view_dirs_lanes<Lanes8>(view, y, out);
+}
+
 bool has_avx() {
   static const bool yes = __builtin_cpu_supports("avx");
   return yes;
@@ -275,7 +314,23 @@ void direct_irradiance(const LightTable& lights, LitPoints& lit) {
 #endif
   direct_irradiance_lanes<Lanes4>(lights, lit);
 }
+
+void view_dirs(const ViewRays& view, int y, RowDirs& out) {
+  out.x.resize(view.column.size()), out.y.resize(view.column.size()), out.z.resize(view.column.size());
+#if PROXIMA_SHADE_AVX
+  if (has_avx()) return view_dirs_avx(view, y, out);
+#endif
+  view_dirs_lanes<Lanes4>(view, y, out);
+}
 #else
+void view_dirs(const ViewRays& view, int y, RowDirs& out) {
+  out.x.resize(view.column.size()), out.y.resize(view.column.size()), out.z.resize(view.column.size());
+  for (size_t x = 0; x < view.column.size(); ++x) {
+    const vec3 d = glm::normalize(view.orientation * vec3(view.column[x], view.row(y), -1.0f));
+    out.x[x] = d.x, out.y[x] = d.y, out.z[x] = d.z;
+  }
+}
+
 void direct_irradiance(const LightTable& lights, LitPoints& lit) {
   for (size_t i = 0; i < lit.count; ++i) {
     const vec3 p(lit.px[i], lit.py[i], lit.pz[i]), n(lit.nx[i], lit.ny[i], lit.nz[i]);
@@ -321,10 +376,34 @@ void return_gbuffer(RasterImages&& g) {
   if (g_gbuffers.size() < kPooledGBuffers) g_gbuffers.push_back(std::move(g));
 }
 
+// What the base shading reads of the triangle a run of pixels shows: shading_normal and
+// triangle_point with its vertices loaded once, by the same expressions (the same bits).
+struct TriangleRun {
+  TriangleRun() = default;
+  TriangleRun(const Scene& scene, uint32_t t)
+      : triangle(t), ng(triangle_normal(scene, t)), material(&scene.materials[scene.triangle_material[t]]) {
+    const uvec3& i = scene.triangles[t];
+    n0 = scene.normals[i.x], n1 = scene.normals[i.y], n2 = scene.normals[i.z];
+    p0 = scene.positions[i.x], p1 = scene.positions[i.y], p2 = scene.positions[i.z];
+  }
+  vec3 shading_normal(float u, float v) const {
+    const vec3 n = (1.0f - u - v) * n0 + u * n1 + v * n2;
+    const float len = glm::length(n);
+    return len > 0.0f ? n / len : ng;
+  }
+  vec3 point(float u, float v) const { return (1.0f - u - v) * p0 + u * p1 + v * p2; }
+
+  uint32_t triangle = kNoTriangle;
+  vec3 ng{0.0f};  // triangle_normal: the geometric normal, not yet facing the viewer
+  const Material* material = nullptr;
+  vec3 n0{0.0f}, n1{0.0f}, n2{0.0f}, p0{0.0f}, p1{0.0f}, p2{0.0f};
+};
+
 // Row y of `base`: per pixel what shade_reflected_point (or the environment) gives along the
 // view ray — the point lights and area-light stratum centres four pixels at a time.
 void shade_base_row(const Scene& scene, const RasterImages& g, const ViewRays& view, const LightTable& lights, int y,
-                    LitPoints& lit, std::vector<ShadingTerms>& terms, std::vector<uint32_t>& lit_x, ImageF& base) {
+                    RowDirs& dirs, LitPoints& lit, std::vector<ShadingTerms>& terms, std::vector<uint32_t>& lit_x,
+                    ImageF& base) {
   const int sw = g.triangle.width();
   const uint32_t* tri = &g.triangle.at(0, y);
   const float* bary = &g.barycentric.at(0, y);
@@ -332,32 +411,32 @@ void shade_base_row(const Scene& scene, const RasterImages& g, const ViewRays& v
   lit.clear();
   lit_x.clear();
   terms.clear();
-  uint32_t cached = kNoTriangle;
-  vec3 cached_ng(0.0f);
+  TriangleRun run;
+  view_dirs(view, y, dirs);
   for (int x = 0; x < sw; ++x) {
     const uint32_t t = tri[x];
-    const vec3 dir = view.dir(x, y);
+    const vec3 dir(dirs.x[size_t(x)], dirs.y[size_t(x)], dirs.z[size_t(x)]);
     if (t == kNoTriangle) {
       const vec3 c = environment_radiance(scene.environment, dir);
       out[3 * x] = c.x, out[3 * x + 1] = c.y, out[3 * x + 2] = c.z;
       continue;
     }
     const float u = bary[2 * x], v = bary[2 * x + 1];
-    if (t != cached) cached = t, cached_ng = triangle_normal(scene, t);
+    if (t != run.triangle) run = TriangleRun(scene, t);
     // facing(): the two-sided surface seen from −dir.
     const vec3 toward = -dir;
-    vec3 ng = cached_ng;
+    vec3 ng = run.ng;
     if (glm::dot(ng, toward) < 0.0f) ng = -ng;
-    vec3 n = shading_normal(scene, t, u, v);
+    vec3 n = run.shading_normal(u, v);
     if (glm::dot(n, ng) < 0.0f) n = -n;
-    const Material& m = scene.materials[scene.triangle_material[t]];
+    const Material& m = *run.material;
     ShadingTerms st;
     st.emission = m.emission;
     st.ambient = scene.ambient;
-    st.albedo = surface_diffuse(scene, t, u, v);
+    st.albedo = m.diffuse_texture < 0 ? m.diffuse : surface_diffuse(scene, t, u, v);
     st.specular = m.specular;
     if (m.specular < 1.0f && st.albedo != vec3(0.0f)) {
-      lit.add(triangle_point(scene, t, u, v), n);
+      lit.add(run.point(u, v), n);
       lit_x.push_back(uint32_t(x));
       terms.push_back(st);
       continue;
@@ -378,18 +457,25 @@ void shade_base_row(const Scene& scene, const RasterImages& g, const ViewRays& v
 
 ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camera, const ReflectionOptions& options,
                                          std::span<const Bounds3> object_bounds) {
+  ReflectionFrame frame;
+  prepare_reflection_frame_into(scene, camera, options, frame, object_bounds);
+  return frame;
+}
+
+void prepare_reflection_frame_into(const Scene& scene, const Camera& camera, const ReflectionOptions& options,
+                                   ReflectionFrame& frame, std::span<const Bounds3> object_bounds) {
   validate(options);
   validate_camera(camera, "reflection camera");
   Stopwatch watch;
-  ReflectionFrame frame;
   const int k = options.supersample;
+  Camera sample_camera = camera;
+  sample_camera.width = camera.width * k;
+  sample_camera.height = camera.height * k;
+  validate_camera(sample_camera, "reflection camera × supersample");  // before `frame` changes
   frame.camera = camera;
   frame.supersample = k;
   frame.area_light_samples = options.area_light_samples;
-  frame.sample_camera = camera;
-  frame.sample_camera.width = camera.width * k;
-  frame.sample_camera.height = camera.height * k;
-  validate_camera(frame.sample_camera, "reflection camera × supersample");
+  frame.sample_camera = sample_camera;
   frame.scene_diagonal = std::max(scene_bounds(scene).diagonal(), 1e-3f);
   const float epsilon = kReflectionRayOffset * frame.scene_diagonal;
 
@@ -403,12 +489,15 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
   const int sw = frame.sample_camera.width, sh = frame.sample_camera.height;
   const ViewRays view(frame.sample_camera);
   const LightTable lights(scene, options.area_light_samples);
-  frame.base = ImageF(sw, sh, 3, 0.0f);
+  if (frame.base.width() != sw || frame.base.height() != sh || frame.base.channels() != 3)
+    frame.base = ImageF(sw, sh, 3, 0.0f);  // else every pixel is written below
   parallel_for(size_t(sh), 8, [&](size_t y0, size_t y1) {
+    RowDirs dirs;
     LitPoints lit;
     std::vector<ShadingTerms> terms;
     std::vector<uint32_t> lit_x;
-    for (int y = int(y0); y < int(y1); ++y) shade_base_row(scene, g, view, lights, y, lit, terms, lit_x, frame.base);
+    for (int y = int(y0); y < int(y1); ++y)
+      shade_base_row(scene, g, view, lights, y, dirs, lit, terms, lit_x, frame.base);
   });
   frame.shading_ms = watch.elapsed_ms() - frame.raster_ms;
 
@@ -499,7 +588,6 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
   return_gbuffer(std::move(g));
   frame.ms = watch.elapsed_ms();
   frame.rays_ms = frame.ms - frame.raster_ms - frame.shading_ms;
-  return frame;
 }
 
 namespace {

@@ -461,13 +461,13 @@ void add_results(const TemporalReflectOptions& o, const TemporalSeries& s, const
 }
 
 // The temporal method on one frame: the G-buffer and the diffuse (non-reflected) shading,
-// shared by both methods; the reuse; the blend. Its figures go into the series.
-TemporalFrame render_frame(const Scene& scene, const RayScene& rays, const Camera& camera,
-                           const ReflectionOptions& ro, const TemporalOptions& to, TemporalState& state,
-                           std::vector<vec3>& reflected, std::vector<uint8_t>& flags, TemporalSeries& s) {
-  TemporalFrame f;
+// shared by both methods; the reuse; the blend. Its figures go into the series. `f` is the
+// previous frame's, whose buffers the G-buffer pass reuses.
+void render_frame(const Scene& scene, const RayScene& rays, const Camera& camera, const ReflectionOptions& ro,
+                  const TemporalOptions& to, TemporalState& state, std::vector<vec3>& reflected,
+                  std::vector<uint8_t>& flags, TemporalSeries& s, TemporalFrame& f) {
   Stopwatch watch;
-  f.frame = prepare_reflection_frame(scene, camera, ro);
+  prepare_reflection_frame_into(scene, camera, ro, f.frame);
   f.diffuse_ms = watch.elapsed_ms();
   const double cpu = process_cpu_ms();
   temporal_reflections_into(scene, rays, f.frame, state, to, reflected, &f.st, &flags);
@@ -476,7 +476,6 @@ TemporalFrame render_frame(const Scene& scene, const RayScene& rays, const Camer
   f.color = compose_reflections(f.frame, reflected);
   f.compose_ms = watch.elapsed_ms();
   add_temporal(f, s);
-  return f;
 }
 
 }  // namespace
@@ -564,6 +563,7 @@ Results run_temporal_reflect(const Scene& rest, const TemporalReflectOptions& o,
   std::vector<vec3> reflected;  // per frame; its memory (and flags') circulates with the state's
   std::vector<uint8_t> flags;
   if (progress) progress->begin("reflect temporal", (frames + o.frame_step - 1) / o.frame_step);
+  TemporalFrame f;  // one frame's buffers for the whole path
   for (int frame_index = 0; frame_index < frames; frame_index += o.frame_step) {
     if (progress) progress->step("frame " + std::to_string(frame_index) + "/" + std::to_string(frames));
     const float t =
@@ -575,7 +575,7 @@ Results run_temporal_reflect(const Scene& rest, const TemporalReflectOptions& o,
     }
     const Camera camera = camera_at_time(path, t, o.width, o.height, 0.01f, far);
 
-    const TemporalFrame f = render_frame(scene, rays, camera, ro, to, state, reflected, flags, s);
+    render_frame(scene, rays, camera, ro, to, state, reflected, flags, s, f);
     const Comparison c = o.compare ? compare_frame(scene, rays, f, flags, state, to, o, ro, s) : Comparison{};
     add_per_frame_row(frame_index, f, c, s);
     const bool image_here = o.image_frame < 0 ? !f.st.key : o.image_frame == frame_index;

@@ -276,4 +276,28 @@ TEST(ReflectionFrame, CubeMapSkyAndSeveralAreaLightsEqualThePlainPerPixelComputa
   EXPECT_TRUE(equals_plain_frame(scene, camera, o));
 }
 
+TEST(ReflectionFrame, IntoAReusedFrameEqualsAFreshOne) {
+  // One frame through a walk, then other sizes, samples per pixel and a scene with other
+  // reflectors: whatever the buffers held before, the result is the fresh frame's.
+  const Scene living = make_builtin_scene("living-room"), bathroom = make_builtin_scene("bathroom");
+  ReflectionOptions o;
+  o.glossy_rays = 8;
+  ReflectionFrame reused;
+  const struct {
+    const Scene* scene;
+    float at;
+    int side, k, rays;
+  } steps[] = {{&living, 0.21f, 48, 1, 8}, {&living, 0.25f, 48, 1, 8},  {&living, 0.3f, 61, 1, 16},
+               {&bathroom, 0.5f, 40, 2, 5}, {&bathroom, 0.6f, 40, 1, 5}, {&living, 0.21f, 48, 1, 8}};
+  for (const auto& s : steps) {
+    o.supersample = s.k;
+    o.glossy_rays = s.rays;
+    const Camera camera = path_camera(*s.scene, "walk", s.at, s.side);
+    prepare_reflection_frame_into(*s.scene, camera, o, reused);
+    const ReflectionFrame fresh = prepare_reflection_frame(*s.scene, camera, o);
+    ASSERT_GT(fresh.sample_count(), 0u) << s.scene->name << " at " << s.at;
+    EXPECT_TRUE(same_frame(fresh, reused)) << s.scene->name << " at " << s.at << " side " << s.side << " k " << s.k;
+  }
+}
+
 }  // namespace proxima

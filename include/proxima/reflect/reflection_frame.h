@@ -74,6 +74,10 @@ struct ReflectionFrame {
 // RasterOptions (may be empty). Throws InputError for an invalid camera or options.
 ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camera, const ReflectionOptions& options,
                                          std::span<const Bounds3> object_bounds = {});
+// The same into `frame`, reusing its buffers (a walk renders into one frame: no fresh pages
+// per frame). Every field is rewritten; the result equals prepare_reflection_frame's.
+void prepare_reflection_frame_into(const Scene& scene, const Camera& camera, const ReflectionOptions& options,
+                                   ReflectionFrame& frame, std::span<const Bounds3> object_bounds = {});
 
 // Radiance shading of a surface point seen from a reflection ray, shared by every method:
 // docs/shading.md with reflected = 0 and direct light unshadowed (point lights and the n×n
