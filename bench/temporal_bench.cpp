@@ -195,7 +195,11 @@ void BM_TemporalWalk(benchmark::State& state) {
   int keyframes = 0, mae_frames = 0;
   for (auto _ : state) {
     TemporalState temporal;
-    ReflectionFrame frame;  // the G-buffer pass reuses its buffers frame to frame, as the CLI does
+    // Buffers reused frame to frame, as the CLI does: the G-buffer pass's, the full trace's
+    // (as the key frames' trace) and the blend's.
+    ReflectionFrame frame;
+    TracedReflections traced;
+    ImageF composite;
     std::vector<vec3> reflected;
     std::vector<uint8_t> flags;
     temporal_ms = reference_ms = temporal_cpu = reference_cpu = shared_ms = shared_cpu = 0.0;
@@ -226,7 +230,7 @@ void BM_TemporalWalk(benchmark::State& state) {
       reproject_ms += st.reproject_ms, recompute_ms += st.recompute_ms;
       Stopwatch watch;
       cpu = process_cpu_ms();
-      const TracedReflections traced = trace_reflections(scene, rays, frame);
+      trace_reflections_into(scene, rays, frame, traced);
       const double trace_cpu = process_cpu_ms() - cpu;
       reference_cpu += trace_cpu;
       reference_ms += watch.elapsed_ms();
@@ -234,7 +238,7 @@ void BM_TemporalWalk(benchmark::State& state) {
       benchmark::DoNotOptimize(traced.radiance.data());
       shared.restart();
       cpu = process_cpu_ms();
-      const ImageF composite = compose_reflections(frame, reflected);
+      compose_reflections_into(frame, reflected, composite);
       shared_cpu += process_cpu_ms() - cpu;
       shared_ms += shared.elapsed_ms();
       if (frame.sample_count() > 0) {  // the CLI's temporal_mae_avg (`proxima reflect --compare`)

@@ -378,9 +378,9 @@ void return_gbuffer(RasterImages&& g) {
 
 // What the base shading reads of the triangle a run of pixels shows: shading_normal and
 // triangle_point with its vertices loaded once, by the same expressions (the same bits).
-struct TriangleRun {
-  TriangleRun() = default;
-  TriangleRun(const Scene& scene, uint32_t t)
+struct ShadedTriangle {
+  ShadedTriangle() = default;
+  ShadedTriangle(const Scene& scene, uint32_t t)
       : triangle(t), ng(triangle_normal(scene, t)), material(&scene.materials[scene.triangle_material[t]]) {
     const uvec3& i = scene.triangles[t];
     n0 = scene.normals[i.x], n1 = scene.normals[i.y], n2 = scene.normals[i.z];
@@ -392,6 +392,15 @@ struct TriangleRun {
     return len > 0.0f ? n / len : ng;
   }
   vec3 point(float u, float v) const { return (1.0f - u - v) * p0 + u * p1 + v * p2; }
+  // facing() of this triangle.
+  Facing facing(float u, float v, vec3 toward_viewer) const {
+    Facing f;
+    f.ng = ng;
+    if (glm::dot(f.ng, toward_viewer) < 0.0f) f.ng = -f.ng;
+    f.n = shading_normal(u, v);
+    if (glm::dot(f.n, f.ng) < 0.0f) f.n = -f.n;
+    return f;
+  }
 
   uint32_t triangle = kNoTriangle;
   vec3 ng{0.0f};  // triangle_normal: the geometric normal, not yet facing the viewer
@@ -411,7 +420,7 @@ void shade_base_row(const Scene& scene, const RasterImages& g, const ViewRays& v
   lit.clear();
   lit_x.clear();
   terms.clear();
-  TriangleRun run;
+  ShadedTriangle run;
   view_dirs(view, y, dirs);
   for (int x = 0; x < sw; ++x) {
     const uint32_t t = tri[x];
@@ -422,7 +431,7 @@ void shade_base_row(const Scene& scene, const RasterImages& g, const ViewRays& v
       continue;
     }
     const float u = bary[2 * x], v = bary[2 * x + 1];
-    if (t != run.triangle) run = TriangleRun(scene, t);
+    if (t != run.triangle) run = ShadedTriangle(scene, t);
     // facing(): the two-sided surface seen from −dir.
     const vec3 toward = -dir;
     vec3 ng = run.ng;
@@ -560,19 +569,23 @@ void prepare_reflection_frame_into(const Scene& scene, const Camera& camera, con
                                uint64_t(options.area_light_samples) * uint64_t(options.area_light_samples);
   parallel_for(n, kSampleGrain, [&](size_t b, size_t e) {
     std::vector<vec2> lobe(size_t(options.glossy_rays));
+    ShadedTriangle run;
     for (size_t i = b; i < e; ++i) {
       const int x = int(frame.pixel[i] % uint32_t(sw)), y = int(frame.pixel[i] / uint32_t(sw));
       const uint32_t t = g.triangle.at(x, y);
       const float u = g.barycentric.at(x, y, 0), v = g.barycentric.at(x, y, 1);
       const vec3 dir = glm::normalize(view.dir(x, y));
-      const Facing f = facing(scene, t, u, v, -dir);
-      frame.position[i] = triangle_point(scene, t, u, v);
+      if (t != run.triangle) run = ShadedTriangle(scene, t);
+      const Facing f = run.facing(u, v, -dir);
+      frame.position[i] = run.point(u, v);
       frame.normal[i] = f.n;
       frame.origin[i] = frame.position[i] + epsilon * f.ng;
       const uint64_t out_pixel = uint64_t(y / k) * uint64_t(camera.width) + uint64_t(x / k);
       Pcg32 rng(cell > 0.0f ? surface_cell_seed(options.seed, frame.position[i], cell)
                             : derive_seed(options.seed, out_pixel, uint64_t((y % k) * k + (x % k))));
-      if (light_draws > 0 && frame.specular[i] < 1.0f && surface_diffuse(scene, t, u, v) != vec3(0.0f))
+      const Material& m = *run.material;
+      if (light_draws > 0 && m.specular < 1.0f &&
+          (m.diffuse_texture < 0 ? m.diffuse : surface_diffuse(scene, t, u, v)) != vec3(0.0f))
         rng.advance(light_draws);
       const vec3 mirror = reflect(dir, f.n);
       const float half_angle = glossy_lobe_half_angle(frame.gloss[i]);
@@ -640,9 +653,15 @@ void trace_reflection_samples(const Scene& scene, const RayScene& rays, const Re
 }
 
 ImageF compose_reflections(const ReflectionFrame& frame, std::span<const vec3> reflected) {
+  ImageF out;
+  compose_reflections_into(frame, reflected, out);
+  return out;
+}
+
+void compose_reflections_into(const ReflectionFrame& frame, std::span<const vec3> reflected, ImageF& out) {
   const int k = frame.supersample, w = frame.camera.width, h = frame.camera.height;
   const int sw = frame.sample_camera.width;
-  ImageF out(w, h, 3);
+  if (out.width() != w || out.height() != h || out.channels() != 3) out = ImageF(w, h, 3);  // else all rewritten
   if (k == 1) {
     // The box filter over one sample: (0 + sample) / 1, i.e. the sample with −0 made +0.
     const float* base = frame.base.data().data();
@@ -655,7 +674,7 @@ ImageF compose_reflections(const ReflectionFrame& frame, std::span<const vec3> r
         const size_t j = 3 * size_t(frame.pixel[i]) + size_t(c);
         o[j] = 0.0f + (base[j] + frame.specular[i] * reflected[i][c]);
       }
-    return out;
+    return;
   }
   ImageF samples = frame.base;
   for (size_t i = 0; i < frame.sample_count(); ++i) {
@@ -672,7 +691,6 @@ ImageF compose_reflections(const ReflectionFrame& frame, std::span<const vec3> r
           out.at(x, y, c) = sum / float(k * k);
         }
   });
-  return out;
 }
 
 ImageU8 reflective_pixel_mask(const ReflectionFrame& frame) {

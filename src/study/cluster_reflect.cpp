@@ -207,7 +207,7 @@ FrameRun run_frame(const Scene& scene, const Camera& camera, const ClusterReflec
     Stopwatch watch;
     double cpu = process_cpu_ms();
     const std::vector<Bounds3> bounds = raster_object_bounds(scene);
-    f.frame = prepare_reflection_frame(scene, camera, ro, bounds);
+    prepare_reflection_frame_into(scene, camera, ro, f.frame, bounds);  // the last repetition's buffers
     const double step1 = watch.elapsed_ms(), step1_cpu = process_cpu_ms() - cpu;
     if (o.compare) {
       cpu = process_cpu_ms();
@@ -215,7 +215,7 @@ FrameRun run_frame(const Scene& scene, const Camera& camera, const ClusterReflec
       b_cpu.push_back(process_cpu_ms() - cpu);
       b_ms.push_back(f.rays->build_ms());
       cpu = process_cpu_ms();
-      f.traced = trace_reflections(scene, *f.rays, f.frame);
+      trace_reflections_into(scene, *f.rays, f.frame, f.traced);
       r_cpu.push_back(step1_cpu + process_cpu_ms() - cpu);
       r_ms.push_back(step1 + f.traced.ms);
       if (rep == 0) {

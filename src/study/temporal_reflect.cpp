@@ -241,16 +241,17 @@ void add_errors(const Scene& scene, const RayScene& rays, const TemporalFrame& f
   }
 }
 
-// Full reflection ray tracing of the same frame (every reflective sample's rays, timed) and
-// direct reprojection of the current key frame; errors where the frame has reflective pixels.
+// Full reflection ray tracing of the same frame (every reflective sample's rays, timed, into
+// `traced`, the previous frame's buffers as the key frames' trace has them) and direct
+// reprojection of the current key frame; errors where the frame has reflective pixels.
 Comparison compare_frame(const Scene& scene, const RayScene& rays, const TemporalFrame& f,
                          const std::vector<uint8_t>& flags, const TemporalState& state,
                          const TemporalOptions& to, const TemporalReflectOptions& o,
-                         const ReflectionOptions& ro, TemporalSeries& s) {
+                         const ReflectionOptions& ro, TemporalSeries& s, TracedReflections& traced) {
   Comparison c;
   Stopwatch watch;
   const double trace_cpu = process_cpu_ms();
-  const TracedReflections traced = trace_reflections(scene, rays, f.frame);
+  trace_reflections_into(scene, rays, f.frame, traced);
   s.reference_cpu_ms.add(process_cpu_ms() - trace_cpu);
   c.trace_ms = watch.elapsed_ms();
   c.reference = compose_reflections(f.frame, traced.radiance);
@@ -473,7 +474,7 @@ void render_frame(const Scene& scene, const RayScene& rays, const Camera& camera
   temporal_reflections_into(scene, rays, f.frame, state, to, reflected, &f.st, &flags);
   s.temporal_cpu_ms.add(process_cpu_ms() - cpu);
   watch.restart();
-  f.color = compose_reflections(f.frame, reflected);
+  compose_reflections_into(f.frame, reflected, f.color);
   f.compose_ms = watch.elapsed_ms();
   add_temporal(f, s);
 }
@@ -563,7 +564,8 @@ Results run_temporal_reflect(const Scene& rest, const TemporalReflectOptions& o,
   std::vector<vec3> reflected;  // per frame; its memory (and flags') circulates with the state's
   std::vector<uint8_t> flags;
   if (progress) progress->begin("reflect temporal", (frames + o.frame_step - 1) / o.frame_step);
-  TemporalFrame f;  // one frame's buffers for the whole path
+  TemporalFrame f;                    // one frame's buffers for the whole path
+  TracedReflections reference_trace;  // the same for the full trace
   for (int frame_index = 0; frame_index < frames; frame_index += o.frame_step) {
     if (progress) progress->step("frame " + std::to_string(frame_index) + "/" + std::to_string(frames));
     const float t =
@@ -576,7 +578,8 @@ Results run_temporal_reflect(const Scene& rest, const TemporalReflectOptions& o,
     const Camera camera = camera_at_time(path, t, o.width, o.height, 0.01f, far);
 
     render_frame(scene, rays, camera, ro, to, state, reflected, flags, s, f);
-    const Comparison c = o.compare ? compare_frame(scene, rays, f, flags, state, to, o, ro, s) : Comparison{};
+    const Comparison c =
+        o.compare ? compare_frame(scene, rays, f, flags, state, to, o, ro, s, reference_trace) : Comparison{};
     add_per_frame_row(frame_index, f, c, s);
     const bool image_here = o.image_frame < 0 ? !f.st.key : o.image_frame == frame_index;
     if (!wrote_images && image_here) {

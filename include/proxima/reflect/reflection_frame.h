@@ -110,6 +110,8 @@ void trace_reflection_samples(const Scene& scene, const RayScene& rays, const Re
 // Final image (camera.width × camera.height, linear RGB): per sample base + s·reflected
 // (reflected.size() == frame.sample_count()), box-filtered over the k×k samples.
 ImageF compose_reflections(const ReflectionFrame& frame, std::span<const vec3> reflected);
+// The same into `out`, reusing its memory when it has the output's size.
+void compose_reflections_into(const ReflectionFrame& frame, std::span<const vec3> reflected, ImageF& out);
 
 // Output pixels with at least one reflective sample (1 channel, 0/1).
 ImageU8 reflective_pixel_mask(const ReflectionFrame& frame);
