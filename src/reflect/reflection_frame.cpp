@@ -80,11 +80,13 @@ vec3 shade_reflected_point(const Scene& scene, uint32_t triangle, float u, float
     for (const PointLight& light : scene.point_lights) terms.direct_irradiance += point_light_irradiance(light, p, f.n);
     const int n = area_light_samples;
     for (const AreaLight& light : scene.area_lights) {
+      const vec3 normal = light.normal();
+      const float area = light.area();
       vec3 sum(0.0f);
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
           vec2 ab = stratum_sample(i, j, n, 0.5f, 0.5f);
-          sum += area_light_sample_irradiance(light, light.point(ab.x, ab.y), p, f.n);
+          sum += area_light_sample_irradiance(light, normal, area, light.point(ab.x, ab.y), p, f.n);
         }
       terms.direct_irradiance += sum / float(n * n);
     }

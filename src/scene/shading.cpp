@@ -149,14 +149,19 @@ vec3 point_light_irradiance(const PointLight& light, vec3 p, vec3 n) {
 }
 
 vec3 area_light_sample_irradiance(const AreaLight& light, vec3 light_point, vec3 p, vec3 n) {
+  return area_light_sample_irradiance(light, light.normal(), light.area(), light_point, p, n);
+}
+
+vec3 area_light_sample_irradiance(const AreaLight& light, vec3 light_normal, float light_area, vec3 light_point,
+                                  vec3 p, vec3 n) {
   vec3 to_light = light_point - p;
   float r2 = glm::dot(to_light, to_light);
   if (r2 <= 0.0f) return vec3(0.0f);
   float r = std::sqrt(r2);
   float cos_surface = glm::dot(n, to_light) / r;
-  float cos_light = -glm::dot(light.normal(), to_light) / r;
+  float cos_light = -glm::dot(light_normal, to_light) / r;
   if (cos_surface <= 0.0f || cos_light <= 0.0f) return vec3(0.0f);
-  return light.radiance * (cos_surface * cos_light / r2 * light.area());
+  return light.radiance * (cos_surface * cos_light / r2 * light_area);
 }
 
 vec3 combine_shading(const ShadingTerms& t) {

@@ -57,6 +57,8 @@ vec3 DirectLight::irradiance(const SurfacePoint& sp, Pcg32& rng) const {
   }
   const int n = area_light_samples_;
   for (const AreaLight& light : scene_.area_lights) {
+    const vec3 normal = light.normal();
+    const float area = light.area();
     vec3 light_sum(0.0f);
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
@@ -64,7 +66,7 @@ vec3 DirectLight::irradiance(const SurfacePoint& sp, Pcg32& rng) const {
         float xi2 = rng.next_float();
         vec2 ab = stratum_sample(i, j, n, xi1, xi2);
         vec3 q = light.point(ab.x, ab.y);
-        vec3 e = area_light_sample_irradiance(light, q, sp.p, sp.n);
+        vec3 e = area_light_sample_irradiance(light, normal, area, q, sp.p, sp.n);
         if (e != vec3(0.0f) && visible(origin, q)) light_sum += e;
       }
     sum += light_sum / float(n * n);

@@ -65,6 +65,10 @@ vec3 point_light_irradiance(const PointLight& light, vec3 p, vec3 n);
 // L_e·max(0, cos θ)·max(0, cos θ_l)/r²·area, θ_l at the light (one-sided: only its front
 // emits). Average n² stratified samples for the n×n estimate. 0 when r = 0.
 vec3 area_light_sample_irradiance(const AreaLight& light, vec3 light_point, vec3 p, vec3 n);
+// The same with the light's normal() and area() computed once by the caller for all its
+// samples: the same value.
+vec3 area_light_sample_irradiance(const AreaLight& light, vec3 light_normal, float light_area, vec3 light_point,
+                                  vec3 p, vec3 n);
 
 // What a shading point needs besides ray casting.
 struct ShadingTerms {
