@@ -51,26 +51,50 @@ uint64_t surface_cell_seed(uint64_t seed, vec3 p, float cell) {
   return derive_seed(seed ^ 0x5EEDCE11ull, q(p.x), q(p.y), q(p.z));
 }
 
-// Two-sided surface as seen from `toward_viewer` (as trace/'s surface_point).
 struct Facing {
   vec3 ng, n;
 };
-Facing facing(const Scene& scene, uint32_t triangle, float u, float v, vec3 toward_viewer) {
-  Facing f;
-  f.ng = triangle_normal(scene, triangle);
-  if (glm::dot(f.ng, toward_viewer) < 0.0f) f.ng = -f.ng;
-  f.n = shading_normal(scene, triangle, u, v);
-  if (glm::dot(f.n, f.ng) < 0.0f) f.n = -f.n;
-  return f;
-}
+
+// What shading reads of a triangle, its vertices loaded once (a run of pixels or samples
+// often shows one triangle): shading_normal and triangle_point by the same expressions
+// (the same bits), and the two-sided surface as seen from a viewer (as trace/'s surface_point).
+struct ShadedTriangle {
+  ShadedTriangle() = default;
+  ShadedTriangle(const Scene& scene, uint32_t t)
+      : triangle(t), ng(triangle_normal(scene, t)), material(&scene.materials[scene.triangle_material[t]]) {
+    const uvec3& i = scene.triangles[t];
+    n0 = scene.normals[i.x], n1 = scene.normals[i.y], n2 = scene.normals[i.z];
+    p0 = scene.positions[i.x], p1 = scene.positions[i.y], p2 = scene.positions[i.z];
+  }
+  vec3 shading_normal(float u, float v) const {
+    const vec3 n = (1.0f - u - v) * n0 + u * n1 + v * n2;
+    const float len = glm::length(n);
+    return len > 0.0f ? n / len : ng;
+  }
+  vec3 point(float u, float v) const { return (1.0f - u - v) * p0 + u * p1 + v * p2; }
+  Facing facing(float u, float v, vec3 toward_viewer) const {
+    Facing f;
+    f.ng = ng;
+    if (glm::dot(f.ng, toward_viewer) < 0.0f) f.ng = -f.ng;
+    f.n = shading_normal(u, v);
+    if (glm::dot(f.n, f.ng) < 0.0f) f.n = -f.n;
+    return f;
+  }
+
+  uint32_t triangle = kNoTriangle;
+  vec3 ng{0.0f};  // triangle_normal: the geometric normal, not yet facing the viewer
+  const Material* material = nullptr;
+  vec3 n0{0.0f}, n1{0.0f}, n2{0.0f}, p0{0.0f}, p1{0.0f}, p2{0.0f};
+};
 
 }  // namespace
 
 vec3 shade_reflected_point(const Scene& scene, uint32_t triangle, float u, float v, vec3 toward_viewer,
                            int area_light_samples) {
-  const Material& m = scene.materials[scene.triangle_material[triangle]];
-  const Facing f = facing(scene, triangle, u, v, toward_viewer);
-  const vec3 p = triangle_point(scene, triangle, u, v);
+  const ShadedTriangle tri(scene, triangle);
+  const Material& m = *tri.material;
+  const Facing f = tri.facing(u, v, toward_viewer);
+  const vec3 p = tri.point(u, v);
   ShadingTerms terms;
   terms.emission = m.emission;
   terms.ambient = scene.ambient;
@@ -377,38 +401,6 @@ void return_gbuffer(RasterImages&& g) {
   std::lock_guard<std::mutex> lock(g_gbuffer_mutex);
   if (g_gbuffers.size() < kPooledGBuffers) g_gbuffers.push_back(std::move(g));
 }
-
-// What the base shading reads of the triangle a run of pixels shows: shading_normal and
-// triangle_point with its vertices loaded once, by the same expressions (the same bits).
-struct ShadedTriangle {
-  ShadedTriangle() = default;
-  ShadedTriangle(const Scene& scene, uint32_t t)
-      : triangle(t), ng(triangle_normal(scene, t)), material(&scene.materials[scene.triangle_material[t]]) {
-    const uvec3& i = scene.triangles[t];
-    n0 = scene.normals[i.x], n1 = scene.normals[i.y], n2 = scene.normals[i.z];
-    p0 = scene.positions[i.x], p1 = scene.positions[i.y], p2 = scene.positions[i.z];
-  }
-  vec3 shading_normal(float u, float v) const {
-    const vec3 n = (1.0f - u - v) * n0 + u * n1 + v * n2;
-    const float len = glm::length(n);
-    return len > 0.0f ? n / len : ng;
-  }
-  vec3 point(float u, float v) const { return (1.0f - u - v) * p0 + u * p1 + v * p2; }
-  // facing() of this triangle.
-  Facing facing(float u, float v, vec3 toward_viewer) const {
-    Facing f;
-    f.ng = ng;
-    if (glm::dot(f.ng, toward_viewer) < 0.0f) f.ng = -f.ng;
-    f.n = shading_normal(u, v);
-    if (glm::dot(f.n, f.ng) < 0.0f) f.n = -f.n;
-    return f;
-  }
-
-  uint32_t triangle = kNoTriangle;
-  vec3 ng{0.0f};  // triangle_normal: the geometric normal, not yet facing the viewer
-  const Material* material = nullptr;
-  vec3 n0{0.0f}, n1{0.0f}, n2{0.0f}, p0{0.0f}, p1{0.0f}, p2{0.0f};
-};
 
 // Row y of `base`: per pixel what shade_reflected_point (or the environment) gives along the
 // view ray — the point lights and area-light stratum centres four pixels at a time.
