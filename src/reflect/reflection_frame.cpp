@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <mutex>
+#include <stdexcept>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -56,8 +57,9 @@ struct Facing {
 };
 
 // What shading reads of a triangle, its vertices loaded once (a run of pixels or samples
-// often shows one triangle): shading_normal and triangle_point by the same expressions
-// (the same bits), and the two-sided surface as seen from a viewer (as trace/'s surface_point).
+// often shows one triangle): shading_normal and triangle_point from the loaded corners by
+// the same expressions (the same bits), and the two-sided surface as seen from a viewer (as
+// trace/'s surface_point_seen).
 struct ShadedTriangle {
   ShadedTriangle() = default;
   ShadedTriangle(const Scene& scene, uint32_t t)
@@ -67,11 +69,11 @@ struct ShadedTriangle {
     p0 = scene.positions[i.x], p1 = scene.positions[i.y], p2 = scene.positions[i.z];
   }
   vec3 shading_normal(float u, float v) const {
-    const vec3 n = (1.0f - u - v) * n0 + u * n1 + v * n2;
+    const vec3 n = barycentric(n0, n1, n2, u, v);
     const float len = glm::length(n);
     return len > 0.0f ? n / len : ng;
   }
-  vec3 point(float u, float v) const { return (1.0f - u - v) * p0 + u * p1 + v * p2; }
+  vec3 point(float u, float v) const { return barycentric(p0, p1, p2, u, v); }
   Facing facing(float u, float v, vec3 toward_viewer) const {
     Facing f;
     f.ng = ng;
@@ -140,6 +142,7 @@ struct ViewRays {
 
 // The view directions of one row, per coordinate (padded to whole lane groups).
 struct RowDirs {
+  explicit RowDirs(const ViewRays& view) : x(view.column.size()), y(view.column.size()), z(view.column.size()) {}
   std::vector<float> x, y, z;
 };
 
@@ -342,7 +345,6 @@ void direct_irradiance(const LightTable& lights, LitPoints& lit) {
 }
 
 void view_dirs(const ViewRays& view, int y, RowDirs& out) {
-  out.x.resize(view.column.size()), out.y.resize(view.column.size()), out.z.resize(view.column.size());
 #if PROXIMA_SHADE_AVX
   if (has_avx()) return view_dirs_avx(view, y, out);
 #endif
@@ -350,9 +352,8 @@ void view_dirs(const ViewRays& view, int y, RowDirs& out) {
 }
 #else
 void view_dirs(const ViewRays& view, int y, RowDirs& out) {
-  out.x.resize(view.column.size()), out.y.resize(view.column.size()), out.z.resize(view.column.size());
   for (size_t x = 0; x < view.column.size(); ++x) {
-    const vec3 d = glm::normalize(view.orientation * vec3(view.column[x], view.row(y), -1.0f));
+    const vec3 d = view.dir(int(x), y);
     out.x[x] = d.x, out.y[x] = d.y, out.z[x] = d.z;
   }
 }
@@ -416,6 +417,12 @@ void shade_base_row(const Scene& scene, const RasterImages& g, const ViewRays& v
   terms.clear();
   ShadedTriangle run;
   view_dirs(view, y, dirs);
+  // The lanes must give dir()'s bits (a build that fuses multiply-adds in one and not the
+  // other would not): one pixel of each row, a different column per row, is checked.
+  const int cx = y % sw;
+  const vec3 check = view.dir(cx, y);
+  if (check != vec3(dirs.x[size_t(cx)], dirs.y[size_t(cx)], dirs.z[size_t(cx)]))
+    throw std::logic_error("reflection frame: the lanes' view direction differs from the scalar one");
   for (int x = 0; x < sw; ++x) {
     const uint32_t t = tri[x];
     const vec3 dir(dirs.x[size_t(x)], dirs.y[size_t(x)], dirs.z[size_t(x)]);
@@ -436,7 +443,7 @@ void shade_base_row(const Scene& scene, const RasterImages& g, const ViewRays& v
     ShadingTerms st;
     st.emission = m.emission;
     st.ambient = scene.ambient;
-    st.albedo = m.diffuse_texture < 0 ? m.diffuse : surface_diffuse(scene, t, u, v);
+    st.albedo = surface_diffuse(scene, t, u, v);
     st.specular = m.specular;
     if (m.specular < 1.0f && st.albedo != vec3(0.0f)) {
       lit.add(run.point(u, v), n);
@@ -495,7 +502,7 @@ void prepare_reflection_frame_into(const Scene& scene, const Camera& camera, con
   if (frame.base.width() != sw || frame.base.height() != sh || frame.base.channels() != 3)
     frame.base = ImageF(sw, sh, 3, 0.0f);  // else every pixel is written below
   parallel_for(size_t(sh), 8, [&](size_t y0, size_t y1) {
-    RowDirs dirs;
+    RowDirs dirs(view);
     LitPoints lit;
     std::vector<ShadingTerms> terms;
     std::vector<uint32_t> lit_x;
@@ -577,9 +584,7 @@ void prepare_reflection_frame_into(const Scene& scene, const Camera& camera, con
       const uint64_t out_pixel = uint64_t(y / k) * uint64_t(camera.width) + uint64_t(x / k);
       Pcg32 rng(cell > 0.0f ? surface_cell_seed(options.seed, frame.position[i], cell)
                             : derive_seed(options.seed, out_pixel, uint64_t((y % k) * k + (x % k))));
-      const Material& m = *run.material;
-      if (light_draws > 0 && m.specular < 1.0f &&
-          (m.diffuse_texture < 0 ? m.diffuse : surface_diffuse(scene, t, u, v)) != vec3(0.0f))
+      if (light_draws > 0 && frame.specular[i] < 1.0f && surface_diffuse(scene, t, u, v) != vec3(0.0f))
         rng.advance(light_draws);
       const vec3 mirror = reflect(dir, f.n);
       const float half_angle = glossy_lobe_half_angle(frame.gloss[i]);

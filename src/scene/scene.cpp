@@ -62,19 +62,19 @@ vec3 triangle_normal(const Scene& scene, uint32_t triangle) {
 
 vec3 triangle_point(const Scene& scene, uint32_t triangle, float u, float v) {
   const uvec3& t = scene.triangles[triangle];
-  return (1.0f - u - v) * scene.positions[t.x] + u * scene.positions[t.y] + v * scene.positions[t.z];
+  return barycentric(scene.positions[t.x], scene.positions[t.y], scene.positions[t.z], u, v);
 }
 
 vec3 shading_normal(const Scene& scene, uint32_t triangle, float u, float v) {
   const uvec3& t = scene.triangles[triangle];
-  vec3 n = (1.0f - u - v) * scene.normals[t.x] + u * scene.normals[t.y] + v * scene.normals[t.z];
-  float len = glm::length(n);
+  const vec3 n = barycentric(scene.normals[t.x], scene.normals[t.y], scene.normals[t.z], u, v);
+  const float len = glm::length(n);
   return len > 0.0f ? n / len : triangle_normal(scene, triangle);
 }
 
 vec2 triangle_uv(const Scene& scene, uint32_t triangle, float u, float v) {
   const uvec3& t = scene.triangles[triangle];
-  return (1.0f - u - v) * scene.uvs[t.x] + u * scene.uvs[t.y] + v * scene.uvs[t.z];
+  return barycentric(scene.uvs[t.x], scene.uvs[t.y], scene.uvs[t.z], u, v);
 }
 
 vec3 surface_diffuse(const Scene& scene, uint32_t triangle, float u, float v) {

@@ -73,7 +73,13 @@ Bounds3 object_bounds(const Scene& scene, uint32_t object);
 vec3 triangle_normal(const Scene& scene, uint32_t triangle);
 
 // Attributes at barycentrics (u, v) of a triangle: p = (1−u−v)·p0 + u·p1 + v·p2
-// (Embree's convention).
+// (Embree's convention); `barycentric` is that sum for corner values already loaded. The
+// shading normal is the interpolated vertex normal made unit, or the triangle's geometric
+// normal where the vertex normals cancel.
+template <typename T>
+T barycentric(const T& a, const T& b, const T& c, float u, float v) {
+  return (1.0f - u - v) * a + u * b + v * c;
+}
 vec3 triangle_point(const Scene& scene, uint32_t triangle, float u, float v);
 vec3 shading_normal(const Scene& scene, uint32_t triangle, float u, float v);  // unit
 vec2 triangle_uv(const Scene& scene, uint32_t triangle, float u, float v);
