@@ -46,6 +46,7 @@ set(PROXIMA_LIB_SOURCES
   src/reflect/envmap_frame_reflections.cpp
   src/reflect/envmap_groups.cpp
   src/reflect/envmap_set.cpp
+  src/reflect/hit_shading.cpp
   src/reflect/envmap_lookup.cpp
   src/reflect/envmap_reflection.cpp
   src/reflect/reflection_comparison.cpp

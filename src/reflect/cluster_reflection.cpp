@@ -22,6 +22,7 @@
 #include "proxima/core/timer.h"
 #include "proxima/raster/rasterizer.h"
 #include "proxima/reflect/cluster_camera.h"
+#include "proxima/reflect/hit_shading.h"
 #include "proxima/reflect/cluster_depth_image.h"
 #include "proxima/reflect/depth_image_march.h"
 #include "proxima/trace/object_bvh.h"
@@ -92,22 +93,30 @@ void mark_lookup_texels(const ImageF& depth, std::span<const DepthImageHit> hits
 }
 
 // Shades the needed texels of a cluster image that hold a surface (shade_reflected_point
-// towards the camera); the others stay black. Returns the texels shaded.
+// towards the camera, a row's texels together); the others stay black. Returns the texels shaded.
 uint64_t shade_texels(const Scene& scene, int area_light_samples, const Camera& cam, const RasterImages& images,
                       std::span<const uint8_t> needed, ImageF& color) {
   color = ImageF(cam.width, cam.height, 3, 0.0f);
   std::vector<uint64_t> row_count(size_t(cam.height), 0);
+  const LightTable lights(scene, area_light_samples);
   parallel_for(size_t(cam.height), 8, [&](size_t y0, size_t y1) {
-    for (int y = int(y0); y < int(y1); ++y)
+    HitShading shading(lights);
+    std::vector<int> shaded_x;
+    for (int y = int(y0); y < int(y1); ++y) {
+      shading.clear();
+      shaded_x.clear();
       for (int x = 0; x < cam.width; ++x) {
         const uint32_t t = images.triangle.at(x, y);
         if (t == kNoTriangle || !needed[size_t(y) * size_t(cam.width) + size_t(x)]) continue;
         const float u = images.barycentric.at(x, y, 0), v = images.barycentric.at(x, y, 1);
-        const vec3 toward = cam.position - triangle_point(scene, t, u, v);
-        const vec3 col = shade_reflected_point(scene, t, u, v, toward, area_light_samples);
-        for (int ch = 0; ch < 3; ++ch) color.at(x, y, ch) = col[ch];
-        ++row_count[size_t(y)];
+        shading.add_hit(scene, t, u, v, cam.position - triangle_point(scene, t, u, v));
+        shaded_x.push_back(x);
       }
+      shading.finish();
+      for (size_t k = 0; k < shaded_x.size(); ++k)
+        for (int ch = 0; ch < 3; ++ch) color.at(shaded_x[k], y, ch) = shading.color[k][ch];
+      row_count[size_t(y)] = shaded_x.size();
+    }
   });
   uint64_t total = 0;
   for (uint64_t n : row_count) total += n;

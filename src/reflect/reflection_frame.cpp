@@ -10,19 +10,6 @@
 #include <cmath>
 #include <mutex>
 #include <stdexcept>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-// The eight-lane shading path: GCC optimized builds only, as the best match's AVX-512 path
-// (temporal_best_match.cpp) — unoptimized, the lane ops would not be inlined into the avx
-// code and would pass __m256 across targets; clang rejects the default-target template.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(__OPTIMIZE__)
-#include <immintrin.h>
-#define PROXIMA_SHADE_AVX 1
-#pragma GCC diagnostic ignored "-Wpsabi"
-#else
-#define PROXIMA_SHADE_AVX 0
-#endif
 
 #include "proxima/core/error.h"
 #include "proxima/core/parallel.h"
@@ -30,6 +17,7 @@
 #include "proxima/core/timer.h"
 #include "proxima/raster/rasterizer.h"
 #include "proxima/scene/shading.h"
+#include "shading_lanes.h"
 
 namespace proxima {
 
@@ -51,76 +39,6 @@ uint64_t surface_cell_seed(uint64_t seed, vec3 p, float cell) {
   auto q = [&](float v) { return uint64_t(int64_t(std::clamp(std::floor(double(v) / double(cell)), -9e18, 9e18))); };
   return derive_seed(seed ^ 0x5EEDCE11ull, q(p.x), q(p.y), q(p.z));
 }
-
-struct Facing {
-  vec3 ng, n;
-};
-
-// What shading reads of a triangle, its vertices loaded once (a run of pixels or samples
-// often shows one triangle): shading_normal and triangle_point from the loaded corners by
-// the same expressions (the same bits), and the two-sided surface as seen from a viewer (as
-// trace/'s surface_point_seen).
-struct ShadedTriangle {
-  ShadedTriangle() = default;
-  ShadedTriangle(const Scene& scene, uint32_t t)
-      : triangle(t), ng(triangle_normal(scene, t)), material(&scene.materials[scene.triangle_material[t]]) {
-    const uvec3& i = scene.triangles[t];
-    n0 = scene.normals[i.x], n1 = scene.normals[i.y], n2 = scene.normals[i.z];
-    p0 = scene.positions[i.x], p1 = scene.positions[i.y], p2 = scene.positions[i.z];
-  }
-  vec3 shading_normal(float u, float v) const {
-    const vec3 n = barycentric(n0, n1, n2, u, v);
-    const float len = glm::length(n);
-    return len > 0.0f ? n / len : ng;
-  }
-  vec3 point(float u, float v) const { return barycentric(p0, p1, p2, u, v); }
-  Facing facing(float u, float v, vec3 toward_viewer) const {
-    Facing f;
-    f.ng = ng;
-    if (glm::dot(f.ng, toward_viewer) < 0.0f) f.ng = -f.ng;
-    f.n = shading_normal(u, v);
-    if (glm::dot(f.n, f.ng) < 0.0f) f.n = -f.n;
-    return f;
-  }
-
-  uint32_t triangle = kNoTriangle;
-  vec3 ng{0.0f};  // triangle_normal: the geometric normal, not yet facing the viewer
-  const Material* material = nullptr;
-  vec3 n0{0.0f}, n1{0.0f}, n2{0.0f}, p0{0.0f}, p1{0.0f}, p2{0.0f};
-};
-
-}  // namespace
-
-vec3 shade_reflected_point(const Scene& scene, uint32_t triangle, float u, float v, vec3 toward_viewer,
-                           int area_light_samples) {
-  const ShadedTriangle tri(scene, triangle);
-  const Material& m = *tri.material;
-  const Facing f = tri.facing(u, v, toward_viewer);
-  const vec3 p = tri.point(u, v);
-  ShadingTerms terms;
-  terms.emission = m.emission;
-  terms.ambient = scene.ambient;
-  terms.albedo = surface_diffuse(scene, triangle, u, v);
-  terms.specular = m.specular;
-  if (m.specular < 1.0f && terms.albedo != vec3(0.0f)) {
-    for (const PointLight& light : scene.point_lights) terms.direct_irradiance += point_light_irradiance(light, p, f.n);
-    const int n = area_light_samples;
-    for (const AreaLight& light : scene.area_lights) {
-      const vec3 normal = light.normal();
-      const float area = light.area();
-      vec3 sum(0.0f);
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-          vec2 ab = stratum_sample(i, j, n, 0.5f, 0.5f);
-          sum += area_light_sample_irradiance(light, normal, area, light.point(ab.x, ab.y), p, f.n);
-        }
-      terms.direct_irradiance += sum / float(n * n);
-    }
-  }
-  return combine_shading(terms);
-}
-
-namespace {
 
 // The view directions of ray_through with the camera's constants (focal length, half
 // sizes) computed once: the same operations on the same values, so the same bits.
@@ -146,132 +64,7 @@ struct RowDirs {
   std::vector<float> x, y, z;
 };
 
-// The lights as shade_reflected_point evaluates them, with what it recomputes per sample
-// (each area light's normal and area, its n×n stratum centres) computed once per frame by
-// the same expressions: the same values. Points are stored per coordinate for the lanes.
-struct LightTable {
-  struct Area {
-    vec3 normal, radiance;
-    float area = 0.0f;
-    std::vector<float> x, y, z;  // the n×n stratum centres in shade_reflected_point's order
-  };
-  std::vector<PointLight> points;
-  std::vector<Area> areas;
-  float samples = 1.0f;  // float(n·n)
-
-  LightTable(const Scene& scene, int n) : points(scene.point_lights), samples(float(n * n)) {
-    for (const AreaLight& light : scene.area_lights) {
-      Area a;
-      a.normal = light.normal();
-      a.radiance = light.radiance;
-      a.area = light.area();
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-          const vec2 ab = stratum_sample(i, j, n, 0.5f, 0.5f);
-          const vec3 q = light.point(ab.x, ab.y);
-          a.x.push_back(q.x);
-          a.y.push_back(q.y);
-          a.z.push_back(q.z);
-        }
-      areas.push_back(std::move(a));
-    }
-  }
-};
-
-// Lit points of one row, per coordinate (padded to whole lane groups), and their unshadowed
-// direct irradiance.
-struct LitPoints {
-  std::vector<float> px, py, pz, nx, ny, nz, ex, ey, ez;
-  size_t count = 0;
-
-  void clear() { count = 0; }
-  void add(vec3 p, vec3 n) {
-    if (px.size() <= count) {
-      for (auto* v : {&px, &py, &pz, &nx, &ny, &nz, &ex, &ey, &ez}) v->resize(std::max<size_t>(64, 2 * count), 0.0f);
-    }
-    px[count] = p.x, py[count] = p.y, pz[count] = p.z;
-    nx[count] = n.x, ny[count] = n.y, nz[count] = n.z;
-    ++count;
-  }
-};
-
-#if defined(__SSE2__)
-#define PROXIMA_LANE_OP static inline __attribute__((always_inline))
-struct Lanes4 {
-  using V = __m128;
-  static constexpr size_t kWidth = 4;
-  PROXIMA_LANE_OP V zero() { return _mm_setzero_ps(); }
-  PROXIMA_LANE_OP V set1(float v) { return _mm_set1_ps(v); }
-  PROXIMA_LANE_OP V load(const float* p) { return _mm_loadu_ps(p); }
-  PROXIMA_LANE_OP void store(float* p, V v) { _mm_storeu_ps(p, v); }
-  PROXIMA_LANE_OP V add(V a, V b) { return _mm_add_ps(a, b); }
-  PROXIMA_LANE_OP V sub(V a, V b) { return _mm_sub_ps(a, b); }
-  PROXIMA_LANE_OP V mul(V a, V b) { return _mm_mul_ps(a, b); }
-  PROXIMA_LANE_OP V div(V a, V b) { return _mm_div_ps(a, b); }
-  PROXIMA_LANE_OP V sqrt(V a) { return _mm_sqrt_ps(a); }
-  PROXIMA_LANE_OP V neg(V a) { return _mm_xor_ps(a, _mm_set1_ps(-0.0f)); }
-  PROXIMA_LANE_OP V keep(V mask, V a) { return _mm_and_ps(mask, a); }
-  PROXIMA_LANE_OP V both(V a, V b) { return _mm_and_ps(a, b); }
-  PROXIMA_LANE_OP V gt0(V a) { return _mm_cmplt_ps(_mm_setzero_ps(), a); }     // 0 < a (NaN: false)
-  PROXIMA_LANE_OP V dot(V ax, V ay, V az, V bx, V by, V bz) { return add(add(mul(ax, bx), mul(ay, by)), mul(az, bz)); }
-  PROXIMA_LANE_OP V not_le0(V a) { return _mm_cmpnle_ps(a, _mm_setzero_ps()); }  // !(a <= 0) (NaN: true)
-};
-
-// The direct irradiance of shade_reflected_point for L::kWidth points at once: each lane
-// runs point_light_irradiance's and area_light_sample_irradiance's IEEE single operations
-// in their order (dot = (x·x' + y·y') + z·z', max(0, c) as 0 < c ? c : +0, a returned 0
-// added as +0; no fused multiply-add on these targets, so nothing is contracted): per lane
-// the scalar code's bits.
-template <class L>
-inline __attribute__((always_inline)) void direct_irradiance_lanes(const LightTable& lights, LitPoints& lit) {
-  using V = typename L::V;
-  for (size_t i = 0; i < lit.count; i += L::kWidth) {
-    const V px = L::load(&lit.px[i]), py = L::load(&lit.py[i]), pz = L::load(&lit.pz[i]);
-    const V nx = L::load(&lit.nx[i]), ny = L::load(&lit.ny[i]), nz = L::load(&lit.nz[i]);
-    V ex = L::zero(), ey = L::zero(), ez = L::zero();
-    for (const PointLight& light : lights.points) {
-      const V tx = L::sub(L::set1(light.position.x), px);
-      const V ty = L::sub(L::set1(light.position.y), py);
-      const V tz = L::sub(L::set1(light.position.z), pz);
-      const V r2 = L::dot(tx, ty, tz, tx, ty, tz);
-      const V c = L::div(L::dot(nx, ny, nz, tx, ty, tz), L::sqrt(r2));
-      const V q = L::div(L::keep(L::gt0(c), c), r2);  // max(0, c) / r²
-      const V keep = L::not_le0(r2);                   // r² <= 0 gives 0
-      ex = L::add(ex, L::keep(keep, L::mul(L::set1(light.intensity.x), q)));
-      ey = L::add(ey, L::keep(keep, L::mul(L::set1(light.intensity.y), q)));
-      ez = L::add(ez, L::keep(keep, L::mul(L::set1(light.intensity.z), q)));
-    }
-    for (const LightTable::Area& a : lights.areas) {
-      const V lnx = L::set1(a.normal.x), lny = L::set1(a.normal.y), lnz = L::set1(a.normal.z);
-      const V area = L::set1(a.area);
-      const V rx = L::set1(a.radiance.x), ry = L::set1(a.radiance.y), rz = L::set1(a.radiance.z);
-      V sx = L::zero(), sy = L::zero(), sz = L::zero();
-      for (size_t k = 0; k < a.x.size(); ++k) {
-        const V tx = L::sub(L::set1(a.x[k]), px);
-        const V ty = L::sub(L::set1(a.y[k]), py);
-        const V tz = L::sub(L::set1(a.z[k]), pz);
-        const V r2 = L::dot(tx, ty, tz, tx, ty, tz);
-        const V r = L::sqrt(r2);
-        const V cs = L::div(L::dot(nx, ny, nz, tx, ty, tz), r);
-        const V cl = L::div(L::neg(L::dot(lnx, lny, lnz, tx, ty, tz)), r);
-        const V f = L::mul(L::div(L::mul(cs, cl), r2), area);
-        // 0 where r² <= 0, cos_surface <= 0 or cos_light <= 0 (NaN passes, as in the scalar test)
-        const V keep = L::both(L::not_le0(r2), L::both(L::not_le0(cs), L::not_le0(cl)));
-        sx = L::add(sx, L::keep(keep, L::mul(rx, f)));
-        sy = L::add(sy, L::keep(keep, L::mul(ry, f)));
-        sz = L::add(sz, L::keep(keep, L::mul(rz, f)));
-      }
-      const V m = L::set1(lights.samples);
-      ex = L::add(ex, L::div(sx, m));
-      ey = L::add(ey, L::div(sy, m));
-      ez = L::add(ez, L::div(sz, m));
-    }
-    L::store(&lit.ex[i], ex);
-    L::store(&lit.ey[i], ey);
-    L::store(&lit.ez[i], ez);
-  }
-}
-
+#if PROXIMA_SHADE_LANES
 // ViewRays::dir of row y for every x, L::kWidth at a time: per lane glm's quaternion
 // rotation (v + ((uv·w) + uuv)·2, uv = q × v, uuv = q × uv) and normalize (v · (1 / √(v·v)))
 // in their order, so each lane gives dir's bits.
@@ -300,49 +93,10 @@ inline __attribute__((always_inline)) void view_dirs_lanes(const ViewRays& view,
 }
 
 #if PROXIMA_SHADE_AVX
-// Eight lanes where the CPU has AVX (runtime dispatch). target("avx") brings no fused
-// multiply-add, so the operations stay separate: the same bits as four lanes.
-#define PROXIMA_AVX_OP static __attribute__((target("avx"))) inline
-struct Lanes8 {
-  using V = __m256;
-  static constexpr size_t kWidth = 8;
-  PROXIMA_AVX_OP V zero() { return _mm256_setzero_ps(); }
-  PROXIMA_AVX_OP V set1(float v) { return _mm256_set1_ps(v); }
-  PROXIMA_AVX_OP V load(const float* p) { return _mm256_loadu_ps(p); }
-  PROXIMA_AVX_OP void store(float* p, V v) { _mm256_storeu_ps(p, v); }
-  PROXIMA_AVX_OP V add(V a, V b) { return _mm256_add_ps(a, b); }
-  PROXIMA_AVX_OP V sub(V a, V b) { return _mm256_sub_ps(a, b); }
-  PROXIMA_AVX_OP V mul(V a, V b) { return _mm256_mul_ps(a, b); }
-  PROXIMA_AVX_OP V div(V a, V b) { return _mm256_div_ps(a, b); }
-  PROXIMA_AVX_OP V sqrt(V a) { return _mm256_sqrt_ps(a); }
-  PROXIMA_AVX_OP V neg(V a) { return _mm256_xor_ps(a, _mm256_set1_ps(-0.0f)); }
-  PROXIMA_AVX_OP V keep(V mask, V a) { return _mm256_and_ps(mask, a); }
-  PROXIMA_AVX_OP V both(V a, V b) { return _mm256_and_ps(a, b); }
-  PROXIMA_AVX_OP V gt0(V a) { return _mm256_cmp_ps(_mm256_setzero_ps(), a, _CMP_LT_OS); }
-  PROXIMA_AVX_OP V dot(V ax, V ay, V az, V bx, V by, V bz) { return add(add(mul(ax, bx), mul(ay, by)), mul(az, bz)); }
-  PROXIMA_AVX_OP V not_le0(V a) { return _mm256_cmp_ps(a, _mm256_setzero_ps(), _CMP_NLE_US); }
-};
-
-__attribute__((target("avx"), flatten)) void direct_irradiance_avx(const LightTable& lights, LitPoints& lit) {
-  direct_irradiance_lanes<Lanes8>(lights, lit);
-}
-
 __attribute__((target("avx"), flatten)) void view_dirs_avx(const ViewRays& view, int y, RowDirs& out) {
   view_dirs_lanes<Lanes8>(view, y, out);
 }
-
-bool has_avx() {
-  static const bool yes = __builtin_cpu_supports("avx");
-  return yes;
-}
 #endif
-
-void direct_irradiance(const LightTable& lights, LitPoints& lit) {
-#if PROXIMA_SHADE_AVX
-  if (has_avx()) return direct_irradiance_avx(lights, lit);
-#endif
-  direct_irradiance_lanes<Lanes4>(lights, lit);
-}
 
 void view_dirs(const ViewRays& view, int y, RowDirs& out) {
 #if PROXIMA_SHADE_AVX
@@ -355,27 +109,6 @@ void view_dirs(const ViewRays& view, int y, RowDirs& out) {
   for (size_t x = 0; x < view.column.size(); ++x) {
     const vec3 d = view.dir(int(x), y);
     out.x[x] = d.x, out.y[x] = d.y, out.z[x] = d.z;
-  }
-}
-
-void direct_irradiance(const LightTable& lights, LitPoints& lit) {
-  for (size_t i = 0; i < lit.count; ++i) {
-    const vec3 p(lit.px[i], lit.py[i], lit.pz[i]), n(lit.nx[i], lit.ny[i], lit.nz[i]);
-    vec3 e(0.0f);
-    for (const PointLight& light : lights.points) e += point_light_irradiance(light, p, n);
-    for (const LightTable::Area& a : lights.areas) {
-      vec3 sum(0.0f);
-      for (size_t k = 0; k < a.x.size(); ++k) {  // area_light_sample_irradiance with the table's values
-        const vec3 to_light = vec3(a.x[k], a.y[k], a.z[k]) - p;
-        const float r2 = glm::dot(to_light, to_light);
-        const float r = std::sqrt(r2);
-        const float cs = glm::dot(n, to_light) / r, cl = -glm::dot(a.normal, to_light) / r;
-        const bool keep = !(r2 <= 0.0f) && !(cs <= 0.0f) && !(cl <= 0.0f);
-        sum += keep ? a.radiance * (cs * cl / r2 * a.area) : vec3(0.0f);
-      }
-      e += sum / lights.samples;
-    }
-    lit.ex[i] = e.x, lit.ey[i] = e.y, lit.ez[i] = e.z;
   }
 }
 #endif
@@ -404,18 +137,14 @@ void return_gbuffer(RasterImages&& g) {
 }
 
 // Row y of `base`: per pixel what shade_reflected_point (or the environment) gives along the
-// view ray — the point lights and area-light stratum centres four pixels at a time.
-void shade_base_row(const Scene& scene, const RasterImages& g, const ViewRays& view, const LightTable& lights, int y,
-                    RowDirs& dirs, LitPoints& lit, std::vector<ShadingTerms>& terms, std::vector<uint32_t>& lit_x,
-                    ImageF& base) {
+// view ray.
+void shade_base_row(const Scene& scene, const RasterImages& g, const ViewRays& view, int y, RowDirs& dirs,
+                    HitShading& shading, ImageF& base) {
   const int sw = g.triangle.width();
   const uint32_t* tri = &g.triangle.at(0, y);
   const float* bary = &g.barycentric.at(0, y);
   float* out = &base.at(0, y);
-  lit.clear();
-  lit_x.clear();
-  terms.clear();
-  ShadedTriangle run;
+  shading.clear();
   view_dirs(view, y, dirs);
   // The lanes must give dir()'s bits (a build that fuses multiply-adds in one and not the
   // other would not): one pixel of each row, a different column per row, is checked.
@@ -424,41 +153,15 @@ void shade_base_row(const Scene& scene, const RasterImages& g, const ViewRays& v
   if (check != vec3(dirs.x[size_t(cx)], dirs.y[size_t(cx)], dirs.z[size_t(cx)]))
     throw std::logic_error("reflection frame: the lanes' view direction differs from the scalar one");
   for (int x = 0; x < sw; ++x) {
-    const uint32_t t = tri[x];
     const vec3 dir(dirs.x[size_t(x)], dirs.y[size_t(x)], dirs.z[size_t(x)]);
-    if (t == kNoTriangle) {
-      const vec3 c = environment_radiance(scene.environment, dir);
-      out[3 * x] = c.x, out[3 * x + 1] = c.y, out[3 * x + 2] = c.z;
-      continue;
-    }
-    const float u = bary[2 * x], v = bary[2 * x + 1];
-    if (t != run.triangle) run = ShadedTriangle(scene, t);
-    // facing(): the two-sided surface seen from −dir.
-    const vec3 toward = -dir;
-    vec3 ng = run.ng;
-    if (glm::dot(ng, toward) < 0.0f) ng = -ng;
-    vec3 n = run.shading_normal(u, v);
-    if (glm::dot(n, ng) < 0.0f) n = -n;
-    const Material& m = *run.material;
-    ShadingTerms st;
-    st.emission = m.emission;
-    st.ambient = scene.ambient;
-    st.albedo = surface_diffuse(scene, t, u, v);
-    st.specular = m.specular;
-    if (m.specular < 1.0f && st.albedo != vec3(0.0f)) {
-      lit.add(run.point(u, v), n);
-      lit_x.push_back(uint32_t(x));
-      terms.push_back(st);
-      continue;
-    }
-    const vec3 c = combine_shading(st);
-    out[3 * x] = c.x, out[3 * x + 1] = c.y, out[3 * x + 2] = c.z;
+    if (tri[x] == kNoTriangle)
+      shading.add_miss(environment_radiance(scene.environment, dir));
+    else
+      shading.add_hit(scene, tri[x], bary[2 * x], bary[2 * x + 1], -dir);
   }
-  direct_irradiance(lights, lit);
-  for (size_t i = 0; i < lit_x.size(); ++i) {
-    terms[i].direct_irradiance = vec3(lit.ex[i], lit.ey[i], lit.ez[i]);
-    const vec3 c = combine_shading(terms[i]);
-    const size_t x = lit_x[i];
+  shading.finish();
+  for (int x = 0; x < sw; ++x) {
+    const vec3 c = shading.color[size_t(x)];
     out[3 * x] = c.x, out[3 * x + 1] = c.y, out[3 * x + 2] = c.z;
   }
 }
@@ -503,11 +206,8 @@ void prepare_reflection_frame_into(const Scene& scene, const Camera& camera, con
     frame.base = ImageF(sw, sh, 3, 0.0f);  // else every pixel is written below
   parallel_for(size_t(sh), 8, [&](size_t y0, size_t y1) {
     RowDirs dirs(view);
-    LitPoints lit;
-    std::vector<ShadingTerms> terms;
-    std::vector<uint32_t> lit_x;
-    for (int y = int(y0); y < int(y1); ++y)
-      shade_base_row(scene, g, view, lights, y, dirs, lit, terms, lit_x, frame.base);
+    HitShading shading(lights);
+    for (int y = int(y0); y < int(y1); ++y) shade_base_row(scene, g, view, y, dirs, shading, frame.base);
   });
   frame.shading_ms = watch.elapsed_ms() - frame.raster_ms;
 
@@ -577,7 +277,7 @@ void prepare_reflection_frame_into(const Scene& scene, const Camera& camera, con
       const float u = g.barycentric.at(x, y, 0), v = g.barycentric.at(x, y, 1);
       const vec3 dir = glm::normalize(view.dir(x, y));
       if (t != run.triangle) run = ShadedTriangle(scene, t);
-      const Facing f = run.facing(u, v, -dir);
+      const ShadedTriangle::Facing f = run.facing(u, v, -dir);
       frame.position[i] = run.point(u, v);
       frame.normal[i] = f.n;
       frame.origin[i] = frame.position[i] + epsilon * f.ng;
@@ -604,23 +304,43 @@ void prepare_reflection_frame_into(const Scene& scene, const Camera& camera, con
 
 namespace {
 
-// Sample i's mean radiance over its rays, in ray order; with `hits`, each ray's closest hit
-// (left as it is where the ray escapes). One kernel for every trace entry: the same bits.
-template <bool kHits>
-vec3 trace_sample(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame, size_t i,
-                  TracedReflections* hits) {
-  vec3 sum(0.0f);
-  for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r) {
-    const vec3 dir = frame.direction[r];
-    Hit hit = rays.intersect(Ray{frame.origin[i], dir, 0.0f, kInf});
-    if (hit.valid()) {
-      if constexpr (kHits) hits->hit_triangle[r] = hit.triangle, hits->hit_t[r] = hit.t;
-      sum += shade_reflected_point(scene, hit.triangle, hit.u, hit.v, -dir, frame.area_light_samples);
-    } else {
-      sum += environment_radiance(scene.environment, dir);
+// Rays traced per block whose hits are shaded together: enough lit hits to fill the lanes
+// (a mirror sample has one ray), few enough to stay in cache.
+constexpr uint32_t kBlockRays = 64;
+
+// Samples sample_of(b) … sample_of(e − 1): each one's mean radiance over its rays, summed in
+// ray order, passed to write(i, radiance); with `hits`, each ray's closest hit (left as it is
+// where the ray escapes). One kernel for every trace entry: the same bits.
+template <bool kHits, class SampleOf, class Write>
+void trace_samples(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame, size_t b, size_t e,
+                   SampleOf sample_of, HitShading& shading, TracedReflections* hits, Write write) {
+  for (size_t k0 = b; k0 < e;) {
+    shading.clear();
+    size_t k1 = k0;
+    for (uint32_t traced = 0; k1 < e && traced < kBlockRays; ++k1) {
+      const size_t i = sample_of(k1);
+      for (uint32_t r = frame.first_ray[i]; r < frame.first_ray[i + 1]; ++r, ++traced) {
+        const vec3 dir = frame.direction[r];
+        const Hit hit = rays.intersect(Ray{frame.origin[i], dir, 0.0f, kInf});
+        if (hit.valid()) {
+          if constexpr (kHits) hits->hit_triangle[r] = hit.triangle, hits->hit_t[r] = hit.t;
+          shading.add_hit(scene, hit.triangle, hit.u, hit.v, -dir);
+        } else {
+          shading.add_miss(environment_radiance(scene.environment, dir));
+        }
+      }
     }
+    shading.finish();
+    const vec3* color = shading.color.data();
+    for (size_t k = k0; k < k1; ++k) {
+      const size_t i = sample_of(k);
+      const uint32_t count = frame.first_ray[i + 1] - frame.first_ray[i];
+      vec3 sum(0.0f);
+      for (uint32_t j = 0; j < count; ++j) sum += *color++;
+      write(i, sum / float(count));
+    }
+    k0 = k1;
   }
-  return sum / float(frame.first_ray[i + 1] - frame.first_ray[i]);
 }
 
 }  // namespace
@@ -638,16 +358,22 @@ void trace_reflections_into(const Scene& scene, const RayScene& rays, const Refl
   out.radiance.resize(n);  // every sample is written below
   out.hit_triangle.assign(frame.direction.size(), kNoTriangle);
   out.hit_t.assign(frame.direction.size(), kInf);
+  const LightTable lights(scene, frame.area_light_samples);
   parallel_for(n, kSampleGrain, [&](size_t b, size_t e) {
-    for (size_t i = b; i < e; ++i) out.radiance[i] = trace_sample<true>(scene, rays, frame, i, &out);
+    HitShading shading(lights);
+    trace_samples<true>(scene, rays, frame, b, e, [](size_t k) { return k; }, shading, &out,
+                        [&](size_t i, vec3 radiance) { out.radiance[i] = radiance; });
   });
   out.ms = watch.elapsed_ms();
 }
 
 void trace_reflection_samples(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame,
                               std::span<const uint32_t> samples, std::span<vec3> radiance) {
+  const LightTable lights(scene, frame.area_light_samples);
   parallel_for(samples.size(), kSampleGrain, [&](size_t b, size_t e) {
-    for (size_t k = b; k < e; ++k) radiance[samples[k]] = trace_sample<false>(scene, rays, frame, samples[k], nullptr);
+    HitShading shading(lights);
+    trace_samples<false>(scene, rays, frame, b, e, [&](size_t k) { return size_t(samples[k]); }, shading, nullptr,
+                         [&](size_t i, vec3 value) { radiance[i] = value; });
   });
 }
 

@@ -1,7 +1,8 @@
 // The reflection frame every reflection method starts from, and its Embree reference: the
 // G-buffer from the eye at k×k samples per pixel, every reflective sample's reflection rays
-// (mirror or glossy lobe, drawn exactly as render_reference's first bounce), the shading of
-// a reflected point, Embree's answer for the same rays, and the final blend base + s·reflected.
+// (mirror or glossy lobe, drawn exactly as render_reference's first bounce), Embree's answer
+// for the same rays shaded as hit_shading.h shades a reflected point, and the final blend
+// base + s·reflected.
 // The cluster method (cluster_reflection.h), the env-map lookups (envmap_frame_reflections.h)
 // and temporal reuse (temporal_reuse.h) each replace trace_reflections' radiance; the
 // difference between their image and the traced one is the approximation alone.
@@ -13,6 +14,7 @@
 
 #include "proxima/core/camera.h"
 #include "proxima/core/image.h"
+#include "proxima/reflect/hit_shading.h"
 #include "proxima/scene/scene.h"
 #include "proxima/trace/ray_scene.h"
 
@@ -78,12 +80,6 @@ ReflectionFrame prepare_reflection_frame(const Scene& scene, const Camera& camer
 // per frame). Every field is rewritten; the result equals prepare_reflection_frame's.
 void prepare_reflection_frame_into(const Scene& scene, const Camera& camera, const ReflectionOptions& options,
                                    ReflectionFrame& frame, std::span<const Bounds3> object_bounds = {});
-
-// Radiance shading of a surface point seen from a reflection ray, shared by every method:
-// docs/shading.md with reflected = 0 and direct light unshadowed (point lights and the n×n
-// stratum centres of each area light). `toward_viewer` orients the two-sided surface.
-vec3 shade_reflected_point(const Scene& scene, uint32_t triangle, float u, float v, vec3 toward_viewer,
-                           int area_light_samples);
 
 // The reflections traced by Embree: per sample the mean radiance over its rays, per ray the
 // closest hit (triangle kNoTriangle and t = +inf when the ray escapes; the hit point is
