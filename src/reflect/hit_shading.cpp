@@ -55,13 +55,9 @@ LightTable::LightTable(const Scene& scene, int n) : points(scene.point_lights), 
   }
 }
 
-void LitPoints::add(vec3 p, vec3 n) {
-  if (px.size() <= count) {
-    for (auto* v : {&px, &py, &pz, &nx, &ny, &nz, &ex, &ey, &ez}) v->resize(std::max<size_t>(64, 2 * count), 0.0f);
-  }
-  px[count] = p.x, py[count] = p.y, pz[count] = p.z;
-  nx[count] = n.x, ny[count] = n.y, nz[count] = n.z;
-  ++count;
+void LitPoints::grow() {
+  // Sizes stay multiples of the widest lane group: the lanes read whole groups.
+  for (auto* v : {&px, &py, &pz, &nx, &ny, &nz, &ex, &ey, &ez}) v->resize(std::max<size_t>(64, 2 * count), 0.0f);
 }
 
 namespace {
@@ -166,22 +162,10 @@ void HitShading::clear() {
   lit_index.clear();
 }
 
-void HitShading::add_hit(const Scene& scene, uint32_t t, float u, float v, vec3 toward_viewer) {
-  if (t != run.triangle) run = ShadedTriangle(scene, t);
-  const Material& m = *run.material;
-  ShadingTerms st;
-  st.emission = m.emission;
-  st.ambient = scene.ambient;
-  st.albedo = surface_diffuse(scene, t, u, v);
-  st.specular = m.specular;
-  if (m.specular < 1.0f && st.albedo != vec3(0.0f)) {
-    lit.add(run.point(u, v), run.facing(u, v, toward_viewer).n);
-    lit_index.push_back(uint32_t(color.size()));
-    terms.push_back(st);
-    color.emplace_back(0.0f);  // set by finish()
-    return;
-  }
-  color.push_back(combine_shading(st));
+void HitShading::reserve(size_t points) {
+  color.reserve(points);
+  terms.reserve(points);
+  lit_index.reserve(points);
 }
 
 void HitShading::finish() {

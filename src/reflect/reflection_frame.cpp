@@ -207,6 +207,7 @@ void prepare_reflection_frame_into(const Scene& scene, const Camera& camera, con
   parallel_for(size_t(sh), 8, [&](size_t y0, size_t y1) {
     RowDirs dirs(view);
     HitShading shading(lights);
+    shading.reserve(size_t(sw));
     for (int y = int(y0); y < int(y1); ++y) shade_base_row(scene, g, view, y, dirs, shading, frame.base);
   });
   frame.shading_ms = watch.elapsed_ms() - frame.raster_ms;

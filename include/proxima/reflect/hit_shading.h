@@ -78,7 +78,15 @@ struct LitPoints {
   size_t count = 0;
 
   void clear() { count = 0; }
-  void add(vec3 p, vec3 n);
+  void add(vec3 p, vec3 n) {
+    if (px.size() <= count) grow();
+    px[count] = p.x, py[count] = p.y, pz[count] = p.z;
+    nx[count] = n.x, ny[count] = n.y, nz[count] = n.z;
+    ++count;
+  }
+
+ private:
+  void grow();
 };
 
 // Hit points shaded as shade_reflected_point shades them, a block at a time: each point's
@@ -89,9 +97,26 @@ struct HitShading {
   explicit HitShading(const LightTable& table) : lights(&table) {}
 
   void clear();
+  void reserve(size_t points);
   void add_miss(vec3 environment) { color.push_back(environment); }
   // The point (u, v) of triangle t seen along −toward_viewer.
-  void add_hit(const Scene& scene, uint32_t t, float u, float v, vec3 toward_viewer);
+  void add_hit(const Scene& scene, uint32_t t, float u, float v, vec3 toward_viewer) {
+    if (t != run.triangle) run = ShadedTriangle(scene, t);
+    const Material& m = *run.material;
+    ShadingTerms st;
+    st.emission = m.emission;
+    st.ambient = scene.ambient;
+    st.albedo = surface_diffuse(scene, t, u, v);
+    st.specular = m.specular;
+    if (m.specular < 1.0f && st.albedo != vec3(0.0f)) {
+      lit.add(run.point(u, v), run.facing(u, v, toward_viewer).n);
+      lit_index.push_back(uint32_t(color.size()));
+      terms.push_back(st);
+      color.emplace_back(0.0f);  // set by finish()
+      return;
+    }
+    color.push_back(combine_shading(st));
+  }
   // Completes `color` of the lit points.
   void finish();
 
