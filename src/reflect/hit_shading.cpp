@@ -14,12 +14,8 @@ vec3 shade_reflected_point(const Scene& scene, uint32_t triangle, float u, float
   const Material& m = *tri.material;
   const ShadedTriangle::Facing f = tri.facing(u, v, toward_viewer);
   const vec3 p = tri.point(u, v);
-  ShadingTerms terms;
-  terms.emission = m.emission;
-  terms.ambient = scene.ambient;
-  terms.albedo = surface_diffuse(scene, triangle, u, v);
-  terms.specular = m.specular;
-  if (m.specular < 1.0f && terms.albedo != vec3(0.0f)) {
+  ShadingTerms terms = terms_without_light(scene, m, triangle, u, v);
+  if (receives_light(terms)) {
     for (const PointLight& light : scene.point_lights) terms.direct_irradiance += point_light_irradiance(light, p, f.n);
     const int n = area_light_samples;
     for (const AreaLight& light : scene.area_lights) {

@@ -55,6 +55,19 @@ struct ShadedTriangle {
   vec3 n0{0.0f}, n1{0.0f}, n2{0.0f}, p0{0.0f}, p1{0.0f}, p2{0.0f};
 };
 
+// shade_reflected_point's terms but the direct light: emission, ambient, albedo, s.
+inline ShadingTerms terms_without_light(const Scene& scene, const Material& m, uint32_t t, float u, float v) {
+  ShadingTerms st;
+  st.emission = m.emission;
+  st.ambient = scene.ambient;
+  st.albedo = surface_diffuse(scene, t, u, v);
+  st.specular = m.specular;
+  return st;
+}
+
+// Whether the direct light adds to L at a point with these terms (a diffuse part to light).
+inline bool receives_light(const ShadingTerms& st) { return st.specular < 1.0f && st.albedo != vec3(0.0f); }
+
 // The lights as shade_reflected_point evaluates them, with what it recomputes per point
 // (each area light's normal and area, its n×n stratum centres) computed once by the same
 // expressions: the same values. Points are stored per coordinate for the lanes.
@@ -102,13 +115,8 @@ struct HitShading {
   // The point (u, v) of triangle t seen along −toward_viewer.
   void add_hit(const Scene& scene, uint32_t t, float u, float v, vec3 toward_viewer) {
     if (t != run.triangle) run = ShadedTriangle(scene, t);
-    const Material& m = *run.material;
-    ShadingTerms st;
-    st.emission = m.emission;
-    st.ambient = scene.ambient;
-    st.albedo = surface_diffuse(scene, t, u, v);
-    st.specular = m.specular;
-    if (m.specular < 1.0f && st.albedo != vec3(0.0f)) {
+    const ShadingTerms st = terms_without_light(scene, *run.material, t, u, v);
+    if (receives_light(st)) {
       lit.add(run.point(u, v), run.facing(u, v, toward_viewer).n);
       lit_index.push_back(uint32_t(color.size()));
       terms.push_back(st);
