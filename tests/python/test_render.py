@@ -144,23 +144,31 @@ def two_threads_vs_sequence(fn):
 def test_two_renders_in_two_threads_overlap(cornell):
     """A behaviour test, not a benchmark: with one worker thread per call, two renders in two
     Python threads take less wall time than one after the other only if the GIL is released
-    while they run. The margin (0.9) is generous; the test is skipped when the machine does
-    not give this process two cores at the moment (two threads of hashlib, which releases the
-    GIL, do not overlap either: a loaded, shared machine)."""
+    while they run. The margin (0.9) is generous. A try counts only when the machine gives
+    this process two cores just before it (two threads of hashlib, which releases the GIL,
+    overlap); up to three tries, since other work (another test, another job) may take a core
+    in the middle of one. With the GIL held no try can overlap, so the retries cannot hide it."""
     if (os.cpu_count() or 1) < 2:
         pytest.skip("needs two cores")
     data = os.urandom(8 << 20)
-    parallel, sequential = two_threads_vs_sequence(lambda: [hashlib.sha256(data).digest() for _ in range(8)])
-    if parallel >= 0.9 * sequential:
-        pytest.skip(f"two cores not available now: hashlib in two threads {parallel:.2f} s vs {sequential:.2f} s")
     cam = small_camera(cornell, 160, 120)
+    tries = []
     proxima.set_threads(1)
     try:
         proxima.render_reference(cornell, cam)  # warm-up (BVH, page faults)
-        parallel, sequential = two_threads_vs_sequence(lambda: proxima.render_reference(cornell, cam, spp=2))
+        for _ in range(3):
+            probe = two_threads_vs_sequence(lambda: [hashlib.sha256(data).digest() for _ in range(8)])
+            if probe[0] >= 0.9 * probe[1]:
+                continue  # two cores not available now
+            parallel, sequential = two_threads_vs_sequence(lambda: proxima.render_reference(cornell, cam, spp=2))
+            tries.append((parallel, sequential))
+            if parallel < 0.9 * sequential:
+                return
     finally:
         proxima.set_threads(0)
-    assert parallel < 0.9 * sequential, (parallel, sequential)
+    if not tries:
+        pytest.skip("two cores not available now: hashlib in two threads did not overlap in three probes")
+    assert False, f"two renders in two threads did not overlap in any try (parallel, sequential s): {tries}"
 
 
 def rss_bytes():
