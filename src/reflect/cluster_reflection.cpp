@@ -22,9 +22,9 @@
 #include "proxima/core/timer.h"
 #include "proxima/raster/rasterizer.h"
 #include "proxima/reflect/cluster_camera.h"
-#include "proxima/reflect/hit_shading.h"
 #include "proxima/reflect/cluster_depth_image.h"
 #include "proxima/reflect/depth_image_march.h"
+#include "proxima/reflect/hit_shading.h"
 #include "proxima/trace/object_bvh.h"
 #include "proxima/scene/shading.h"
 

@@ -36,6 +36,7 @@ vec3 shade_reflected_point(const Scene& scene, uint32_t triangle, float u, float
 LightTable::LightTable(const Scene& scene, int n) : points(scene.point_lights), samples(float(n * n)) {
   for (const AreaLight& light : scene.area_lights) {
     Area a;
+    a.light = &light;
     a.normal = light.normal();
     a.radiance = light.radiance;
     a.area = light.area();
@@ -134,14 +135,8 @@ void direct_irradiance(const LightTable& lights, LitPoints& lit) {
     for (const PointLight& light : lights.points) e += point_light_irradiance(light, p, n);
     for (const LightTable::Area& a : lights.areas) {
       vec3 sum(0.0f);
-      for (size_t k = 0; k < a.x.size(); ++k) {  // area_light_sample_irradiance with the table's values
-        const vec3 to_light = vec3(a.x[k], a.y[k], a.z[k]) - p;
-        const float r2 = glm::dot(to_light, to_light);
-        const float r = std::sqrt(r2);
-        const float cs = glm::dot(n, to_light) / r, cl = -glm::dot(a.normal, to_light) / r;
-        const bool keep = !(r2 <= 0.0f) && !(cs <= 0.0f) && !(cl <= 0.0f);
-        sum += keep ? a.radiance * (cs * cl / r2 * a.area) : vec3(0.0f);
-      }
+      for (size_t k = 0; k < a.x.size(); ++k)
+        sum += area_light_sample_irradiance(*a.light, a.normal, a.area, vec3(a.x[k], a.y[k], a.z[k]), p, n);
       e += sum / lights.samples;
     }
     lit.ex[i] = e.x, lit.ey[i] = e.y, lit.ez[i] = e.z;
@@ -156,12 +151,6 @@ void HitShading::clear() {
   color.clear();
   terms.clear();
   lit_index.clear();
-}
-
-void HitShading::reserve(size_t points) {
-  color.reserve(points);
-  terms.reserve(points);
-  lit_index.reserve(points);
 }
 
 void HitShading::finish() {

@@ -16,6 +16,7 @@
 #include "proxima/core/rng.h"
 #include "proxima/core/timer.h"
 #include "proxima/raster/rasterizer.h"
+#include "proxima/reflect/hit_shading.h"
 #include "proxima/scene/shading.h"
 #include "shading_lanes.h"
 
@@ -207,7 +208,6 @@ void prepare_reflection_frame_into(const Scene& scene, const Camera& camera, con
   parallel_for(size_t(sh), 8, [&](size_t y0, size_t y1) {
     RowDirs dirs(view);
     HitShading shading(lights);
-    shading.reserve(size_t(sw));
     for (int y = int(y0); y < int(y1); ++y) shade_base_row(scene, g, view, y, dirs, shading, frame.base);
   });
   frame.shading_ms = watch.elapsed_ms() - frame.raster_ms;
@@ -310,11 +310,11 @@ namespace {
 constexpr uint32_t kBlockRays = 64;
 
 // Samples sample_of(b) … sample_of(e − 1): each one's mean radiance over its rays, summed in
-// ray order, passed to write(i, radiance); with `hits`, each ray's closest hit (left as it is
-// where the ray escapes). One kernel for every trace entry: the same bits.
-template <bool kHits, class SampleOf, class Write>
+// ray order, into radiance[i]; with `hits`, each ray's closest hit (left as it is where the
+// ray escapes). One kernel for every trace entry: the same bits.
+template <bool kHits, class SampleOf>
 void trace_samples(const Scene& scene, const RayScene& rays, const ReflectionFrame& frame, size_t b, size_t e,
-                   SampleOf sample_of, HitShading& shading, TracedReflections* hits, Write write) {
+                   SampleOf sample_of, HitShading& shading, TracedReflections* hits, std::span<vec3> radiance) {
   for (size_t k0 = b; k0 < e;) {
     shading.clear();
     size_t k1 = k0;
@@ -338,7 +338,7 @@ void trace_samples(const Scene& scene, const RayScene& rays, const ReflectionFra
       const uint32_t count = frame.first_ray[i + 1] - frame.first_ray[i];
       vec3 sum(0.0f);
       for (uint32_t j = 0; j < count; ++j) sum += *color++;
-      write(i, sum / float(count));
+      radiance[i] = sum / float(count);
     }
     k0 = k1;
   }
@@ -362,8 +362,7 @@ void trace_reflections_into(const Scene& scene, const RayScene& rays, const Refl
   const LightTable lights(scene, frame.area_light_samples);
   parallel_for(n, kSampleGrain, [&](size_t b, size_t e) {
     HitShading shading(lights);
-    trace_samples<true>(scene, rays, frame, b, e, [](size_t k) { return k; }, shading, &out,
-                        [&](size_t i, vec3 radiance) { out.radiance[i] = radiance; });
+    trace_samples<true>(scene, rays, frame, b, e, [](size_t k) { return k; }, shading, &out, out.radiance);
   });
   out.ms = watch.elapsed_ms();
 }
@@ -374,7 +373,7 @@ void trace_reflection_samples(const Scene& scene, const RayScene& rays, const Re
   parallel_for(samples.size(), kSampleGrain, [&](size_t b, size_t e) {
     HitShading shading(lights);
     trace_samples<false>(scene, rays, frame, b, e, [&](size_t k) { return size_t(samples[k]); }, shading, nullptr,
-                         [&](size_t i, vec3 value) { radiance[i] = value; });
+                         radiance);
   });
 }
 

@@ -1,3 +1,4 @@
+#include "proxima/reflect/hit_shading.h"
 #include "proxima/reflect/ssr_reflection.h"
 
 #include <algorithm>

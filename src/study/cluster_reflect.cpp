@@ -22,6 +22,7 @@
 #include "proxima/reflect/envmap_lookup.h"
 #include "proxima/reflect/envmap_reflection.h"
 #include "proxima/reflect/envmap_set.h"
+#include "proxima/reflect/hit_shading.h"
 #include "proxima/reflect/ssr_reflection.h"
 #include "proxima/scene/camera_path.h"
 #include "proxima/scene/shading.h"

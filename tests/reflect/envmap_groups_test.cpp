@@ -13,6 +13,7 @@
 #include "proxima/reflect/envmap_frame_reflections.h"
 #include "proxima/reflect/envmap_reflection.h"
 #include "proxima/reflect/envmap_set.h"
+#include "proxima/reflect/hit_shading.h"
 #include "proxima/reflect/reflection_frame.h"
 #include "proxima/scene/procedural.h"
 #include "proxima/trace/reference_renderer.h"

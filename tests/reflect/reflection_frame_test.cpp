@@ -14,6 +14,7 @@
 #include "proxima/core/parallel.h"
 #include "proxima/core/rng.h"
 #include "proxima/raster/rasterizer.h"
+#include "proxima/reflect/hit_shading.h"
 #include "proxima/reflect/reflection_frame.h"
 #include "proxima/scene/builtin_scenes.h"
 #include "proxima/scene/camera_path.h"

@@ -1,6 +1,7 @@
 // Screen-space reflections against Embree on the same rays: a planar mirror whose reflected
 // surfaces are all on screen is answered by SSR alone within MAE 1 (0–255); where the reflected
 // surfaces are off screen the rays fall back to the box probe, and are counted.
+#include "proxima/reflect/hit_shading.h"
 #include "proxima/reflect/ssr_reflection.h"
 
 #include <gtest/gtest.h>

@@ -73,6 +73,7 @@ inline bool receives_light(const ShadingTerms& st) { return st.specular < 1.0f &
 // expressions: the same values. Points are stored per coordinate for the lanes.
 struct LightTable {
   struct Area {
+    const AreaLight* light = nullptr;
     vec3 normal, radiance;
     float area = 0.0f;
     std::vector<float> x, y, z;  // the n×n stratum centres in shade_reflected_point's order
@@ -110,7 +111,6 @@ struct HitShading {
   explicit HitShading(const LightTable& table) : lights(&table) {}
 
   void clear();
-  void reserve(size_t points);
   void add_miss(vec3 environment) { color.push_back(environment); }
   // The point (u, v) of triangle t seen along −toward_viewer.
   void add_hit(const Scene& scene, uint32_t t, float u, float v, vec3 toward_viewer) {

@@ -14,7 +14,6 @@
 
 #include "proxima/core/camera.h"
 #include "proxima/core/image.h"
-#include "proxima/reflect/hit_shading.h"
 #include "proxima/scene/scene.h"
 #include "proxima/trace/ray_scene.h"
 
